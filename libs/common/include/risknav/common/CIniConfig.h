@@ -1,0 +1,57 @@
+#pragma once
+#include <mrpt/config/CConfigFile.h>
+
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace risknav::common
+{
+/** An MRPT .ini file (with MRPT's @define / ${VAR} / $eval{} preprocessor and
+ * `//` comments) that remembers which keys were read, so that unknown keys
+ * (typos) can be reported, and knows its own folder, so that relative paths
+ * resolve against it. Never writes back to disk.
+ *
+ * All reads of the MRPT macros (MRPT_LOAD_CONFIG_VAR...) go through the
+ * overridden readString(), so key tracking also covers MRPT's own options
+ * structs loaded from this file. */
+class CIniConfig : public mrpt::config::CConfigFile
+{
+public:
+    /** Loads the file; throws CBadInputError if it is missing, unreadable or a
+     * directory. */
+    explicit CIniConfig(const std::string& path);
+    ~CIniConfig() override = default;
+
+    const std::string& path() const { return m_path; }
+    /** Folder of the config file (absolute), for relative path resolution. */
+    const std::string& folder() const { return m_folder; }
+
+    /** Applies a `SECTION.KEY=VALUE` override (the CLI's --set). The section and
+     * key must already exist in the file, so that a typo cannot be silently
+     * ignored. Throws CBadInputError otherwise. */
+    void applyOverride(const std::string& assignment);
+
+    /** Keys present in the file (in the given sections, or all sections if
+     * empty) that no code has read so far: "[section] key" strings. */
+    std::vector<std::string> unreadKeys(const std::vector<std::string>& sections = {}) const;
+    /** Throws CBadInputError naming the first unread key, if any. */
+    void throwOnUnreadKeys(const std::vector<std::string>& sections = {}) const;
+
+    /** Whether a key exists in the file (does not count as a read). */
+    bool hasKey(const std::string& section, const std::string& key) const;
+    std::vector<std::string> sections() const;
+
+protected:
+    std::string readString(
+        const std::string& section, const std::string& name, const std::string& defaultStr,
+        bool failIfNotFound = false) const override;
+
+private:
+    std::string m_path, m_folder;
+    mutable std::set<std::pair<std::string, std::string>> m_read;
+};
+
+}  // namespace risknav::common

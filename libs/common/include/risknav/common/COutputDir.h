@@ -1,0 +1,45 @@
+#pragma once
+#include <string>
+#include <vector>
+
+namespace risknav::common
+{
+/** An output folder whose files appear all at once, at commit().
+ *
+ * Each result is written to a hidden temporary name in the same folder
+ * (stage()), and commit() renames them to their final names (rename(2) is
+ * atomic on one file system). A run that throws before commit() leaves the
+ * folder's earlier results untouched: the destructor removes the temporaries.
+ */
+class COutputDir
+{
+public:
+    /** Creates the folder (and parents). Throws CBadInputError if it cannot
+     * (e.g. the path is a file or not writable). */
+    explicit COutputDir(const std::string& dir);
+    ~COutputDir();
+    COutputDir(const COutputDir&) = delete;
+    COutputDir& operator=(const COutputDir&) = delete;
+
+    const std::string& dir() const { return m_dir; }
+    /** Final path of a result file (what it will be after commit()). */
+    std::string finalPath(const std::string& name) const;
+    /** Temporary path to write `name` to; registered for commit(). */
+    std::string stage(const std::string& name);
+    /** Writes a whole text file to its staged name. */
+    void writeText(const std::string& name, const std::string& content);
+    /** Renames every staged file to its final name. */
+    void commit();
+    /** Final names staged so far, in order. */
+    std::vector<std::string> stagedNames() const;
+
+private:
+    std::string m_dir;
+    std::vector<std::pair<std::string, std::string>> m_staged;  // (temp, final)
+    bool m_committed = false;
+};
+
+/** Writes `content` to `path` through a temporary file + rename. */
+void writeFileAtomic(const std::string& path, const std::string& content);
+
+}  // namespace risknav::common

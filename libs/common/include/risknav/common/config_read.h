@@ -1,0 +1,99 @@
+#pragma once
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace risknav::common
+{
+/** Allowed interval of a numeric key, with its unit for messages. */
+struct TRange
+{
+    double min = -std::numeric_limits<double>::infinity();
+    double max = std::numeric_limits<double>::infinity();
+    bool minOpen = false;  ///< true: value must be > min (not >=)
+    bool maxOpen = false;
+    std::string unit;
+
+    static TRange any(const std::string& unit = "") { return {-inf(), inf(), false, false, unit}; }
+    static TRange positive(const std::string& unit = "") { return {0, inf(), true, false, unit}; }
+    static TRange nonNegative(const std::string& unit = "") { return {0, inf(), false, false, unit}; }
+    static TRange closed(double a, double b, const std::string& unit = "")
+    {
+        return {a, b, false, false, unit};
+    }
+    static TRange atLeast(double a, const std::string& unit = "") { return {a, inf(), false, false, unit}; }
+    bool contains(double v) const;
+    std::string describe() const;  ///< e.g. "must be in (0, inf) m/s"
+    static double inf() { return std::numeric_limits<double>::infinity(); }
+};
+
+/** @name Strict typed reads.
+ * MRPT's read_double() accepts "0.5 ; comment" as a crash (stod) and "5abc" as 5;
+ * these reads accept exactly one number (or the documented list) and throw
+ * CBadInputError naming file, section, key, value and the allowed range.
+ * A missing key gives the default, except for the require*() variants.
+ * @{ */
+double readDouble(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                  const std::string& key, double def, const TRange& range);
+double requireDouble(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                     const std::string& key, const TRange& range);
+/** Reads degrees from the file and returns radians (MRPT convention). */
+double readDegrees(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                   const std::string& key, double defRad, const TRange& rangeDeg);
+int readInt(const mrpt::config::CConfigFileBase& c, const std::string& section,
+            const std::string& key, int def, const TRange& range);
+bool readBool(const mrpt::config::CConfigFileBase& c, const std::string& section,
+              const std::string& key, bool def);
+std::string readString(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                       const std::string& key, const std::string& def);
+std::string requireString(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                          const std::string& key);
+/** One of a fixed set of words. */
+std::string readChoice(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                       const std::string& key, const std::string& def,
+                       const std::vector<std::string>& allowed);
+/** Whitespace- or comma-separated numbers, optionally in brackets "[1 2 3]".
+ * sizeMultiple > 1 demands a count that is a multiple of it (e.g. x y pairs). */
+std::vector<double> readNumbers(const mrpt::config::CConfigFileBase& c,
+                                const std::string& section, const std::string& key,
+                                const std::vector<double>& def, const TRange& range,
+                                size_t minCount = 0, size_t sizeMultiple = 1);
+/** A file path; relative paths resolve against the config file's folder when
+ * the config is a CIniConfig. mustExist: throws if the file is not there. */
+std::string readPath(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                     const std::string& key, const std::string& def, bool mustExist);
+/** @} */
+
+/** "file.ini: " for a CIniConfig, "" otherwise: prefix of every message. */
+std::string configWhere(const mrpt::config::CConfigFileBase& c);
+/** Throws CBadInputError "<file>: [section] key = 'value': <rule>". */
+[[noreturn]] void throwBadKey(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                              const std::string& key, const std::string& value,
+                              const std::string& rule);
+
+/** Loads an options struct (MRPT style: loadFromConfigFile(c, section) then
+ * validate()) and turns a CConfigKeyError from validate() into a
+ * CBadInputError that names the file. */
+template <class OPTIONS>
+void loadOptions(OPTIONS& o, const mrpt::config::CConfigFileBase& c, const std::string& section);
+
+}  // namespace risknav::common
+
+#include <risknav/common/CBadInputError.h>
+
+template <class OPTIONS>
+void risknav::common::loadOptions(OPTIONS& o, const mrpt::config::CConfigFileBase& c,
+                                  const std::string& section)
+{
+    o.loadFromConfigFile(c, section);
+    try
+    {
+        o.validate();
+    }
+    catch (const CConfigKeyError& e)
+    {
+        throw CBadInputError(configWhere(c) + e.what());
+    }
+}
