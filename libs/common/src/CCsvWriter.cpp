@@ -36,6 +36,13 @@ std::string CCsvWriter::num(double v, int significant)
     return buf;
 }
 
+std::string CCsvWriter::fixed(double v, int decimals)
+{
+    char buf[64];
+    std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
+    return buf;
+}
+
 std::string CCsvWriter::quote(const std::string& s)
 {
     if (s.find_first_of(",\"\n\r") == std::string::npos) return s;

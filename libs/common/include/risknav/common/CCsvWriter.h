@@ -19,6 +19,8 @@ public:
     /** Shortest text that reads back to the same double ("%.9g"); "nan"
      * never appears in our tables, callers decide what a missing value is. */
     static std::string num(double v, int significant = 9);
+    /** Fixed-point text, e.g. times: fixed(1600000012.2, 3) = "1600000012.200". */
+    static std::string fixed(double v, int decimals);
     static std::string quote(const std::string& s);
 
 private:

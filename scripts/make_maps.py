@@ -1,0 +1,104 @@
+#!/usr/bin/env python3
+"""Draws the bundled dataset maps as 8-bit grey PNGs (white = free, black =
+occupied), 0.05 m per pixel, origin = lower-left corner at (0, 0).
+
+Rectangles are given in metres as (x0, y0, x1, y1). No third-party modules:
+PNG is written with zlib. Run from anywhere: python3 scripts/make_maps.py
+"""
+import os
+import struct
+import zlib
+
+RES = 0.05
+HERE = os.path.dirname(os.path.abspath(__file__))
+DATASETS = os.path.join(HERE, "..", "datasets")
+
+
+class Bitmap:
+    def __init__(self, w_m, h_m, fill=0):
+        self.w, self.h = round(w_m / RES), round(h_m / RES)
+        self.px = [bytearray([fill]) * self.w for _ in range(self.h)]
+
+    def rect(self, x0, y0, x1, y1, v):
+        """Paints cells whose centres lie in [x0, x1) x [y0, y1) (metres)."""
+        cx0, cx1 = round(x0 / RES), round(x1 / RES)
+        cy0, cy1 = round(y0 / RES), round(y1 / RES)
+        for cy in range(max(0, cy0), min(self.h, cy1)):
+            row = self.px[self.h - 1 - cy]  # image row 0 is the top (max y)
+            for cx in range(max(0, cx0), min(self.w, cx1)):
+                row[cx] = v
+
+    def free(self, *r):
+        self.rect(*r, 255)
+
+    def wall(self, *r):
+        self.rect(*r, 0)
+
+    def save(self, path):
+        raw = b"".join(b"\x00" + bytes(r) for r in self.px)
+        def chunk(tag, data):
+            c = struct.pack(">I", len(data)) + tag + data
+            return c + struct.pack(">I", zlib.crc32(tag + data) & 0xFFFFFFFF)
+        png = b"\x89PNG\r\n\x1a\n"
+        png += chunk(b"IHDR", struct.pack(">IIBBBBB", self.w, self.h, 8, 0, 0, 0, 0))
+        png += chunk(b"IDAT", zlib.compress(raw, 9))
+        png += chunk(b"IEND", b"")
+        with open(path, "wb") as f:
+            f.write(png)
+        print(f"{path}: {self.w} x {self.h} px ({self.w * RES:g} x {self.h * RES:g} m)")
+
+
+def corridor_doors():
+    """30 x 10 m: a 3 m corridor (y 3..6) with three doors on its upper side at
+    the positions of Choi et al. (002) section 3.3: 11.21-12.02, 13.68-15.10,
+    17.53-18.95 m. Alcoves and pillars on the lower side give the localizer
+    features along the corridor axis."""
+    b = Bitmap(30, 10)
+    b.free(0.5, 3.0, 29.5, 6.0)                  # corridor
+    b.free(10.0, 6.15, 13.0, 9.5)                # room behind door 1
+    b.free(13.15, 6.15, 16.5, 9.5)               # room behind door 2
+    b.free(16.65, 6.15, 20.5, 9.5)               # room behind door 3
+    for x0, x1 in ((11.21, 12.02), (13.68, 15.10), (17.53, 18.95)):
+        b.free(x0, 5.95, x1, 6.2)                # doorways through the 0.15 m wall
+    for x0, y0, x1 in ((2.5, 2.4, 3.7), (8.0, 2.6, 8.6), (15.0, 2.0, 17.0),
+                       (23.0, 2.6, 23.5), (26.0, 2.2, 27.8)):
+        b.free(x0, y0, x1, 3.0)                  # alcoves on the lower wall
+    for x0 in (5.5, 11.0, 19.5):
+        b.wall(x0, 3.0, x0 + 0.3, 3.2)           # pillars
+    b.wall(4.0, 5.8, 5.2, 6.0)                   # a cabinet against the upper wall
+    b.wall(24.0, 5.7, 24.6, 6.0)
+    return b
+
+
+def office():
+    """20 x 14 m: lower rooms, a 2 m corridor, upper rooms with furniture and a
+    0.8 m passage between two desks (the narrow space of Miura et al., M1)."""
+    b = Bitmap(20, 14)
+    b.free(0.3, 0.3, 19.7, 13.7)
+    b.wall(0.3, 5.85, 19.7, 6.0)                 # corridor walls
+    b.wall(0.3, 8.0, 19.7, 8.15)
+    b.wall(6.5, 0.3, 6.65, 5.85)                 # lower room walls
+    b.wall(13.0, 0.3, 13.15, 5.85)
+    b.wall(9.9, 8.15, 10.05, 13.7)               # upper room wall
+    for x0 in (2.5, 9.0, 16.0):
+        b.free(x0, 5.8, x0 + 1.0, 6.05)          # doors of the lower rooms
+    for x0 in (4.0, 15.0):
+        b.free(x0, 7.95, x0 + 1.0, 8.2)          # doors of the upper rooms
+    # Furniture in the upper-left room: two desks with a 0.8 m gap between them.
+    b.wall(1.0, 10.0, 4.1, 10.8)
+    b.wall(4.9, 10.0, 8.5, 10.8)
+    b.wall(1.0, 12.6, 3.0, 13.7)                 # shelves
+    b.wall(7.0, 12.8, 9.9, 13.7)
+    # Lower rooms: tables and cabinets.
+    b.wall(1.0, 1.0, 3.0, 2.2)
+    b.wall(8.0, 2.0, 11.5, 3.0)
+    b.wall(14.5, 0.3, 19.7, 1.0)
+    b.wall(17.5, 3.0, 18.5, 4.5)
+    # Upper-right room: a meeting table.
+    b.wall(13.0, 10.0, 17.0, 11.5)
+    return b
+
+
+if __name__ == "__main__":
+    corridor_doors().save(os.path.join(DATASETS, "corridor-doors", "corridor.png"))
+    office().save(os.path.join(DATASETS, "office", "office.png"))
