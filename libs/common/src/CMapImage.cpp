@@ -98,10 +98,32 @@ void CMapImage::heatOverlay(const std::vector<float>& v, float vmin, float vmax,
 
 void CMapImage::polyline(const std::vector<TPoint2D>& pts, TRgb c, int t, bool dashed)
 {
+    if (!dashed)
+    {
+        for (size_t i = 1; i < pts.size(); i++) segment(pts[i - 1], pts[i], c, t);
+        return;
+    }
+    // Dashes follow the arc length in pixels (8 on, 6 off), across vertices.
+    const double on = 8.0, period = 14.0;
+    double phase = 0.0;
     for (size_t i = 1; i < pts.size(); i++)
     {
-        if (dashed && (i % 2)) continue;
-        segment(pts[i - 1], pts[i], c, t);
+        const double lenPx = std::hypot(pts[i].x - pts[i - 1].x, pts[i].y - pts[i - 1].y) * m_pxPerM;
+        double s = 0.0;
+        while (s < lenPx)
+        {
+            const double inPeriod = std::fmod(phase + s, period);
+            const double runEnd = std::min(lenPx, s + (inPeriod < on ? on - inPeriod : period - inPeriod));
+            if (inPeriod < on && lenPx > 0)
+            {
+                const double f0 = s / lenPx, f1 = runEnd / lenPx;
+                segment({pts[i - 1].x + f0 * (pts[i].x - pts[i - 1].x), pts[i - 1].y + f0 * (pts[i].y - pts[i - 1].y)},
+                        {pts[i - 1].x + f1 * (pts[i].x - pts[i - 1].x), pts[i - 1].y + f1 * (pts[i].y - pts[i - 1].y)},
+                        c, t);
+            }
+            s = runEnd;
+        }
+        phase = std::fmod(phase + lenPx, period);
     }
 }
 

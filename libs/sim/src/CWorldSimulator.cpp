@@ -319,8 +319,9 @@ json CWorldSimulator::run(COutputDir& out, bool quiet)
         }
         if (blocked)
         {
+            // Stop, but keep turning in place: a robot stopped askew in a doorway
+            // would otherwise stay blocked by the door jamb forever.
             vDes = 0;
-            wDes = 0;
             stoppedTime += dt;
             if (!blockedPrev) stops++;
         }
