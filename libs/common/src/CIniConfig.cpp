@@ -52,6 +52,8 @@ catch (const std::exception& e)
     throw CBadInputError(path + ": cannot parse config file: " + msg);
 }
 
+CIniConfig::~CIniConfig() { discardSavingChanges(); }
+
 std::string CIniConfig::readString(const std::string& section, const std::string& name,
                                    const std::string& defaultStr, bool failIfNotFound) const
 {
@@ -69,6 +71,7 @@ void CIniConfig::applyOverride(const std::string& assignment)
     // Written into the in-memory config; a key that no code reads is then
     // reported by throwOnUnreadKeys(), so a typo in --set is not ignored.
     write(lhs.substr(0, dot), lhs.substr(dot + 1), assignment.substr(eq + 1));
+    discardSavingChanges();  // write() marks the file modified again
 }
 
 bool CIniConfig::hasKey(const std::string& section, const std::string& key) const

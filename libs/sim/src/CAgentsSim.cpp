@@ -247,6 +247,13 @@ void CAgentsSim::step(double t, double dt, const mrpt::math::TPose2D& robot, dou
         {
             const double ux = rx / rd, uy = ry / rd, inward = mx * ux + my * uy;
             double tx = mx - std::min(0.0, inward) * ux, ty = my - std::min(0.0, inward) * uy;
+            // Walking straight at the robot's centre leaves no tangential
+            // component: step aside (to the left), as people do.
+            if (std::hypot(tx, ty) < 1e-6 * maxStep)
+            {
+                tx = uy * maxStep;
+                ty = -ux * maxStep;
+            }
             const double tl = std::hypot(tx, ty);
             if (tl > 1e-9)
             {

@@ -23,7 +23,9 @@ public:
     /** Loads the file; throws CBadInputError if it is missing, unreadable or a
      * directory. */
     explicit CIniConfig(const std::string& path);
-    ~CIniConfig() override = default;
+    /** Never writes back: MRPT's CConfigFile saves modified content to disk in
+     * its destructor, which would let --set rewrite the user's file. */
+    ~CIniConfig() override;
 
     const std::string& path() const { return m_path; }
     /** Folder of the config file (absolute), for relative path resolution. */

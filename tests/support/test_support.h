@@ -1,0 +1,34 @@
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace risknav::test
+{
+/** Result of running a command: exit code, stdout, stderr. */
+struct TRun
+{
+    int exitCode = -1;
+    std::string out, err;
+};
+
+/** Runs a shell command line (stdin from /dev/null) and captures its output. */
+TRun run(const std::string& cmdline);
+
+/** Path of an app binary in the build tree, of a file in the source tree. */
+std::string binPath(const std::string& app);
+std::string sourcePath(const std::string& rel);
+
+/** A fresh, empty temporary folder, unique per test (removed by the caller or left in /tmp). */
+std::string freshDir(const std::string& name);
+
+std::string readFile(const std::string& path);
+void writeFile(const std::string& path, const std::string& content);
+nlohmann::json readJson(const std::string& path);
+/** Lines of a text file. */
+std::vector<std::string> readLines(const std::string& path);
+/** Names of the files in a folder (sorted). */
+std::vector<std::string> listDir(const std::string& dir);
+
+}  // namespace risknav::test

@@ -1,0 +1,110 @@
+#include <risknav/common/CBadInputError.h>
+#include <risknav/common/grid_io.h>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "test_support.h"
+
+using namespace risknav::common;
+using namespace risknav::test;
+
+namespace
+{
+// 40 x 20 px, white, with a black 4 x 2 px block in the top-left corner.
+std::string makePng(const std::string& dir)
+{
+    cv::Mat img(20, 40, CV_8UC1, cv::Scalar(255));
+    img(cv::Rect(0, 0, 4, 2)).setTo(0);
+    img(cv::Rect(10, 10, 2, 2)).setTo(128);
+    const std::string f = dir + "/m.png";
+    cv::imwrite(f, img);
+    return f;
+}
+}  // namespace
+
+TEST(GridIO, PngOrientationResolutionOrigin)
+{
+    TMapSourceOptions s;
+    s.map_file = makePng(freshDir("m"));
+    s.map_resolution = 0.1;
+    s.map_origin_x = -1.0;
+    s.map_origin_y = 2.0;
+    const auto g = loadOccupancyGrid(s);
+    EXPECT_EQ(g.getSizeX(), 40u);
+    EXPECT_EQ(g.getSizeY(), 20u);
+    EXPECT_NEAR(g.getXMin(), -1.0, 1e-6);
+    EXPECT_NEAR(g.getYMin(), 2.0, 1e-6);
+    EXPECT_NEAR(g.getXMax(), 3.0, 1e-5);
+    EXPECT_NEAR(g.getYMax(), 4.0, 1e-5);
+    // Image row 0 is the top (max y): the black block is at the top-left.
+    EXPECT_LT(g.getPos(-0.95, 3.95), 0.05f);
+    EXPECT_GT(g.getPos(-0.95, 2.05), 0.95f);
+    EXPECT_NEAR(g.getPos(0.05, 2.85), 128 / 255.0, 0.02);  // grey = uncertain
+}
+
+TEST(GridIO, RosYamlTrinary)
+{
+    const std::string d = freshDir("m");
+    makePng(d);
+    writeFile(d + "/m.yaml", "image: m.png\nresolution: 0.05\norigin: [1.0, 2.0, 0.0]\nnegate: 0\n"
+                             "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
+    TMapSourceOptions s;
+    s.map_file = d + "/m.yaml";
+    const auto g = loadOccupancyGrid(s);
+    EXPECT_NEAR(g.getResolution(), 0.05, 1e-6);
+    EXPECT_NEAR(g.getXMin(), 1.0, 1e-6);
+    EXPECT_LT(g.getCell(0, 19), 0.05f);                    // occupied
+    EXPECT_GT(g.getCell(20, 5), 0.95f);                    // free
+    EXPECT_NEAR(g.getCell(10, 20 - 1 - 10), 0.5f, 0.02f);  // grey -> unknown
+
+    // MRPT's own ROS loader reads the same file to the same cells.
+    mrpt::maps::COccupancyGridMap2D ref;
+    ASSERT_TRUE(ref.loadFromROSMapServerYAML(d + "/m.yaml"));
+    ASSERT_EQ(ref.getSizeX(), g.getSizeX());
+    ASSERT_EQ(ref.getSizeY(), g.getSizeY());
+    int differ = 0;
+    for (unsigned y = 0; y < g.getSizeY(); y++)
+        for (unsigned x = 0; x < g.getSizeX(); x++) differ += std::abs(ref.getCell(x, y) - g.getCell(x, y)) > 0.1f;
+    EXPECT_EQ(differ, 0);
+}
+
+TEST(GridIO, GridmapRoundTrip)
+{
+    const std::string d = freshDir("m");
+    TMapSourceOptions s;
+    s.map_file = makePng(d);
+    const auto g = loadOccupancyGrid(s);
+    saveGridmapGz(g, d + "/m.gridmap.gz");
+    TMapSourceOptions s2;
+    s2.map_file = d + "/m.gridmap.gz";
+    const auto h = loadOccupancyGrid(s2);
+    ASSERT_EQ(h.getSizeX(), g.getSizeX());
+    for (unsigned y = 0; y < g.getSizeY(); y++)
+        for (unsigned x = 0; x < g.getSizeX(); x++) ASSERT_FLOAT_EQ(h.getCell(x, y), g.getCell(x, y));
+}
+
+TEST(GridIO, BadFilesAreBadInput)
+{
+    const std::string d = freshDir("m");
+    TMapSourceOptions s;
+    s.map_file = d + "/none.png";
+    EXPECT_THROW(loadOccupancyGrid(s), CBadInputError);
+    writeFile(d + "/text.png", "this is not a png");
+    s.map_file = d + "/text.png";
+    try
+    {
+        loadOccupancyGrid(s);
+        FAIL();
+    }
+    catch (const CBadInputError& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("cannot read the map image"), std::string::npos);
+    }
+    writeFile(d + "/bad.gridmap.gz", "garbage");
+    s.map_file = d + "/bad.gridmap.gz";
+    EXPECT_THROW(loadOccupancyGrid(s), CBadInputError);
+    writeFile(d + "/m.yaml", "resolution: 0.05\n");
+    s.map_file = d + "/m.yaml";
+    EXPECT_THROW(loadOccupancyGrid(s), CBadInputError);
+}

@@ -1,0 +1,105 @@
+#include <risknav/common/CBadInputError.h>
+#include <risknav/common/CCsvWriter.h>
+#include <risknav/common/COutputDir.h>
+#include <risknav/common/CProgress.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "test_support.h"
+
+using namespace risknav::common;
+using namespace risknav::test;
+
+TEST(COutputDir, FilesAppearOnlyAtCommit)
+{
+    const std::string d = freshDir("out");
+    {
+        COutputDir out(d);
+        out.writeText("a.txt", "new a");
+        writeFile(out.stage("b.csv"), "new b");
+        EXPECT_TRUE(listDir(d).size() == 2u);  // two hidden temporaries
+        EXPECT_FALSE(std::filesystem::exists(d + "/a.txt"));
+        out.commit();
+    }
+    EXPECT_EQ(listDir(d), (std::vector<std::string>{"a.txt", "b.csv"}));
+    EXPECT_EQ(readFile(d + "/a.txt"), "new a");
+}
+
+TEST(COutputDir, AFailedRunLeavesEarlierResultsIntact)
+{
+    const std::string d = freshDir("out");
+    writeFile(d + "/summary.json", "{\"old\": true}\n");
+    try
+    {
+        COutputDir out(d);
+        out.writeText("summary.json", "half-written");
+        throw std::runtime_error("crash in the middle");
+    }
+    catch (const std::runtime_error&)
+    {
+    }
+    EXPECT_EQ(listDir(d), (std::vector<std::string>{"summary.json"}));  // no temporaries left
+    EXPECT_EQ(readFile(d + "/summary.json"), "{\"old\": true}\n");
+}
+
+TEST(COutputDir, TemporariesKeepTheExtension)
+{
+    // OpenCV picks the image format from the extension of the temporary name.
+    COutputDir out(freshDir("out"));
+    EXPECT_EQ(std::filesystem::path(out.stage("world.png")).extension(), ".png");
+}
+
+TEST(COutputDir, UnusableFolderIsBadInput)
+{
+    const std::string f = freshDir("x") + "/file";
+    writeFile(f, "i am a file");
+    EXPECT_THROW(COutputDir out(f), CBadInputError);
+}
+
+TEST(WriteFileAtomic, ReplacesWholeFile)
+{
+    const std::string f = freshDir("x") + "/a.txt";
+    writeFile(f, "old");
+    writeFileAtomic(f, "new content");
+    EXPECT_EQ(readFile(f), "new content");
+    EXPECT_EQ(listDir(std::filesystem::path(f).parent_path().string()).size(), 1u);
+}
+
+TEST(CCsvWriter, HeaderQuotingAndNumbers)
+{
+    const std::string f = freshDir("x") + "/t.csv";
+    CCsvWriter csv(f, {"a", "b,c"});
+    csv.row({"1", "say \"hi\""});
+    csv.row({CCsvWriter::num(0.1 + 0.2), CCsvWriter::fixed(1600000000.25, 3)});
+    EXPECT_THROW(csv.row({"only one"}), std::logic_error);
+    csv.close();
+    EXPECT_EQ(csv.rows(), 2u);
+    EXPECT_EQ(readFile(f), "a,\"b,c\"\n1,\"say \"\"hi\"\"\"\n0.3,1600000000.250\n");
+}
+
+TEST(CProgress, LineHasCountRateAndEta)
+{
+    EXPECT_EQ(CProgress::formatLine("replay", 50, 200, 10.0, "frames"),
+              "replay: 50/200 frames (5 frames/s, ETA 0:30)");
+    EXPECT_EQ(CProgress::formatLine("replay", 200, 200, 10.0, "frames"),
+              "replay: 200/200 frames in 10.0 s (20 frames/s)");
+}
+
+TEST(CProgress, NonTerminalPrintsOneLine)
+{
+    const std::string f = freshDir("x") + "/p.txt";
+    FILE* out = std::fopen(f.c_str(), "w");
+    {
+        CProgress p("work", 10, "items", false, out);
+        EXPECT_FALSE(p.isTerminal());
+        for (size_t i = 1; i <= 10; i++) p.update(i);
+        p.finish();
+        p.finish();
+    }
+    std::fclose(out);
+    const auto lines = readLines(f);
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_EQ(lines[0].rfind("work: 10/10 items in ", 0), 0u) << lines[0];
+}
