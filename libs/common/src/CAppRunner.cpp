@@ -11,6 +11,10 @@ namespace risknav::common
 {
 std::string firstLine(const std::string& s)
 {
+    // MRPT exceptions: "==== MRPT exception ====\nMessage:  <text>\nLocation: ..."
+    const auto msg = s.find("Message:");
+    if (s.rfind("==== MRPT exception", 0) == 0 && msg != std::string::npos)
+        return firstLine(s.substr(msg + 8));
     size_t b = s.find_first_not_of(" \t\r\n");
     if (b == std::string::npos) return "unknown error";
     return s.substr(b, s.find('\n', b) - b);

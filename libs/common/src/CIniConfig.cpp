@@ -1,3 +1,4 @@
+#include <risknav/common/CAppRunner.h>
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/CIniConfig.h>
 
@@ -47,9 +48,7 @@ catch (const CBadInputError&)
 catch (const std::exception& e)
 {
     // MRPT's preprocessor throws on a bad @define / $eval; keep one line.
-    std::string msg = e.what();
-    msg = msg.substr(0, msg.find('\n'));
-    throw CBadInputError(path + ": cannot parse config file: " + msg);
+    throw CBadInputError(path + ": cannot parse config file: " + firstLine(e.what()));
 }
 
 CIniConfig::~CIniConfig() { discardSavingChanges(); }

@@ -50,13 +50,14 @@ void CProgress::update(size_t done)
 
 void CProgress::finish(const std::string& extra)
 {
+    // The total may have been an estimate: the final line reports what was done.
     if (m_finished) return;
     m_finished = true;
     if (m_quiet) return;
     const double el =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
     std::fprintf(m_out, "%s%s%s\n", m_tty ? "\r\033[K" : "",
-                 formatLine(m_label, m_done, m_total, el, m_unit).c_str(), extra.c_str());
+                 formatLine(m_label, m_done, m_done, el, m_unit).c_str(), extra.c_str());
     std::fflush(m_out);
 }
 

@@ -82,4 +82,6 @@ TEST(RunApp, FirstLineOnly)
 {
     EXPECT_EQ(firstLine("\n  first\nsecond\n"), "first");
     EXPECT_EQ(firstLine(""), "unknown error");
+    EXPECT_EQ(firstLine("==== MRPT exception ====\nMessage:  Undefined symbol 'x'\nLocation: a.cpp:1\n"),
+              "Undefined symbol 'x'");
 }

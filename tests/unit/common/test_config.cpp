@@ -93,6 +93,13 @@ TEST(ConfigRead, MrptPreprocessorWorks)
     EXPECT_DOUBLE_EQ(readDouble(c, "R", "w", 0, TRange::any()), 0.8);
 }
 
+TEST(CIniConfig, PreprocessorErrorsAreOneLineBadInput)
+{
+    const std::string e = errorOf([] { CIniConfig c(iniFile("[A]\nk = $eval{nosuchvar+1}\n")); });
+    EXPECT_NE(e.find("cannot parse config file"), std::string::npos) << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+}
+
 TEST(ConfigRead, PathsResolveAgainstTheConfigFolder)
 {
     const std::string p = iniFile("[W]\nmap_file = maps/m.png\nabs = /etc/hostname\n");

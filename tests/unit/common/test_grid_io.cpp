@@ -108,3 +108,24 @@ TEST(GridIO, BadFilesAreBadInput)
     s.map_file = d + "/m.yaml";
     EXPECT_THROW(loadOccupancyGrid(s), CBadInputError);
 }
+
+// MRPT's own sample map (package mrpt-common): a grid built from its keyframes.
+TEST(GridIO, MrptSimplemapDataset)
+{
+    TMapSourceOptions s;
+    s.map_file = "/usr/share/mrpt/datasets/localization_demo.simplemap.gz";
+    s.simplemap_resolution = 0.1;
+    const auto g = loadOccupancyGrid(s);
+    EXPECT_NEAR(g.getResolution(), 0.1, 1e-6);
+    EXPECT_GT(g.getXMax() - g.getXMin(), 40.0);  // the demo building spans ~ 70 x 30 m
+    EXPECT_GT(g.getYMax() - g.getYMin(), 20.0);
+    size_t occupied = 0, freeCells = 0;
+    for (unsigned y = 0; y < g.getSizeY(); y++)
+        for (unsigned x = 0; x < g.getSizeX(); x++)
+        {
+            occupied += g.getCell(x, y) < 0.3f;
+            freeCells += g.getCell(x, y) > 0.7f;
+        }
+    EXPECT_GT(occupied, 1000u);
+    EXPECT_GT(freeCells, 10000u);
+}

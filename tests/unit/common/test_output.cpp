@@ -94,12 +94,12 @@ TEST(CProgress, NonTerminalPrintsOneLine)
     {
         CProgress p("work", 10, "items", false, out);
         EXPECT_FALSE(p.isTerminal());
-        for (size_t i = 1; i <= 10; i++) p.update(i);
+        for (size_t i = 1; i <= 8; i++) p.update(i);  // the total was an overestimate
         p.finish();
         p.finish();
     }
     std::fclose(out);
     const auto lines = readLines(f);
     ASSERT_EQ(lines.size(), 1u);
-    EXPECT_EQ(lines[0].rfind("work: 10/10 items in ", 0), 0u) << lines[0];
+    EXPECT_EQ(lines[0].rfind("work: 8/8 items in ", 0), 0u) << lines[0];
 }
