@@ -10,33 +10,32 @@
 using namespace risknav::test;
 namespace fs = std::filesystem;
 
-namespace
-{
-struct TCase
-{
+namespace {
+struct TCase {
     std::string name;
-    std::string edit_from, edit_to;  // regex replacement applied to the corridor world.ini
+    std::string edit_from,
+        edit_to;  // regex replacement applied to the corridor world.ini
     std::string extraArgs;
     std::string expect;  // substring of the one-line error
 };
 
-std::ostream& operator<<(std::ostream& o, const TCase& c) { return o << c.name; }
+std::ostream& operator<<(std::ostream& o, const TCase& c) {
+    return o << c.name;
+}
 
-class BadInput : public ::testing::TestWithParam<TCase>
-{
-};
+class BadInput : public ::testing::TestWithParam<TCase> {};
 }  // namespace
 
-TEST_P(BadInput, ExitTwoOneLineOutputUntouched)
-{
+TEST_P(BadInput, ExitTwoOneLineOutputUntouched) {
     const TCase& c = GetParam();
     const std::string work = freshDir("world");
-    fs::copy_file(sourcePath("datasets/corridor-doors/corridor.png"), work + "/corridor.png");
+    fs::copy_file(sourcePath("datasets/corridor-doors/corridor.png"),
+                  work + "/corridor.png");
     writeFile(work + "/not_a_png.png", "plain text, not an image\n");
     std::string ini = readFile(sourcePath("datasets/corridor-doors/world.ini"));
-    if (!c.edit_from.empty())
-    {
-        const std::string edited = std::regex_replace(ini, std::regex(c.edit_from), c.edit_to);
+    if (!c.edit_from.empty()) {
+        const std::string edited =
+            std::regex_replace(ini, std::regex(c.edit_from), c.edit_to);
         ASSERT_NE(edited, ini) << "the edit did not apply";
         ini = edited;
     }
@@ -46,15 +45,18 @@ TEST_P(BadInput, ExitTwoOneLineOutputUntouched)
     const std::string out = freshDir("out");
     writeFile(out + "/summary.json", "{\"earlier\": true}\n");
     writeFile(out + "/simulation.rawlog", "earlier rawlog");
-    const std::string cfg = c.name == "missing_config" ? work + "/nope.ini" : work + "/world.ini";
+    const std::string cfg =
+        c.name == "missing_config" ? work + "/nope.ini" : work + "/world.ini";
 
-    const auto r = run(binPath("risknav-simulate") + " -q -o '" + out + "' " + c.extraArgs + " '" + cfg + "'");
+    const auto r = run(binPath("risknav-simulate") + " -q -o '" + out + "' " +
+                       c.extraArgs + " '" + cfg + "'");
     EXPECT_EQ(r.exitCode, 2) << r.err;
     ASSERT_FALSE(r.err.empty());
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_EQ(r.err.rfind("risknav-simulate: error: ", 0), 0u) << r.err;
     EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
-    EXPECT_EQ(listDir(out), (std::vector<std::string>{"simulation.rawlog", "summary.json"}));
+    EXPECT_EQ(listDir(out),
+              (std::vector<std::string>{"simulation.rawlog", "summary.json"}));
     EXPECT_EQ(readFile(out + "/summary.json"), "{\"earlier\": true}\n");
     EXPECT_EQ(readFile(out + "/simulation.rawlog"), "earlier rawlog");
 }
@@ -63,34 +65,42 @@ INSTANTIATE_TEST_SUITE_P(
     Simulate, BadInput,
     ::testing::Values(
         TCase{"missing_config", "", "", "", "nope.ini: config file not found"},
-        TCase{"missing_map", "map_file\\s*=\\s*corridor.png", "map_file = nothere.png", "",
-              "[World] map_file = 'nothere.png': file not found"},
-        TCase{"unreadable_png", "map_file\\s*=\\s*corridor.png", "map_file = not_a_png.png", "",
-              "not_a_png.png: cannot read the map image"},
-        TCase{"missing_waypoints", "waypoints = [^\n]*\n", "", "", "[Route] waypoints: required key is missing"},
-        TCase{"negative_speed", "speed\\s*=\\s*0.2", "speed = -0.2", "", "[Route] speed = '-0.2': must be in (0, 5] m/s"},
+        TCase{"missing_map", "map_file\\s*=\\s*corridor.png", "map_file = nothere.png",
+              "", "[World] map_file = 'nothere.png': file not found"},
+        TCase{"unreadable_png", "map_file\\s*=\\s*corridor.png",
+              "map_file = not_a_png.png", "", "not_a_png.png: cannot read the map image"},
+        TCase{"missing_waypoints", "waypoints = [^\n]*\n", "", "",
+              "[Route] waypoints: required key is missing"},
+        TCase{"negative_speed", "speed\\s*=\\s*0.2", "speed = -0.2", "",
+              "[Route] speed = '-0.2': must be in (0, 5] m/s"},
         TCase{"zero_resolution", "", "", "--set World.map_resolution=0",
               "[World] map_resolution = '0': must be in [0.001, 10] m"},
         TCase{"negative_person_speed", "speed     = 0.8", "speed     = -0.8", "",
               "[DoorPedestrian1] speed = '-0.8': must be in (0, inf) m/s"},
-        TCase{"not_a_number", "", "", "--set Robot.radius=0.25cm", "[Robot] radius = '0.25cm': not a number"},
-        TCase{"unknown_key", "\\[Robot\\]\n", "[Robot]\nmax_vel = 1.0\n", "", "unknown key [Robot] max_vel"},
-        TCase{"unknown_key_by_set", "", "", "--set Route.sped=1", "unknown key [Route] sped"},
+        TCase{"not_a_number", "", "", "--set Robot.radius=0.25cm",
+              "[Robot] radius = '0.25cm': not a number"},
+        TCase{"unknown_key", "\\[Robot\\]\n", "[Robot]\nmax_vel = 1.0\n", "",
+              "unknown key [Robot] max_vel"},
+        TCase{"unknown_key_by_set", "", "", "--set Route.sped=1",
+              "unknown key [Route] sped"},
         TCase{"unknown_section", "\\[Robot\\]", "[Robto]", "", "unknown section [Robto]"},
-        TCase{"route_through_wall", "waypoints = 2.0 4.5  28.0 4.5", "waypoints = 2.0 4.5  2.0 8.0", "",
-              "runs through an obstacle"},
-        TCase{"start_in_obstacle", "waypoints = 2.0 4.5  28.0 4.5", "waypoints = 2.0 1.0  28.0 4.5", "",
+        TCase{"route_through_wall", "waypoints = 2.0 4.5  28.0 4.5",
+              "waypoints = 2.0 4.5  2.0 8.0", "", "runs through an obstacle"},
+        TCase{"start_in_obstacle", "waypoints = 2.0 4.5  28.0 4.5",
+              "waypoints = 2.0 1.0  28.0 4.5", "",
               "start (2.00, 1.00) is inside an obstacle"},
-        TCase{"waypoint_off_map", "waypoints = 2.0 4.5  28.0 4.5", "waypoints = 2.0 4.5  35.0 4.5", "",
-              "is outside the map"},
-        TCase{"odd_waypoints", "waypoints = 2.0 4.5  28.0 4.5", "waypoints = 2.0 4.5  28.0 4.5 3.0", "",
-              "needs a multiple of 2 numbers"},
+        TCase{"waypoint_off_map", "waypoints = 2.0 4.5  28.0 4.5",
+              "waypoints = 2.0 4.5  35.0 4.5", "", "is outside the map"},
+        TCase{"odd_waypoints", "waypoints = 2.0 4.5  28.0 4.5",
+              "waypoints = 2.0 4.5  28.0 4.5 3.0", "", "needs a multiple of 2 numbers"},
         TCase{"huge_sigma", "sigma_tread        = 0.001", "sigma_tread        = 0.5", "",
               "[Odometry] sigma_tread = '0.500000': must be < tread / 3"},
-        TCase{"bad_choice", "error_model        = systematic", "error_model        = random", "",
+        TCase{"bad_choice", "error_model        = systematic",
+              "error_model        = random", "",
               "must be one of: systematic, per_step, none"},
         TCase{"frame_not_multiple_of_dt", "", "", "--set Simulation.sim_dt=0.07",
               "whole multiple of sim_dt"},
         TCase{"bad_option", "", "", "--frobnicate", "unknown option '--frobnicate'"},
-        TCase{"bad_seed", "", "", "--seed -1", "--seed '-1': must be a non-negative integer"}),
+        TCase{"bad_seed", "", "", "--seed -1",
+              "--seed '-1': must be a non-negative integer"}),
     [](const ::testing::TestParamInfo<TCase>& i) { return i.param.name; });

@@ -13,67 +13,72 @@
 
 namespace fs = std::filesystem;
 
-namespace risknav::test
-{
-TRun run(const std::string& cmdline)
-{
+namespace risknav::test {
+TRun run(const std::string& cmdline) {
     const std::string errFile = freshDir("run-stderr") + "/stderr.txt";
     const std::string full = "( " + cmdline + " ) < /dev/null 2> '" + errFile + "'";
     TRun r;
     FILE* p = ::popen(full.c_str(), "r");
-    if (!p) return r;
+    if (!p)
+        return r;
     std::array<char, 4096> buf{};
     size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0)
+        r.out.append(buf.data(), n);
     const int st = ::pclose(p);
     r.exitCode = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
     r.err = readFile(errFile);
     return r;
 }
 
-std::string binPath(const std::string& app) { return std::string(RISKNAV_BIN_DIR) + "/" + app; }
-std::string sourcePath(const std::string& rel) { return std::string(RISKNAV_SOURCE_DIR) + "/" + rel; }
+std::string binPath(const std::string& app) {
+    return std::string(RISKNAV_BIN_DIR) + "/" + app;
+}
+std::string sourcePath(const std::string& rel) {
+    return std::string(RISKNAV_SOURCE_DIR) + "/" + rel;
+}
 
-std::string freshDir(const std::string& name)
-{
+std::string freshDir(const std::string& name) {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string tag = info ? std::string(info->test_suite_name()) + "." + info->name() : "notest";
+    std::string tag =
+        info ? std::string(info->test_suite_name()) + "." + info->name() : "notest";
     std::replace(tag.begin(), tag.end(), '/', '_');
-    const fs::path d = fs::temp_directory_path() / ("risknav-test-" + std::to_string(::getpid())) / tag / name;
+    const fs::path d = fs::temp_directory_path() /
+                       ("risknav-test-" + std::to_string(::getpid())) / tag / name;
     fs::remove_all(d);
     fs::create_directories(d);
     return d.string();
 }
 
-std::string readFile(const std::string& path)
-{
+std::string readFile(const std::string& path) {
     std::ifstream f(path, std::ios::binary);
     std::stringstream s;
     s << f.rdbuf();
     return s.str();
 }
 
-void writeFile(const std::string& path, const std::string& content)
-{
+void writeFile(const std::string& path, const std::string& content) {
     std::ofstream f(path, std::ios::binary);
     f << content;
 }
 
-nlohmann::json readJson(const std::string& path) { return nlohmann::json::parse(readFile(path)); }
+nlohmann::json readJson(const std::string& path) {
+    return nlohmann::json::parse(readFile(path));
+}
 
-std::vector<std::string> readLines(const std::string& path)
-{
+std::vector<std::string> readLines(const std::string& path) {
     std::vector<std::string> v;
     std::ifstream f(path);
     std::string l;
-    while (std::getline(f, l)) v.push_back(l);
+    while (std::getline(f, l))
+        v.push_back(l);
     return v;
 }
 
-std::vector<std::string> listDir(const std::string& dir)
-{
+std::vector<std::string> listDir(const std::string& dir) {
     std::vector<std::string> v;
-    for (const auto& e : fs::directory_iterator(dir)) v.push_back(e.path().filename().string());
+    for (const auto& e : fs::directory_iterator(dir))
+        v.push_back(e.path().filename().string());
     std::sort(v.begin(), v.end());
     return v;
 }

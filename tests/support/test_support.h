@@ -4,11 +4,9 @@
 #include <string>
 #include <vector>
 
-namespace risknav::test
-{
+namespace risknav::test {
 /** Result of running a command: exit code, stdout, stderr. */
-struct TRun
-{
+struct TRun {
     int exitCode = -1;
     std::string out, err;
 };
@@ -20,7 +18,8 @@ TRun run(const std::string& cmdline);
 std::string binPath(const std::string& app);
 std::string sourcePath(const std::string& rel);
 
-/** A fresh, empty temporary folder, unique per test (removed by the caller or left in /tmp). */
+/** A fresh, empty temporary folder, unique per test (removed by the caller or left in
+ * /tmp). */
 std::string freshDir(const std::string& name);
 
 std::string readFile(const std::string& path);

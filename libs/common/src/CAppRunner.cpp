@@ -7,26 +7,25 @@
 #include <cstdlib>
 #include <iostream>
 
-namespace risknav::common
-{
-std::string firstLine(const std::string& s)
-{
+namespace risknav::common {
+std::string firstLine(const std::string& s) {
     // MRPT exceptions: "==== MRPT exception ====\nMessage:  <text>\nLocation: ..."
     const auto msg = s.find("Message:");
     if (s.rfind("==== MRPT exception", 0) == 0 && msg != std::string::npos)
         return firstLine(s.substr(msg + 8));
     size_t b = s.find_first_not_of(" \t\r\n");
-    if (b == std::string::npos) return "unknown error";
+    if (b == std::string::npos)
+        return "unknown error";
     return s.substr(b, s.find('\n', b) - b);
 }
 
-std::string appUsage(const TAppInfo& info)
-{
+std::string appUsage(const TAppInfo& info) {
     return "usage: " + info.name + " [options] CONFIG.ini" +
            (info.extraArgs.empty() ? "" : " " + info.extraArgs) + "\n" + info.summary +
            "\n\n"
            "options:\n"
-           "  -o, --out DIR        output folder (default: out/" + info.name.substr(info.name.find('-') + 1) +
+           "  -o, --out DIR        output folder (default: out/" +
+           info.name.substr(info.name.find('-') + 1) +
            "), created if missing\n"
            "  --set SECTION.KEY=V  override a config value (repeatable)\n"
            "  -q, --quiet          no progress output\n"
@@ -36,23 +35,21 @@ std::string appUsage(const TAppInfo& info)
            "exit status: 0 done, 1 runtime failure, 2 bad input (usage, config, file)\n";
 }
 
-std::string versionString(const TAppInfo& info)
-{
-    return info.name + " (risknav " RISKNAV_VERSION_STR ", built on " + std::string(MRPT_version_str) +
-           ")";
+std::string versionString(const TAppInfo& info) {
+    return info.name + " (risknav " RISKNAV_VERSION_STR ", built on " +
+           std::string(MRPT_version_str) + ")";
 }
 
-TAppArgs parseAppArgs(const std::vector<std::string>& args, const TAppInfo& info)
-{
+TAppArgs parseAppArgs(const std::vector<std::string>& args, const TAppInfo& info) {
     TAppArgs a;
     a.outDir = "out/" + info.name.substr(info.name.find('-') + 1);
     std::vector<std::string> positional;
     auto value = [&](size_t& i, const std::string& opt) -> std::string {
-        if (i + 1 >= args.size()) throw CBadInputError(opt + " needs a value (see --help)");
+        if (i + 1 >= args.size())
+            throw CBadInputError(opt + " needs a value (see --help)");
         return args[++i];
     };
-    for (size_t i = 0; i < args.size(); i++)
-    {
+    for (size_t i = 0; i < args.size(); i++) {
         const std::string& s = args[i];
         if (s == "-h" || s == "--help")
             a.help = true;
@@ -68,59 +65,56 @@ TAppArgs parseAppArgs(const std::vector<std::string>& args, const TAppInfo& info
             a.sets.push_back(value(i, s));
         else if (s.rfind("--set=", 0) == 0)
             a.sets.push_back(s.substr(6));
-        else if (s == "--seed" || s.rfind("--seed=", 0) == 0)
-        {
+        else if (s == "--seed" || s.rfind("--seed=", 0) == 0) {
             const std::string v = s == "--seed" ? value(i, s) : s.substr(7);
             char* end = nullptr;
             errno = 0;
             const unsigned long long n = std::strtoull(v.c_str(), &end, 10);
             if (v.empty() || v[0] == '-' || *end != '\0' || errno)
-                throw CBadInputError("--seed '" + v + "': must be a non-negative integer");
+                throw CBadInputError("--seed '" + v +
+                                     "': must be a non-negative integer");
             a.seed = n;
-        }
-        else if (s.size() > 1 && s[0] == '-')
+        } else if (s.size() > 1 && s[0] == '-')
             throw CBadInputError("unknown option '" + s + "' (see --help)");
         else
             positional.push_back(s);
     }
-    if (a.help || a.version) return a;
-    if (a.outDir.empty()) throw CBadInputError("--out: empty folder name");
-    if (positional.empty()) throw CBadInputError("missing CONFIG.ini (see --help)");
+    if (a.help || a.version)
+        return a;
+    if (a.outDir.empty())
+        throw CBadInputError("--out: empty folder name");
+    if (positional.empty())
+        throw CBadInputError("missing CONFIG.ini (see --help)");
     a.configPath = positional.front();
     a.extra.assign(positional.begin() + 1, positional.end());
     if (!a.extra.empty() && info.extraArgs.empty())
-        throw CBadInputError("unexpected argument '" + a.extra.front() + "' (see --help)");
+        throw CBadInputError("unexpected argument '" + a.extra.front() +
+                             "' (see --help)");
     return a;
 }
 
 int runApp(int argc, char** argv, const TAppInfo& info,
-           const std::function<void(const TAppContext&)>& body)
-{
-    try
-    {
-        const TAppArgs args = parseAppArgs(std::vector<std::string>(argv + 1, argv + argc), info);
-        if (args.help)
-        {
+           const std::function<void(const TAppContext&)>& body) {
+    try {
+        const TAppArgs args =
+            parseAppArgs(std::vector<std::string>(argv + 1, argv + argc), info);
+        if (args.help) {
             std::cout << appUsage(info);
             return 0;
         }
-        if (args.version)
-        {
+        if (args.version) {
             std::cout << versionString(info) << "\n";
             return 0;
         }
         CIniConfig cfg(args.configPath);
-        for (const auto& s : args.sets) cfg.applyOverride(s);
+        for (const auto& s : args.sets)
+            cfg.applyOverride(s);
         body(TAppContext{info, args, cfg});
         return 0;
-    }
-    catch (const CBadInputError& e)
-    {
+    } catch (const CBadInputError& e) {
         std::cerr << info.name << ": error: " << firstLine(e.what()) << "\n";
         return 2;
-    }
-    catch (const std::exception& e)
-    {
+    } catch (const std::exception& e) {
         std::cerr << info.name << ": runtime error: " << firstLine(e.what()) << "\n";
         return 1;
     }

@@ -3,51 +3,49 @@
 #include <cstdio>
 #include <stdexcept>
 
-namespace risknav::common
-{
+namespace risknav::common {
 CCsvWriter::CCsvWriter(const std::string& path, const std::vector<std::string>& header)
-    : m_path(path), m_out(path, std::ios::trunc), m_columns(header.size())
-{
-    if (!m_out.good()) throw std::runtime_error("cannot write " + path);
+    : m_path(path), m_out(path, std::ios::trunc), m_columns(header.size()) {
+    if (!m_out.good())
+        throw std::runtime_error("cannot write " + path);
     row(header);
     m_rows = 0;
 }
 
-void CCsvWriter::row(const std::vector<std::string>& cells)
-{
+void CCsvWriter::row(const std::vector<std::string>& cells) {
     if (cells.size() != m_columns)
-        throw std::logic_error("CSV row with " + std::to_string(cells.size()) + " cells, header has " +
-                               std::to_string(m_columns));
-    for (size_t i = 0; i < cells.size(); i++) m_out << (i ? "," : "") << quote(cells[i]);
+        throw std::logic_error("CSV row with " + std::to_string(cells.size()) +
+                               " cells, header has " + std::to_string(m_columns));
+    for (size_t i = 0; i < cells.size(); i++)
+        m_out << (i ? "," : "") << quote(cells[i]);
     m_out << "\n";
     m_rows++;
 }
 
-void CCsvWriter::close()
-{
+void CCsvWriter::close() {
     m_out.close();
-    if (!m_out) throw std::runtime_error("cannot write " + m_path);
+    if (!m_out)
+        throw std::runtime_error("cannot write " + m_path);
 }
 
-std::string CCsvWriter::num(double v, int significant)
-{
+std::string CCsvWriter::num(double v, int significant) {
     char buf[64];
     std::snprintf(buf, sizeof(buf), "%.*g", significant, v);
     return buf;
 }
 
-std::string CCsvWriter::fixed(double v, int decimals)
-{
+std::string CCsvWriter::fixed(double v, int decimals) {
     char buf[64];
     std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
     return buf;
 }
 
-std::string CCsvWriter::quote(const std::string& s)
-{
-    if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+std::string CCsvWriter::quote(const std::string& s) {
+    if (s.find_first_of(",\"\n\r") == std::string::npos)
+        return s;
     std::string q = "\"";
-    for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
+    for (char c : s)
+        q += (c == '"') ? std::string("\"\"") : std::string(1, c);
     return q + "\"";
 }
 

@@ -10,10 +10,8 @@
 namespace fs = std::filesystem;
 using namespace risknav::common;
 
-namespace
-{
-std::string lower(std::string s)
-{
+namespace {
+std::string lower(std::string s) {
     std::transform(s.begin(), s.end(), s.begin(),
                    [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
     return s;
@@ -22,50 +20,51 @@ std::string lower(std::string s)
 // Runs before the MRPT base class is constructed: MRPT's CConfigFile silently
 // accepts a missing file as an empty config, which would turn every key into a
 // silent default.
-const std::string& checkedConfigPath(const std::string& path)
-{
+const std::string& checkedConfigPath(const std::string& path) {
     std::error_code ec;
-    if (path.empty()) throw CBadInputError("no config file given");
-    if (!fs::exists(path, ec)) throw CBadInputError(path + ": config file not found");
+    if (path.empty())
+        throw CBadInputError("no config file given");
+    if (!fs::exists(path, ec))
+        throw CBadInputError(path + ": config file not found");
     if (!fs::is_regular_file(path, ec))
         throw CBadInputError(path + ": config path is not a regular file");
     std::ifstream f(path);
-    if (!f.good()) throw CBadInputError(path + ": config file cannot be read");
+    if (!f.good())
+        throw CBadInputError(path + ": config file cannot be read");
     return path;
 }
 }  // namespace
 
-CIniConfig::CIniConfig(const std::string& path) try : mrpt::config::CConfigFile(checkedConfigPath(path)),
-                                                      m_path(path),
-                                                      m_folder(fs::absolute(fs::path(path)).parent_path().string())
-{
-    discardSavingChanges();
-}
-catch (const CBadInputError&)
-{
+CIniConfig::CIniConfig(const std::string& path) try : mrpt
+    ::config::CConfigFile(checkedConfigPath(path)), m_path(path),
+        m_folder(fs::absolute(fs::path(path)).parent_path().string()) {
+        discardSavingChanges();
+    }
+catch (const CBadInputError&) {
     throw;
-}
-catch (const std::exception& e)
-{
+} catch (const std::exception& e) {
     // MRPT's preprocessor throws on a bad @define / $eval; keep one line.
     throw CBadInputError(path + ": cannot parse config file: " + firstLine(e.what()));
 }
 
-CIniConfig::~CIniConfig() { discardSavingChanges(); }
-
-std::string CIniConfig::readString(const std::string& section, const std::string& name,
-                                   const std::string& defaultStr, bool failIfNotFound) const
-{
-    m_read.emplace(lower(section), lower(name));
-    return mrpt::config::CConfigFile::readString(section, name, defaultStr, failIfNotFound);
+CIniConfig::~CIniConfig() {
+    discardSavingChanges();
 }
 
-void CIniConfig::applyOverride(const std::string& assignment)
-{
+std::string CIniConfig::readString(const std::string& section, const std::string& name,
+                                   const std::string& defaultStr,
+                                   bool failIfNotFound) const {
+    m_read.emplace(lower(section), lower(name));
+    return mrpt::config::CConfigFile::readString(section, name, defaultStr,
+                                                 failIfNotFound);
+}
+
+void CIniConfig::applyOverride(const std::string& assignment) {
     const auto eq = assignment.find('=');
     const std::string lhs = assignment.substr(0, eq);
     const auto dot = lhs.rfind('.');
-    if (eq == std::string::npos || dot == std::string::npos || dot == 0 || dot + 1 == lhs.size())
+    if (eq == std::string::npos || dot == std::string::npos || dot == 0 ||
+        dot + 1 == lhs.size())
         throw CBadInputError("--set '" + assignment + "': expected SECTION.KEY=VALUE");
     // Written into the in-memory config; a key that no code reads is then
     // reported by throwOnUnreadKeys(), so a typo in --set is not ignored.
@@ -73,39 +72,39 @@ void CIniConfig::applyOverride(const std::string& assignment)
     discardSavingChanges();  // write() marks the file modified again
 }
 
-bool CIniConfig::hasKey(const std::string& section, const std::string& key) const
-{
+bool CIniConfig::hasKey(const std::string& section, const std::string& key) const {
     std::vector<std::string> keys;
     getAllKeys(section, keys);
     const auto k = lower(key);
-    return std::any_of(keys.begin(), keys.end(), [&](const auto& s) { return lower(s) == k; });
+    return std::any_of(keys.begin(), keys.end(),
+                       [&](const auto& s) { return lower(s) == k; });
 }
 
-std::vector<std::string> CIniConfig::sections() const
-{
+std::vector<std::string> CIniConfig::sections() const {
     std::vector<std::string> s;
     getAllSections(s);
     return s;
 }
 
-std::vector<std::string> CIniConfig::unreadKeys(const std::vector<std::string>& only) const
-{
+std::vector<std::string> CIniConfig::unreadKeys(
+    const std::vector<std::string>& only) const {
     std::vector<std::string> out;
-    for (const auto& sec : only.empty() ? sections() : only)
-    {
+    for (const auto& sec : only.empty() ? sections() : only) {
         std::vector<std::string> keys;
         getAllKeys(sec, keys);
         for (const auto& k : keys)
-            if (!m_read.count({lower(sec), lower(k)})) out.push_back("[" + sec + "] " + k);
+            if (!m_read.count({lower(sec), lower(k)}))
+                out.push_back("[" + sec + "] " + k);
     }
     return out;
 }
 
-void CIniConfig::throwOnUnreadKeys(const std::vector<std::string>& only) const
-{
+void CIniConfig::throwOnUnreadKeys(const std::vector<std::string>& only) const {
     const auto unknown = unreadKeys(only);
-    if (unknown.empty()) return;
+    if (unknown.empty())
+        return;
     std::string msg = m_path + ": unknown key " + unknown.front();
-    if (unknown.size() > 1) msg += " (and " + std::to_string(unknown.size() - 1) + " more)";
+    if (unknown.size() > 1)
+        msg += " (and " + std::to_string(unknown.size() - 1) + " more)";
     throw CBadInputError(msg + "; see config/ for the documented keys");
 }

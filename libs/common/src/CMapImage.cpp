@@ -10,15 +10,12 @@
 
 using mrpt::math::TPoint2D;
 
-namespace risknav::common
-{
-namespace
-{
+namespace risknav::common {
+namespace {
 const cv::Scalar kBlack(0, 0, 0), kWhite(255, 255, 255), kGrey(90, 90, 90);
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 
-std::string shortNum(double v)
-{
+std::string shortNum(double v) {
     char b[32];
     if (v != 0 && (std::abs(v) < 0.01 || std::abs(v) >= 1e4))
         std::snprintf(b, sizeof(b), "%.2g", v);
@@ -28,28 +25,27 @@ std::string shortNum(double v)
 }
 }  // namespace
 
-TRgb seriesColour(size_t i)
-{
-    static const TRgb pal[] = {{0, 114, 178},  {213, 94, 0},  {0, 158, 115}, {204, 121, 167},
-                               {230, 159, 0},  {86, 180, 233}, {120, 60, 20}, {100, 100, 100}};
+TRgb seriesColour(size_t i) {
+    static const TRgb pal[] = {{0, 114, 178},   {213, 94, 0},   {0, 158, 115},
+                               {204, 121, 167}, {230, 159, 0},  {86, 180, 233},
+                               {120, 60, 20},   {100, 100, 100}};
     return pal[i % (sizeof(pal) / sizeof(pal[0]))];
 }
 
-CMapImage::CMapImage(const mrpt::maps::COccupancyGridMap2D& g, int maxSidePx)
-{
+CMapImage::CMapImage(const mrpt::maps::COccupancyGridMap2D& g, int maxSidePx) {
     m_cellsX = static_cast<int>(g.getSizeX());
     m_cellsY = static_cast<int>(g.getSizeY());
     const double res = g.getResolution();
     const int longest = std::max(m_cellsX, m_cellsY);
     // Integer zoom when the map is small (crisp cells), fractional shrink when large.
-    double pxPerCell = longest <= maxSidePx ? std::max(1, maxSidePx / longest) : double(maxSidePx) / longest;
+    double pxPerCell = longest <= maxSidePx ? std::max(1, maxSidePx / longest)
+                                            : double(maxSidePx) / longest;
     pxPerCell = std::min(pxPerCell, 8.0);
     m_pxPerM = pxPerCell / res;
     m_xmin = g.getXMin();
     m_ymax = g.getYMax();
     cv::Mat cells(m_cellsY, m_cellsX, CV_8UC1);
-    for (int cy = 0; cy < m_cellsY; cy++)
-    {
+    for (int cy = 0; cy < m_cellsY; cy++) {
         uint8_t* row = cells.ptr<uint8_t>(m_cellsY - 1 - cy);
         for (int cx = 0; cx < m_cellsX; cx++)
             row[cx] = static_cast<uint8_t>(std::lround(255.0 * g.getCell(cx, cy)));
@@ -57,28 +53,27 @@ CMapImage::CMapImage(const mrpt::maps::COccupancyGridMap2D& g, int maxSidePx)
     cv::Mat grey;
     const cv::Size sz(std::max(1, int(std::lround(m_cellsX * pxPerCell))),
                       std::max(1, int(std::lround(m_cellsY * pxPerCell))));
-    cv::resize(cells, grey, sz, 0, 0, pxPerCell >= 1 ? cv::INTER_NEAREST : cv::INTER_AREA);
+    cv::resize(cells, grey, sz, 0, 0,
+               pxPerCell >= 1 ? cv::INTER_NEAREST : cv::INTER_AREA);
     cv::cvtColor(grey, m_map, cv::COLOR_GRAY2BGR);
 }
 
-cv::Point2d CMapImage::toPixel(double x, double y) const
-{
+cv::Point2d CMapImage::toPixel(double x, double y) const {
     return {(x - m_xmin) * m_pxPerM, (m_ymax - y) * m_pxPerM};
 }
 
 void CMapImage::heatOverlay(const std::vector<float>& v, float vmin, float vmax,
-                            const std::string& label, double alpha, float showFrom, int colormap)
-{
+                            const std::string& label, double alpha, float showFrom,
+                            int colormap) {
     if (v.size() != size_t(m_cellsX) * m_cellsY)
         throw std::logic_error("heatOverlay: value count does not match the grid");
-    if (!(vmax > vmin)) vmax = vmin + 1.0f;
+    if (!(vmax > vmin))
+        vmax = vmin + 1.0f;
     cv::Mat norm(m_cellsY, m_cellsX, CV_8UC1), mask(m_cellsY, m_cellsX, CV_8UC1);
-    for (int cy = 0; cy < m_cellsY; cy++)
-    {
+    for (int cy = 0; cy < m_cellsY; cy++) {
         uint8_t* n = norm.ptr<uint8_t>(m_cellsY - 1 - cy);
         uint8_t* m = mask.ptr<uint8_t>(m_cellsY - 1 - cy);
-        for (int cx = 0; cx < m_cellsX; cx++)
-        {
+        for (int cx = 0; cx < m_cellsX; cx++) {
             const float val = v[size_t(cy) * m_cellsX + cx];
             const bool show = std::isfinite(val) && val >= showFrom;
             m[cx] = show ? 255 : 0;
@@ -96,29 +91,29 @@ void CMapImage::heatOverlay(const std::vector<float>& v, float vmin, float vmax,
     m_bars.push_back({vmin, vmax, label, colormap});
 }
 
-void CMapImage::polyline(const std::vector<TPoint2D>& pts, TRgb c, int t, bool dashed)
-{
-    if (!dashed)
-    {
-        for (size_t i = 1; i < pts.size(); i++) segment(pts[i - 1], pts[i], c, t);
+void CMapImage::polyline(const std::vector<TPoint2D>& pts, TRgb c, int t, bool dashed) {
+    if (!dashed) {
+        for (size_t i = 1; i < pts.size(); i++)
+            segment(pts[i - 1], pts[i], c, t);
         return;
     }
     // Dashes follow the arc length in pixels (8 on, 6 off), across vertices.
     const double on = 8.0, period = 14.0;
     double phase = 0.0;
-    for (size_t i = 1; i < pts.size(); i++)
-    {
-        const double lenPx = std::hypot(pts[i].x - pts[i - 1].x, pts[i].y - pts[i - 1].y) * m_pxPerM;
+    for (size_t i = 1; i < pts.size(); i++) {
+        const double lenPx =
+            std::hypot(pts[i].x - pts[i - 1].x, pts[i].y - pts[i - 1].y) * m_pxPerM;
         double s = 0.0;
-        while (s < lenPx)
-        {
+        while (s < lenPx) {
             const double inPeriod = std::fmod(phase + s, period);
-            const double runEnd = std::min(lenPx, s + (inPeriod < on ? on - inPeriod : period - inPeriod));
-            if (inPeriod < on && lenPx > 0)
-            {
+            const double runEnd =
+                std::min(lenPx, s + (inPeriod < on ? on - inPeriod : period - inPeriod));
+            if (inPeriod < on && lenPx > 0) {
                 const double f0 = s / lenPx, f1 = runEnd / lenPx;
-                segment({pts[i - 1].x + f0 * (pts[i].x - pts[i - 1].x), pts[i - 1].y + f0 * (pts[i].y - pts[i - 1].y)},
-                        {pts[i - 1].x + f1 * (pts[i].x - pts[i - 1].x), pts[i - 1].y + f1 * (pts[i].y - pts[i - 1].y)},
+                segment({pts[i - 1].x + f0 * (pts[i].x - pts[i - 1].x),
+                         pts[i - 1].y + f0 * (pts[i].y - pts[i - 1].y)},
+                        {pts[i - 1].x + f1 * (pts[i].x - pts[i - 1].x),
+                         pts[i - 1].y + f1 * (pts[i].y - pts[i - 1].y)},
                         c, t);
             }
             s = runEnd;
@@ -127,18 +122,19 @@ void CMapImage::polyline(const std::vector<TPoint2D>& pts, TRgb c, int t, bool d
     }
 }
 
-void CMapImage::segment(const TPoint2D& a, const TPoint2D& b, TRgb c, int t)
-{
+void CMapImage::segment(const TPoint2D& a, const TPoint2D& b, TRgb c, int t) {
     constexpr int kShift = 4;  // sub-pixel precision for anti-aliased lines
     auto fx = [](const cv::Point2d& p) {
-        return cv::Point(int(std::lround(p.x * (1 << kShift))), int(std::lround(p.y * (1 << kShift))));
+        return cv::Point(int(std::lround(p.x * (1 << kShift))),
+                         int(std::lround(p.y * (1 << kShift))));
     };
-    cv::line(m_map, fx(toPixel(a.x, a.y)), fx(toPixel(b.x, b.y)), c.bgr(), t, cv::LINE_AA, kShift);
+    cv::line(m_map, fx(toPixel(a.x, a.y)), fx(toPixel(b.x, b.y)), c.bgr(), t, cv::LINE_AA,
+             kShift);
 }
 
-void CMapImage::ellipse(const TPoint2D& mean, const mrpt::math::CMatrixFixed<double, 2, 2>& cov,
-                        double nSigma, TRgb c, int t)
-{
+void CMapImage::ellipse(const TPoint2D& mean,
+                        const mrpt::math::CMatrixFixed<double, 2, 2>& cov, double nSigma,
+                        TRgb c, int t) {
     // Axes from the eigen-decomposition of the symmetric 2x2 covariance.
     const double a = cov(0, 0), b = cov(0, 1), d = cov(1, 1);
     const double tr = a + d, det = a * d - b * b;
@@ -149,80 +145,85 @@ void CMapImage::ellipse(const TPoint2D& mean, const mrpt::math::CMatrixFixed<dou
     const cv::Size2d axes(std::max(0.5, nSigma * std::sqrt(l1) * m_pxPerM),
                           std::max(0.5, nSigma * std::sqrt(l2) * m_pxPerM));
     // Image y points down: a world angle is negated.
-    cv::ellipse(m_map, cv::RotatedRect(ctr, cv::Size2f(2 * axes.width, 2 * axes.height),
-                                       float(-ang * 180.0 / M_PI)),
+    cv::ellipse(m_map,
+                cv::RotatedRect(ctr, cv::Size2f(2 * axes.width, 2 * axes.height),
+                                float(-ang * 180.0 / M_PI)),
                 c.bgr(), t, cv::LINE_AA);
 }
 
-void CMapImage::circle(const TPoint2D& p, double r, TRgb c, int t, bool filled)
-{
+void CMapImage::circle(const TPoint2D& p, double r, TRgb c, int t, bool filled) {
     const cv::Point2d q = toPixel(p.x, p.y);
     cv::circle(m_map, cv::Point(int(std::lround(q.x)), int(std::lround(q.y))),
-               std::max(1, int(std::lround(r * m_pxPerM))), c.bgr(), filled ? cv::FILLED : t,
-               cv::LINE_AA);
+               std::max(1, int(std::lround(r * m_pxPerM))), c.bgr(),
+               filled ? cv::FILLED : t, cv::LINE_AA);
 }
 
-static void drawMarkerAt(cv::Mat& img, cv::Point p, CMapImage::TMarker m, const cv::Scalar& c, int s,
-                         int t)
-{
+static void drawMarkerAt(cv::Mat& img, cv::Point p, CMapImage::TMarker m,
+                         const cv::Scalar& c, int s, int t) {
     using M = CMapImage::TMarker;
-    switch (m)
-    {
-        case M::Cross: cv::drawMarker(img, p, c, cv::MARKER_TILTED_CROSS, s, t, cv::LINE_AA); break;
-        case M::Plus: cv::drawMarker(img, p, c, cv::MARKER_CROSS, s, t, cv::LINE_AA); break;
-        case M::Circle: cv::circle(img, p, std::max(2, s / 2), c, t, cv::LINE_AA); break;
-        case M::Square: cv::drawMarker(img, p, c, cv::MARKER_SQUARE, s, t, cv::LINE_AA); break;
-        case M::Triangle: cv::drawMarker(img, p, c, cv::MARKER_TRIANGLE_UP, s, t, cv::LINE_AA); break;
-        case M::Star: cv::drawMarker(img, p, c, cv::MARKER_STAR, s, t, cv::LINE_AA); break;
+    switch (m) {
+        case M::Cross:
+            cv::drawMarker(img, p, c, cv::MARKER_TILTED_CROSS, s, t, cv::LINE_AA);
+            break;
+        case M::Plus:
+            cv::drawMarker(img, p, c, cv::MARKER_CROSS, s, t, cv::LINE_AA);
+            break;
+        case M::Circle:
+            cv::circle(img, p, std::max(2, s / 2), c, t, cv::LINE_AA);
+            break;
+        case M::Square:
+            cv::drawMarker(img, p, c, cv::MARKER_SQUARE, s, t, cv::LINE_AA);
+            break;
+        case M::Triangle:
+            cv::drawMarker(img, p, c, cv::MARKER_TRIANGLE_UP, s, t, cv::LINE_AA);
+            break;
+        case M::Star:
+            cv::drawMarker(img, p, c, cv::MARKER_STAR, s, t, cv::LINE_AA);
+            break;
     }
 }
 
-void CMapImage::marker(const TPoint2D& p, TMarker m, TRgb c, int s, int t)
-{
+void CMapImage::marker(const TPoint2D& p, TMarker m, TRgb c, int s, int t) {
     const cv::Point2d q = toPixel(p.x, p.y);
-    drawMarkerAt(m_map, cv::Point(int(std::lround(q.x)), int(std::lround(q.y))), m, c.bgr(), s, t);
+    drawMarkerAt(m_map, cv::Point(int(std::lround(q.x)), int(std::lround(q.y))), m,
+                 c.bgr(), s, t);
 }
 
-void CMapImage::text(const TPoint2D& p, const std::string& s, TRgb c, double scale)
-{
+void CMapImage::text(const TPoint2D& p, const std::string& s, TRgb c, double scale) {
     const cv::Point2d q = toPixel(p.x, p.y);
     const cv::Point at(int(std::lround(q.x)), int(std::lround(q.y)));
     cv::putText(m_map, s, at, kFont, scale, kWhite, 3, cv::LINE_AA);
     cv::putText(m_map, s, at, kFont, scale, c.bgr(), 1, cv::LINE_AA);
 }
 
-void CMapImage::legendLine(const std::string& label, TRgb c, int t)
-{
+void CMapImage::legendLine(const std::string& label, TRgb c, int t) {
     m_legend.push_back({label, c, false, TMarker::Plus, t});
 }
 
-void CMapImage::legendMarker(const std::string& label, TMarker m, TRgb c)
-{
+void CMapImage::legendMarker(const std::string& label, TMarker m, TRgb c) {
     m_legend.push_back({label, c, true, m, 2});
 }
 
-double CMapImage::niceLength(double target)
-{
-    if (!(target > 0)) return 1.0;
+double CMapImage::niceLength(double target) {
+    if (!(target > 0))
+        return 1.0;
     const double p = std::pow(10.0, std::floor(std::log10(target)));
     for (double f : {5.0, 2.0, 1.0})
-        if (f * p <= target) return f * p;
+        if (f * p <= target)
+            return f * p;
     return p;
 }
 
-cv::Mat CMapImage::compose() const
-{
+cv::Mat CMapImage::compose() const {
     const int titleH = 34, barW = m_bars.empty() ? 0 : 110 * int(m_bars.size()), pad = 10;
     // Legend flows in rows under the map.
     const int W = std::max(m_map.cols + barW, 520);
     std::vector<cv::Point> legendPos;
     int lx = pad, ly = 0, rows = 1;
-    for (const auto& e : m_legend)
-    {
+    for (const auto& e : m_legend) {
         int base = 0;
         const int w = 40 + cv::getTextSize(e.label, kFont, 0.45, 1, &base).width + 18;
-        if (lx + w > W - 220 && lx > pad)
-        {
+        if (lx + w > W - 220 && lx > pad) {
             lx = pad;
             rows++;
             ly += 22;
@@ -238,57 +239,61 @@ cv::Mat CMapImage::compose() const
     cv::putText(out, m_title, cv::Point(pad, 24), kFont, 0.6, kBlack, 1, cv::LINE_AA);
 
     const int y0 = titleH + m_map.rows + 20;
-    for (size_t i = 0; i < m_legend.size(); i++)
-    {
+    for (size_t i = 0; i < m_legend.size(); i++) {
         const auto& e = m_legend[i];
         const cv::Point p = legendPos[i] + cv::Point(0, y0);
         if (e.isMarker)
             drawMarkerAt(out, p + cv::Point(14, -4), e.m, e.c.bgr(), 10, 2);
         else
-            cv::line(out, p + cv::Point(0, -4), p + cv::Point(30, -4), e.c.bgr(), e.thickness, cv::LINE_AA);
-        cv::putText(out, e.label, p + cv::Point(38, 0), kFont, 0.45, kBlack, 1, cv::LINE_AA);
+            cv::line(out, p + cv::Point(0, -4), p + cv::Point(30, -4), e.c.bgr(),
+                     e.thickness, cv::LINE_AA);
+        cv::putText(out, e.label, p + cv::Point(38, 0), kFont, 0.45, kBlack, 1,
+                    cv::LINE_AA);
     }
     // Scale bar: about a fifth of the map width, a round number of metres.
     const double len = niceLength(0.2 * m_map.cols / m_pxPerM);
     const int lenPx = int(std::lround(len * m_pxPerM));
     const cv::Point sb(W - pad - lenPx, y0 - 2);
     cv::rectangle(out, cv::Rect(sb.x, sb.y - 5, lenPx, 6), kBlack, cv::FILLED);
-    cv::rectangle(out, cv::Rect(sb.x + lenPx / 2, sb.y - 4, lenPx - lenPx / 2 - 1, 4), kWhite, cv::FILLED);
-    cv::putText(out, shortNum(len) + " m", sb + cv::Point(0, 18), kFont, 0.45, kBlack, 1, cv::LINE_AA);
+    cv::rectangle(out, cv::Rect(sb.x + lenPx / 2, sb.y - 4, lenPx - lenPx / 2 - 1, 4),
+                  kWhite, cv::FILLED);
+    cv::putText(out, shortNum(len) + " m", sb + cv::Point(0, 18), kFont, 0.45, kBlack, 1,
+                cv::LINE_AA);
 
-    for (size_t b = 0; b < m_bars.size(); b++)
-    {
+    for (size_t b = 0; b < m_bars.size(); b++) {
         const auto& bar = m_bars[b];
         const int x = m_map.cols + 14 + 110 * int(b), y = titleH + 24, h = 160, w = 18;
         cv::Mat ramp(h, 1, CV_8UC1);
-        for (int i = 0; i < h; i++) ramp.at<uint8_t>(i, 0) = static_cast<uint8_t>(255 - (255 * i) / (h - 1));
+        for (int i = 0; i < h; i++)
+            ramp.at<uint8_t>(i, 0) = static_cast<uint8_t>(255 - (255 * i) / (h - 1));
         cv::Mat col, colW;
         cv::applyColorMap(ramp, col, bar.colormap);
         cv::resize(col, colW, cv::Size(w, h), 0, 0, cv::INTER_NEAREST);
         colW.copyTo(out(cv::Rect(x, y, w, h)));
         cv::rectangle(out, cv::Rect(x, y, w, h), kBlack, 1);
-        cv::putText(out, shortNum(bar.vmax), cv::Point(x + w + 4, y + 8), kFont, 0.4, kBlack, 1, cv::LINE_AA);
-        cv::putText(out, shortNum(0.5 * (bar.vmin + bar.vmax)), cv::Point(x + w + 4, y + h / 2 + 4), kFont,
-                    0.4, kBlack, 1, cv::LINE_AA);
-        cv::putText(out, shortNum(bar.vmin), cv::Point(x + w + 4, y + h), kFont, 0.4, kBlack, 1, cv::LINE_AA);
-        cv::putText(out, bar.label, cv::Point(x - 4, y - 8), kFont, 0.4, kBlack, 1, cv::LINE_AA);
+        cv::putText(out, shortNum(bar.vmax), cv::Point(x + w + 4, y + 8), kFont, 0.4,
+                    kBlack, 1, cv::LINE_AA);
+        cv::putText(out, shortNum(0.5 * (bar.vmin + bar.vmax)),
+                    cv::Point(x + w + 4, y + h / 2 + 4), kFont, 0.4, kBlack, 1,
+                    cv::LINE_AA);
+        cv::putText(out, shortNum(bar.vmin), cv::Point(x + w + 4, y + h), kFont, 0.4,
+                    kBlack, 1, cv::LINE_AA);
+        cv::putText(out, bar.label, cv::Point(x - 4, y - 8), kFont, 0.4, kBlack, 1,
+                    cv::LINE_AA);
     }
     return out;
 }
 
-void CMapImage::save(const std::string& path) const
-{
+void CMapImage::save(const std::string& path) const {
     const cv::Mat img = compose();
     bool ok = false;
-    try
-    {
+    try {
         ok = cv::imwrite(path, img, {cv::IMWRITE_PNG_COMPRESSION, 6});
-    }
-    catch (const cv::Exception&)
-    {
+    } catch (const cv::Exception&) {
         ok = false;
     }
-    if (!ok) throw std::runtime_error("cannot write image " + path);
+    if (!ok)
+        throw std::runtime_error("cannot write image " + path);
 }
 
 }  // namespace risknav::common

@@ -12,21 +12,19 @@
 namespace fs = std::filesystem;
 using mrpt::config::CConfigFileBase;
 
-namespace risknav::common
-{
-namespace
-{
-std::string trim(const std::string& s)
-{
+namespace risknav::common {
+namespace {
+std::string trim(const std::string& s) {
     const auto b = s.find_first_not_of(" \t\r\n");
-    if (b == std::string::npos) return {};
+    if (b == std::string::npos)
+        return {};
     const auto e = s.find_last_not_of(" \t\r\n");
     return s.substr(b, e - b + 1);
 }
 
-std::string fmt(double v)
-{
-    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+std::string fmt(double v) {
+    if (std::isinf(v))
+        return v > 0 ? "inf" : "-inf";
     std::ostringstream o;
     o << v;
     return o.str();
@@ -36,90 +34,92 @@ std::string fmt(double v)
 // for a missing key; a sentinel tells "missing" from "present but empty".
 const char* kMissing = "\x01risknav-missing\x01";
 
-bool present(const CConfigFileBase& c, const std::string& s, const std::string& k, std::string& v)
-{
+bool present(const CConfigFileBase& c, const std::string& s, const std::string& k,
+             std::string& v) {
     v = c.read_string(s, k, kMissing);
-    if (v == kMissing) return false;
+    if (v == kMissing)
+        return false;
     v = trim(v);
     return true;
 }
 
-bool parseNumber(const std::string& txt, double& out)
-{
-    if (txt.empty()) return false;
+bool parseNumber(const std::string& txt, double& out) {
+    if (txt.empty())
+        return false;
     char* end = nullptr;
     out = std::strtod(txt.c_str(), &end);
     return end && *end == '\0' && std::isfinite(out);
 }
 
 void checkRange(const CConfigFileBase& c, const std::string& s, const std::string& k,
-                const std::string& raw, double v, const TRange& r)
-{
-    if (!r.contains(v)) throwBadKey(c, s, k, raw, r.describe());
+                const std::string& raw, double v, const TRange& r) {
+    if (!r.contains(v))
+        throwBadKey(c, s, k, raw, r.describe());
 }
 }  // namespace
 
-bool TRange::contains(double v) const
-{
-    if (std::isnan(v)) return false;
-    if (minOpen ? !(v > min) : !(v >= min)) return false;
-    if (maxOpen ? !(v < max) : !(v <= max)) return false;
+bool TRange::contains(double v) const {
+    if (std::isnan(v))
+        return false;
+    if (minOpen ? !(v > min) : !(v >= min))
+        return false;
+    if (maxOpen ? !(v < max) : !(v <= max))
+        return false;
     return true;
 }
 
-std::string TRange::describe() const
-{
-    std::string d = "must be in " + std::string(minOpen ? "(" : "[") + fmt(min) + ", " + fmt(max) +
-                    (maxOpen || std::isinf(max) ? ")" : "]");
-    if (!unit.empty()) d += " " + unit;
+std::string TRange::describe() const {
+    std::string d = "must be in " + std::string(minOpen ? "(" : "[") + fmt(min) + ", " +
+                    fmt(max) + (maxOpen || std::isinf(max) ? ")" : "]");
+    if (!unit.empty())
+        d += " " + unit;
     return d;
 }
 
-std::string configWhere(const CConfigFileBase& c)
-{
-    if (const auto* ini = dynamic_cast<const CIniConfig*>(&c)) return ini->path() + ": ";
+std::string configWhere(const CConfigFileBase& c) {
+    if (const auto* ini = dynamic_cast<const CIniConfig*>(&c))
+        return ini->path() + ": ";
     return "";
 }
 
-void throwBadKey(const CConfigFileBase& c, const std::string& section, const std::string& key,
-                 const std::string& value, const std::string& rule)
-{
-    throw CBadInputError(configWhere(c) + "[" + section + "] " + key + " = '" + value + "': " +
-                         rule);
+void throwBadKey(const CConfigFileBase& c, const std::string& section,
+                 const std::string& key, const std::string& value,
+                 const std::string& rule) {
+    throw CBadInputError(configWhere(c) + "[" + section + "] " + key + " = '" + value +
+                         "': " + rule);
 }
 
-double readDouble(const CConfigFileBase& c, const std::string& s, const std::string& k, double def,
-                  const TRange& r)
-{
+double readDouble(const CConfigFileBase& c, const std::string& s, const std::string& k,
+                  double def, const TRange& r) {
     std::string raw;
-    if (!present(c, s, k, raw)) return def;
+    if (!present(c, s, k, raw))
+        return def;
     double v = 0;
-    if (!parseNumber(raw, v)) throwBadKey(c, s, k, raw, "not a number");
+    if (!parseNumber(raw, v))
+        throwBadKey(c, s, k, raw, "not a number");
     checkRange(c, s, k, raw, v, r);
     return v;
 }
 
 double requireDouble(const CConfigFileBase& c, const std::string& s, const std::string& k,
-                     const TRange& r)
-{
+                     const TRange& r) {
     std::string raw;
     if (!present(c, s, k, raw))
-        throw CBadInputError(configWhere(c) + "[" + s + "] " + k + ": required key is missing (" +
-                             r.describe() + ")");
+        throw CBadInputError(configWhere(c) + "[" + s + "] " + k +
+                             ": required key is missing (" + r.describe() + ")");
     return readDouble(c, s, k, 0.0, r);
 }
 
 double readDegrees(const CConfigFileBase& c, const std::string& s, const std::string& k,
-                   double defRad, const TRange& rangeDeg)
-{
+                   double defRad, const TRange& rangeDeg) {
     return readDouble(c, s, k, defRad * 180.0 / M_PI, rangeDeg) * M_PI / 180.0;
 }
 
 int readInt(const CConfigFileBase& c, const std::string& s, const std::string& k, int def,
-            const TRange& r)
-{
+            const TRange& r) {
     std::string raw;
-    if (!present(c, s, k, raw)) return def;
+    if (!present(c, s, k, raw))
+        return def;
     double v = 0;
     if (!parseNumber(raw, v) || v != std::floor(v) || std::abs(v) > 2e9)
         throwBadKey(c, s, k, raw, "not an integer");
@@ -127,67 +127,74 @@ int readInt(const CConfigFileBase& c, const std::string& s, const std::string& k
     return static_cast<int>(v);
 }
 
-bool readBool(const CConfigFileBase& c, const std::string& s, const std::string& k, bool def)
-{
+bool readBool(const CConfigFileBase& c, const std::string& s, const std::string& k,
+              bool def) {
     std::string raw;
-    if (!present(c, s, k, raw)) return def;
+    if (!present(c, s, k, raw))
+        return def;
     std::string l = raw;
-    std::transform(l.begin(), l.end(), l.begin(), [](unsigned char ch) { return std::tolower(ch); });
-    if (l == "true" || l == "1" || l == "yes" || l == "on") return true;
-    if (l == "false" || l == "0" || l == "no" || l == "off") return false;
+    std::transform(l.begin(), l.end(), l.begin(),
+                   [](unsigned char ch) { return std::tolower(ch); });
+    if (l == "true" || l == "1" || l == "yes" || l == "on")
+        return true;
+    if (l == "false" || l == "0" || l == "no" || l == "off")
+        return false;
     throwBadKey(c, s, k, raw, "must be true or false");
 }
 
-std::string readString(const CConfigFileBase& c, const std::string& s, const std::string& k,
-                       const std::string& def)
-{
+std::string readString(const CConfigFileBase& c, const std::string& s,
+                       const std::string& k, const std::string& def) {
     std::string raw;
     return present(c, s, k, raw) ? raw : def;
 }
 
-std::string requireString(const CConfigFileBase& c, const std::string& s, const std::string& k)
-{
+std::string requireString(const CConfigFileBase& c, const std::string& s,
+                          const std::string& k) {
     std::string raw;
     if (!present(c, s, k, raw) || raw.empty())
-        throw CBadInputError(configWhere(c) + "[" + s + "] " + k + ": required key is missing");
+        throw CBadInputError(configWhere(c) + "[" + s + "] " + k +
+                             ": required key is missing");
     return raw;
 }
 
-std::string readChoice(const CConfigFileBase& c, const std::string& s, const std::string& k,
-                       const std::string& def, const std::vector<std::string>& allowed)
-{
+std::string readChoice(const CConfigFileBase& c, const std::string& s,
+                       const std::string& k, const std::string& def,
+                       const std::vector<std::string>& allowed) {
     const std::string v = readString(c, s, k, def);
-    if (std::find(allowed.begin(), allowed.end(), v) != allowed.end()) return v;
+    if (std::find(allowed.begin(), allowed.end(), v) != allowed.end())
+        return v;
     std::string list;
-    for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+    for (const auto& a : allowed)
+        list += (list.empty() ? "" : ", ") + a;
     throwBadKey(c, s, k, v, "must be one of: " + list);
 }
 
 std::vector<double> readNumbers(const CConfigFileBase& c, const std::string& s,
                                 const std::string& k, const std::vector<double>& def,
-                                const TRange& r, size_t minCount, size_t sizeMultiple)
-{
+                                const TRange& r, size_t minCount, size_t sizeMultiple) {
     std::string raw;
-    if (!present(c, s, k, raw)) return def;
+    if (!present(c, s, k, raw))
+        return def;
     std::string body = raw;
-    if (!body.empty() && body.front() == '[')
-    {
-        if (body.back() != ']') throwBadKey(c, s, k, raw, "unbalanced '['");
+    if (!body.empty() && body.front() == '[') {
+        if (body.back() != ']')
+            throwBadKey(c, s, k, raw, "unbalanced '['");
         body = body.substr(1, body.size() - 2);
     }
     std::replace(body.begin(), body.end(), ',', ' ');
     std::istringstream in(body);
     std::vector<double> out;
     std::string tok;
-    while (in >> tok)
-    {
+    while (in >> tok) {
         double v = 0;
-        if (!parseNumber(tok, v)) throwBadKey(c, s, k, raw, "'" + tok + "' is not a number");
+        if (!parseNumber(tok, v))
+            throwBadKey(c, s, k, raw, "'" + tok + "' is not a number");
         checkRange(c, s, k, raw, v, r);
         out.push_back(v);
     }
     if (out.size() < minCount)
-        throwBadKey(c, s, k, raw, "needs at least " + std::to_string(minCount) + " numbers");
+        throwBadKey(c, s, k, raw,
+                    "needs at least " + std::to_string(minCount) + " numbers");
     if (sizeMultiple > 1 && out.size() % sizeMultiple != 0)
         throwBadKey(c, s, k, raw,
                     "needs a multiple of " + std::to_string(sizeMultiple) + " numbers");
@@ -195,17 +202,18 @@ std::vector<double> readNumbers(const CConfigFileBase& c, const std::string& s,
 }
 
 std::string readPath(const CConfigFileBase& c, const std::string& s, const std::string& k,
-                     const std::string& def, bool mustExist)
-{
+                     const std::string& def, bool mustExist) {
     std::string v = readString(c, s, k, def);
-    if (v.empty())
-    {
-        if (mustExist) throw CBadInputError(configWhere(c) + "[" + s + "] " + k + ": required key is missing");
+    if (v.empty()) {
+        if (mustExist)
+            throw CBadInputError(configWhere(c) + "[" + s + "] " + k +
+                                 ": required key is missing");
         return v;
     }
     fs::path p(v);
     if (p.is_relative())
-        if (const auto* ini = dynamic_cast<const CIniConfig*>(&c)) p = fs::path(ini->folder()) / p;
+        if (const auto* ini = dynamic_cast<const CIniConfig*>(&c))
+            p = fs::path(ini->folder()) / p;
     p = p.lexically_normal();
     std::error_code ec;
     if (mustExist && !fs::is_regular_file(p, ec))

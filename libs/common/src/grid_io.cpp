@@ -19,70 +19,63 @@
 namespace fs = std::filesystem;
 using mrpt::maps::COccupancyGridMap2D;
 
-namespace risknav::common
-{
+namespace risknav::common {
 void TMapSourceOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                           const std::string& s)
-{
+                                           const std::string& s) {
     map_file = readPath(c, s, "map_file", map_file, true);
-    map_resolution = readDouble(c, s, "map_resolution", map_resolution, TRange::closed(0.001, 10, "m"));
+    map_resolution = readDouble(c, s, "map_resolution", map_resolution,
+                                TRange::closed(0.001, 10, "m"));
     map_origin_x = readDouble(c, s, "map_origin_x", map_origin_x, TRange::any("m"));
     map_origin_y = readDouble(c, s, "map_origin_y", map_origin_y, TRange::any("m"));
-    simplemap_resolution =
-        readDouble(c, s, "simplemap_resolution", simplemap_resolution, TRange::closed(0.001, 10, "m"));
+    simplemap_resolution = readDouble(c, s, "simplemap_resolution", simplemap_resolution,
+                                      TRange::closed(0.001, 10, "m"));
 }
 
-namespace
-{
-bool endsWith(std::string s, const std::string& suffix)
-{
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char ch) { return std::tolower(ch); });
-    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+namespace {
+bool endsWith(std::string s, const std::string& suffix) {
+    std::transform(s.begin(), s.end(), s.begin(),
+                   [](unsigned char ch) { return std::tolower(ch); });
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-enum class TPixelModel
-{
+enum class TPixelModel {
     FreeIsWhite,  // P(free) = grey/255 (MRPT bitmaps)
     RosTrinary,
     RosScale
 };
 
-struct TRosParams
-{
+struct TRosParams {
     double occupied = 0.65, free = 0.196;
     bool negate = false;
 };
 
 COccupancyGridMap2D fromImage(const std::string& file, double res, double ox, double oy,
-                              TPixelModel model, const TRosParams& ros = {})
-{
+                              TPixelModel model, const TRosParams& ros = {}) {
     cv::Mat img;
-    try
-    {
+    try {
         img = cv::imread(file, cv::IMREAD_GRAYSCALE);
+    } catch (const std::exception&) {
     }
-    catch (const std::exception&)
-    {
-    }
-    if (img.empty()) throw CBadInputError(file + ": cannot read the map image (not a PNG/PGM/BMP?)");
+    if (img.empty())
+        throw CBadInputError(file + ": cannot read the map image (not a PNG/PGM/BMP?)");
     if (img.cols < 2 || img.rows < 2)
-        throw CBadInputError(file + ": map image is too small (" + std::to_string(img.cols) + "x" +
-                             std::to_string(img.rows) + " px)");
+        throw CBadInputError(file + ": map image is too small (" +
+                             std::to_string(img.cols) + "x" + std::to_string(img.rows) +
+                             " px)");
     COccupancyGridMap2D g;
     // Cell centres: the grid spans exactly the image (cols*res by rows*res).
-    g.setSize(static_cast<float>(ox), static_cast<float>(ox + img.cols * res), static_cast<float>(oy),
-              static_cast<float>(oy + img.rows * res), static_cast<float>(res), 0.5f);
+    g.setSize(static_cast<float>(ox), static_cast<float>(ox + img.cols * res),
+              static_cast<float>(oy), static_cast<float>(oy + img.rows * res),
+              static_cast<float>(res), 0.5f);
     const int nx = static_cast<int>(g.getSizeX()), ny = static_cast<int>(g.getSizeY());
-    for (int cy = 0; cy < ny; cy++)
-    {
+    for (int cy = 0; cy < ny; cy++) {
         const int row = img.rows - 1 - std::min(cy, img.rows - 1);  // image row 0 = top
         const uint8_t* p = img.ptr<uint8_t>(row);
-        for (int cx = 0; cx < nx; cx++)
-        {
+        for (int cx = 0; cx < nx; cx++) {
             const double grey = p[std::min(cx, img.cols - 1)] / 255.0;
             double pfree = grey;
-            if (model != TPixelModel::FreeIsWhite)
-            {
+            if (model != TPixelModel::FreeIsWhite) {
                 const double occ = ros.negate ? grey : 1.0 - grey;
                 if (model == TPixelModel::RosScale)
                     pfree = 1.0 - occ;
@@ -97,17 +90,17 @@ COccupancyGridMap2D fromImage(const std::string& file, double res, double ox, do
 
 // ROS map_server YAML is flat "key: value"; a full YAML parser would accept
 // more, but these are all the keys map_server defines.
-COccupancyGridMap2D fromRosYaml(const std::string& file)
-{
+COccupancyGridMap2D fromRosYaml(const std::string& file) {
     std::ifstream f(file);
-    if (!f.good()) throw CBadInputError(file + ": cannot read the map YAML");
+    if (!f.good())
+        throw CBadInputError(file + ": cannot read the map YAML");
     std::map<std::string, std::string> kv;
     std::string line;
-    while (std::getline(f, line))
-    {
+    while (std::getline(f, line)) {
         line = line.substr(0, line.find('#'));
         const auto colon = line.find(':');
-        if (colon == std::string::npos) continue;
+        if (colon == std::string::npos)
+            continue;
         auto trim = [](std::string s) {
             s.erase(0, s.find_first_not_of(" \t\r\"'"));
             s.erase(s.find_last_not_of(" \t\r\"'") + 1);
@@ -124,72 +117,77 @@ COccupancyGridMap2D fromRosYaml(const std::string& file)
         char* end = nullptr;
         const double d = std::strtod(v.c_str(), &end);
         if (v.empty() || *end != '\0')
-            throw CBadInputError(file + ": map YAML key '" + k + "' = '" + v + "' is not a number");
+            throw CBadInputError(file + ": map YAML key '" + k + "' = '" + v +
+                                 "' is not a number");
         return d;
     };
     fs::path img = need("image");
-    if (img.is_relative()) img = fs::path(file).parent_path() / img;
+    if (img.is_relative())
+        img = fs::path(file).parent_path() / img;
     const double res = number("resolution", need("resolution"));
-    if (!(res > 0)) throw CBadInputError(file + ": map YAML resolution must be > 0");
+    if (!(res > 0))
+        throw CBadInputError(file + ": map YAML resolution must be > 0");
     std::string o = need("origin");
     std::replace(o.begin(), o.end(), '[', ' ');
     std::replace(o.begin(), o.end(), ']', ' ');
     std::replace(o.begin(), o.end(), ',', ' ');
     std::istringstream os(o);
     double ox = 0, oy = 0, oyaw = 0;
-    if (!(os >> ox >> oy)) throw CBadInputError(file + ": map YAML origin must be [x, y, yaw]");
+    if (!(os >> ox >> oy))
+        throw CBadInputError(file + ": map YAML origin must be [x, y, yaw]");
     os >> oyaw;
-    if (oyaw != 0.0) throw CBadInputError(file + ": map YAML origin yaw != 0 is not supported");
+    if (oyaw != 0.0)
+        throw CBadInputError(file + ": map YAML origin yaw != 0 is not supported");
     TRosParams rp;
-    if (kv.count("occupied_thresh")) rp.occupied = number("occupied_thresh", kv["occupied_thresh"]);
-    if (kv.count("free_thresh")) rp.free = number("free_thresh", kv["free_thresh"]);
-    if (kv.count("negate")) rp.negate = kv["negate"] == "1" || kv["negate"] == "true";
+    if (kv.count("occupied_thresh"))
+        rp.occupied = number("occupied_thresh", kv["occupied_thresh"]);
+    if (kv.count("free_thresh"))
+        rp.free = number("free_thresh", kv["free_thresh"]);
+    if (kv.count("negate"))
+        rp.negate = kv["negate"] == "1" || kv["negate"] == "true";
     const std::string mode = kv.count("mode") ? kv["mode"] : "trinary";
     if (mode != "trinary" && mode != "scale")
-        throw CBadInputError(file + ": map YAML mode '" + mode + "' is not supported (trinary, scale)");
-    if (!fs::is_regular_file(img)) throw CBadInputError(file + ": map image not found: " + img.string());
+        throw CBadInputError(file + ": map YAML mode '" + mode +
+                             "' is not supported (trinary, scale)");
+    if (!fs::is_regular_file(img))
+        throw CBadInputError(file + ": map image not found: " + img.string());
     return fromImage(img.string(), res, ox, oy,
-                     mode == "scale" ? TPixelModel::RosScale : TPixelModel::RosTrinary, rp);
+                     mode == "scale" ? TPixelModel::RosScale : TPixelModel::RosTrinary,
+                     rp);
 }
 
-COccupancyGridMap2D fromGridmap(const std::string& file)
-{
+COccupancyGridMap2D fromGridmap(const std::string& file) {
     COccupancyGridMap2D g;
-    try
-    {
+    try {
         mrpt::io::CFileGZInputStream f(file);
         auto a = mrpt::serialization::archiveFrom(f);
         a >> g;
-    }
-    catch (const std::exception& e)
-    {
+    } catch (const std::exception& e) {
         throw CBadInputError(file + ": not a readable MRPT .gridmap file");
     }
     return g;
 }
 
-COccupancyGridMap2D fromSimplemap(const std::string& file, double res)
-{
+COccupancyGridMap2D fromSimplemap(const std::string& file, double res) {
     mrpt::maps::CSimpleMap sm;
-    try
-    {
-        if (!sm.loadFromFile(file)) throw std::runtime_error("load");
-    }
-    catch (const std::exception&)
-    {
+    try {
+        if (!sm.loadFromFile(file))
+            throw std::runtime_error("load");
+    } catch (const std::exception&) {
         throw CBadInputError(file + ": not a readable MRPT .simplemap file");
     }
-    if (sm.empty()) throw CBadInputError(file + ": the simplemap has no keyframes");
+    if (sm.empty())
+        throw CBadInputError(file + ": the simplemap has no keyframes");
     COccupancyGridMap2D g(-10, 10, -10, 10, static_cast<float>(res));
     g.loadFromSimpleMap(sm);
     return g;
 }
 }  // namespace
 
-mrpt::maps::COccupancyGridMap2D loadOccupancyGrid(const TMapSourceOptions& src)
-{
+mrpt::maps::COccupancyGridMap2D loadOccupancyGrid(const TMapSourceOptions& src) {
     const std::string& f = src.map_file;
-    if (!fs::is_regular_file(f)) throw CBadInputError(f + ": map file not found");
+    if (!fs::is_regular_file(f))
+        throw CBadInputError(f + ": map file not found");
     COccupancyGridMap2D g;
     if (endsWith(f, ".gridmap") || endsWith(f, ".gridmap.gz"))
         g = fromGridmap(f);
@@ -200,12 +198,12 @@ mrpt::maps::COccupancyGridMap2D loadOccupancyGrid(const TMapSourceOptions& src)
     else
         g = fromImage(f, src.map_resolution, src.map_origin_x, src.map_origin_y,
                       TPixelModel::FreeIsWhite);
-    if (g.getSizeX() < 2 || g.getSizeY() < 2) throw CBadInputError(f + ": the map is empty");
+    if (g.getSizeX() < 2 || g.getSizeY() < 2)
+        throw CBadInputError(f + ": the map is empty");
     return g;
 }
 
-void saveGridmapGz(const mrpt::maps::COccupancyGridMap2D& g, const std::string& path)
-{
+void saveGridmapGz(const mrpt::maps::COccupancyGridMap2D& g, const std::string& path) {
     mrpt::io::CFileGZOutputStream f(path);
     auto a = mrpt::serialization::archiveFrom(f);
     a << g;

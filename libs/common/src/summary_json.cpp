@@ -5,10 +5,8 @@
 
 #include <filesystem>
 
-namespace risknav::common
-{
-nlohmann::json summaryHeader(const TAppContext& ctx, uint64_t seed)
-{
+namespace risknav::common {
+nlohmann::json summaryHeader(const TAppContext& ctx, uint64_t seed) {
     nlohmann::json j;
     j["app"] = ctx.info.name;
     j["risknav_version"] = RISKNAV_VERSION_STR;
@@ -19,6 +17,8 @@ nlohmann::json summaryHeader(const TAppContext& ctx, uint64_t seed)
     return j;
 }
 
-std::string jsonText(const nlohmann::json& j) { return j.dump(2) + "\n"; }
+std::string jsonText(const nlohmann::json& j) {
+    return j.dump(2) + "\n";
+}
 
 }  // namespace risknav::common

@@ -7,86 +7,90 @@
 using namespace risknav::common;
 using mrpt::math::TPoint2D;
 
-namespace risknav::sim
-{
-namespace
-{
-bool startsWithNumbered(const std::string& s, const std::string& prefix)
-{
-    if (s.size() <= prefix.size() || s.compare(0, prefix.size(), prefix) != 0) return false;
-    return std::all_of(s.begin() + prefix.size(), s.end(), [](unsigned char ch) { return std::isdigit(ch); });
+namespace risknav::sim {
+namespace {
+bool startsWithNumbered(const std::string& s, const std::string& prefix) {
+    if (s.size() <= prefix.size() || s.compare(0, prefix.size(), prefix) != 0)
+        return false;
+    return std::all_of(s.begin() + prefix.size(), s.end(),
+                       [](unsigned char ch) { return std::isdigit(ch); });
 }
 
-std::vector<TPoint2D> readPath(const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
+std::vector<TPoint2D> readPath(const mrpt::config::CConfigFileBase& c,
+                               const std::string& s) {
     const auto v = readNumbers(c, s, "path", {}, TRange::any("m"), 4, 2);
-    if (v.empty()) throw CBadInputError(configWhere(c) + "[" + s + "] path: required key is missing");
+    if (v.empty())
+        throw CBadInputError(configWhere(c) + "[" + s +
+                             "] path: required key is missing");
     std::vector<TPoint2D> p;
-    for (size_t i = 0; i + 1 < v.size(); i += 2) p.emplace_back(v[i], v[i + 1]);
+    for (size_t i = 0; i + 1 < v.size(); i += 2)
+        p.emplace_back(v[i], v[i + 1]);
     for (size_t i = 1; i < p.size(); i++)
         if (std::hypot(p[i].x - p[i - 1].x, p[i].y - p[i - 1].y) < 1e-6)
-            throwBadKey(c, s, "path", readString(c, s, "path", ""), "has two equal consecutive points");
+            throwBadKey(c, s, "path", readString(c, s, "path", ""),
+                        "has two equal consecutive points");
     return p;
 }
 }  // namespace
 
-bool CAgentsSim::ownsSection(const std::string& s)
-{
-    return startsWithNumbered(s, "DoorPedestrian") || startsWithNumbered(s, "CorridorWalker") ||
-           startsWithNumbered(s, "Clutter");
+bool CAgentsSim::ownsSection(const std::string& s) {
+    return startsWithNumbered(s, "DoorPedestrian") ||
+           startsWithNumbered(s, "CorridorWalker") || startsWithNumbered(s, "Clutter");
 }
 
-void CAgentsSim::loadFromConfigFile(const mrpt::config::CConfigFileBase& c)
-{
+void CAgentsSim::loadFromConfigFile(const mrpt::config::CConfigFileBase& c) {
     doors.clear();
     walkers.clear();
     clutter.clear();
     std::vector<std::string> secs;
     c.getAllSections(secs);
     std::sort(secs.begin(), secs.end());
-    for (const auto& s : secs)
-    {
-        if (startsWithNumbered(s, "DoorPedestrian"))
-        {
+    for (const auto& s : secs) {
+        if (startsWithNumbered(s, "DoorPedestrian")) {
             TDoorPedestrian d;
             d.section = s;
             const auto seg = readNumbers(c, s, "door", {}, TRange::any("m"), 4);
             if (seg.size() != 4)
-                throw CBadInputError(configWhere(c) + "[" + s + "] door: needs x1 y1 x2 y2 (the doorway segment)");
+                throw CBadInputError(configWhere(c) + "[" + s +
+                                     "] door: needs x1 y1 x2 y2 (the doorway segment)");
             std::copy(seg.begin(), seg.end(), d.door);
             d.path = readPath(c, s);
             d.speed = readDouble(c, s, "speed", d.speed, TRange::positive("m/s"));
             d.radius = readDouble(c, s, "radius", d.radius, TRange::closed(0.05, 2, "m"));
             d.patience = readDouble(c, s, "patience", d.patience, TRange::positive("s"));
-            d.emergence = readChoice(c, s, "emergence", d.emergence, {"poisson", "schedule", "trigger"});
-            d.rate_per_min = readDouble(c, s, "rate_per_min", d.rate_per_min, TRange::positive("1/min"));
+            d.emergence = readChoice(c, s, "emergence", d.emergence,
+                                     {"poisson", "schedule", "trigger"});
+            d.rate_per_min = readDouble(c, s, "rate_per_min", d.rate_per_min,
+                                        TRange::positive("1/min"));
             d.schedule = readNumbers(c, s, "schedule", {}, TRange::nonNegative("s"));
             if (!std::is_sorted(d.schedule.begin(), d.schedule.end()))
-                throwBadKey(c, s, "schedule", readString(c, s, "schedule", ""), "times must be increasing");
+                throwBadKey(c, s, "schedule", readString(c, s, "schedule", ""),
+                            "times must be increasing");
             if (d.emergence == "schedule" && d.schedule.empty())
-                throw CBadInputError(configWhere(c) + "[" + s + "] schedule: required when emergence = schedule");
-            d.trigger_distance = readDouble(c, s, "trigger_distance", d.trigger_distance, TRange::positive("m"));
-            d.trigger_probability =
-                readDouble(c, s, "trigger_probability", d.trigger_probability, TRange::closed(0, 1));
+                throw CBadInputError(configWhere(c) + "[" + s +
+                                     "] schedule: required when emergence = schedule");
+            d.trigger_distance = readDouble(c, s, "trigger_distance", d.trigger_distance,
+                                            TRange::positive("m"));
+            d.trigger_probability = readDouble(
+                c, s, "trigger_probability", d.trigger_probability, TRange::closed(0, 1));
             doors.push_back(d);
-        }
-        else if (startsWithNumbered(s, "CorridorWalker"))
-        {
+        } else if (startsWithNumbered(s, "CorridorWalker")) {
             TWalker w;
             w.section = s;
             w.path = readPath(c, s);
-            w.speed_min = readDouble(c, s, "speed_min", w.speed_min, TRange::positive("m/s"));
-            w.speed_max = readDouble(c, s, "speed_max", w.speed_max, TRange::positive("m/s"));
+            w.speed_min =
+                readDouble(c, s, "speed_min", w.speed_min, TRange::positive("m/s"));
+            w.speed_max =
+                readDouble(c, s, "speed_max", w.speed_max, TRange::positive("m/s"));
             if (w.speed_max < w.speed_min)
-                throwBadKey(c, s, "speed_max", std::to_string(w.speed_max), "must be >= speed_min");
+                throwBadKey(c, s, "speed_max", std::to_string(w.speed_max),
+                            "must be >= speed_min");
             w.radius = readDouble(c, s, "radius", w.radius, TRange::closed(0.05, 2, "m"));
             w.period = readDouble(c, s, "period", w.period, TRange::positive("s"));
             w.phase = readDouble(c, s, "phase", w.phase, TRange::nonNegative("s"));
             w.patience = readDouble(c, s, "patience", w.patience, TRange::positive("s"));
             walkers.push_back(w);
-        }
-        else if (startsWithNumbered(s, "Clutter"))
-        {
+        } else if (startsWithNumbered(s, "Clutter")) {
             TClutter k;
             k.section = s;
             k.x = requireDouble(c, s, "x", TRange::any("m"));
@@ -97,8 +101,7 @@ void CAgentsSim::loadFromConfigFile(const mrpt::config::CConfigFileBase& c)
     }
 }
 
-void CAgentsSim::reset(uint64_t seed)
-{
+void CAgentsSim::reset(uint64_t seed) {
     m_rng.seed(seed);
     m_active.clear();
     m_nextId = 0;
@@ -108,16 +111,18 @@ void CAgentsSim::reset(uint64_t seed)
     m_armed.assign(doors.size(), true);
     m_counts.assign(doors.size() + walkers.size(), 0);
     m_nextWalker.clear();
-    for (const auto& w : walkers) m_nextWalker.push_back(w.phase);
+    for (const auto& w : walkers)
+        m_nextWalker.push_back(w.phase);
     std::exponential_distribution<double> ex(1.0);
     for (size_t i = 0; i < doors.size(); i++)
-        if (doors[i].emergence == "poisson") m_nextTime[i] = ex(m_rng) * 60.0 / doors[i].rate_per_min;
+        if (doors[i].emergence == "poisson")
+            m_nextTime[i] = ex(m_rng) * 60.0 / doors[i].rate_per_min;
 }
 
-void CAgentsSim::spawn(double t, const std::string& kind, const std::string& source, size_t srcIdx,
-                       int doorIndex, const std::vector<TPoint2D>& path, double speed, double radius,
-                       double patience, std::vector<TAgentEvent>& events)
-{
+void CAgentsSim::spawn(double t, const std::string& kind, const std::string& source,
+                       size_t srcIdx, int doorIndex, const std::vector<TPoint2D>& path,
+                       double speed, double radius, double patience,
+                       std::vector<TAgentEvent>& events) {
     TActive a;
     a.name = source + "#" + std::to_string(++m_counts[srcIdx]);
     a.source = source;
@@ -134,9 +139,8 @@ void CAgentsSim::spawn(double t, const std::string& kind, const std::string& sou
     events.push_back({t, kind, source, a.name, a.x, a.y});
 }
 
-void CAgentsSim::step(double t, double dt, const mrpt::math::TPose2D& robot, double robotRadius,
-                      std::vector<TAgentEvent>& events)
-{
+void CAgentsSim::step(double t, double dt, const mrpt::math::TPose2D& robot,
+                      double robotRadius, std::vector<TAgentEvent>& events) {
     std::uniform_real_distribution<double> u01(0.0, 1.0);
     std::exponential_distribution<double> ex(1.0);
     auto doorBusy = [&](size_t i) {
@@ -144,47 +148,38 @@ void CAgentsSim::step(double t, double dt, const mrpt::math::TPose2D& robot, dou
                            [&](const TActive& a) { return a.doorIndex == int(i); });
     };
     // New people. One person per door at a time: a door does not emit a crowd.
-    for (size_t i = 0; i < doors.size(); i++)
-    {
+    for (size_t i = 0; i < doors.size(); i++) {
         const auto& d = doors[i];
         bool go = false;
-        if (d.emergence == "poisson")
-        {
-            if (t >= m_nextTime[i])
-            {
+        if (d.emergence == "poisson") {
+            if (t >= m_nextTime[i]) {
                 go = !doorBusy(i);
                 m_nextTime[i] = t + ex(m_rng) * 60.0 / d.rate_per_min;
             }
-        }
-        else if (d.emergence == "schedule")
-        {
-            if (m_nextSched[i] < d.schedule.size() && t >= d.schedule[m_nextSched[i]])
-            {
+        } else if (d.emergence == "schedule") {
+            if (m_nextSched[i] < d.schedule.size() && t >= d.schedule[m_nextSched[i]]) {
                 go = !doorBusy(i);
                 m_nextSched[i]++;
             }
-        }
-        else
-        {
+        } else {
             const TPoint2D m = d.doorMid();
             const double dist = std::hypot(robot.x - m.x, robot.y - m.y);
-            if (m_armed[i] && dist <= d.trigger_distance)
-            {
+            if (m_armed[i] && dist <= d.trigger_distance) {
                 m_armed[i] = false;  // one draw per pass of the robot
                 go = u01(m_rng) < d.trigger_probability && !doorBusy(i);
-            }
-            else if (!m_armed[i] && dist > d.trigger_distance + 1.0)
+            } else if (!m_armed[i] && dist > d.trigger_distance + 1.0)
                 m_armed[i] = true;
         }
-        if (go) spawn(t, "emerge", d.section, i, int(i), d.path, d.speed, d.radius, d.patience, events);
+        if (go)
+            spawn(t, "emerge", d.section, i, int(i), d.path, d.speed, d.radius,
+                  d.patience, events);
     }
-    for (size_t k = 0; k < walkers.size(); k++)
-    {
+    for (size_t k = 0; k < walkers.size(); k++) {
         const auto& w = walkers[k];
-        if (t >= m_nextWalker[k])
-        {
+        if (t >= m_nextWalker[k]) {
             const double v = w.speed_min + (w.speed_max - w.speed_min) * u01(m_rng);
-            spawn(t, "spawn", w.section, doors.size() + k, -1, w.path, v, w.radius, w.patience, events);
+            spawn(t, "spawn", w.section, doors.size() + k, -1, w.path, v, w.radius,
+                  w.patience, events);
             m_nextWalker[k] += w.period;
         }
     }
@@ -196,8 +191,7 @@ void CAgentsSim::step(double t, double dt, const mrpt::math::TPose2D& robot, dou
     // at all waits, and gives up after its patience.
     std::vector<TActive> keep;
     const double kLead = 2.0 * (robotRadius + 0.5) + 0.3;
-    for (auto& a : m_active)
-    {
+    for (auto& a : m_active) {
         const auto& p = *a.path;
         // Advance the path point while it is close enough ahead.
         TPoint2D target;
@@ -205,11 +199,10 @@ void CAgentsSim::step(double t, double dt, const mrpt::math::TPose2D& robot, dou
         auto locate = [&]() {
             size_t seg = a.seg;
             double along = a.along;
-            while (true)
-            {
-                const double len = std::hypot(p[seg + 1].x - p[seg].x, p[seg + 1].y - p[seg].y);
-                if (along <= len)
-                {
+            while (true) {
+                const double len =
+                    std::hypot(p[seg + 1].x - p[seg].x, p[seg + 1].y - p[seg].y);
+                if (along <= len) {
                     a.seg = seg;
                     a.along = along;
                     target = {p[seg].x + along / len * (p[seg + 1].x - p[seg].x),
@@ -217,8 +210,7 @@ void CAgentsSim::step(double t, double dt, const mrpt::math::TPose2D& robot, dou
                     return;
                 }
                 along -= len;
-                if (seg + 2 >= p.size())
-                {
+                if (seg + 2 >= p.size()) {
                     a.seg = seg;
                     a.along = len;
                     target = p.back();
@@ -229,44 +221,39 @@ void CAgentsSim::step(double t, double dt, const mrpt::math::TPose2D& robot, dou
             }
         };
         locate();
-        if (std::hypot(target.x - a.x, target.y - a.y) < kLead)
-        {
+        if (std::hypot(target.x - a.x, target.y - a.y) < kLead) {
             a.along += a.speed * dt;
             locate();
         }
         double mx = target.x - a.x, my = target.y - a.y;
         const double want = std::hypot(mx, my), maxStep = a.speed * dt;
-        if (want > maxStep)
-        {
+        if (want > maxStep) {
             mx *= maxStep / want;
             my *= maxStep / want;
         }
         const double keepOut = a.radius + robotRadius + 0.05;
         const double rx = a.x - robot.x, ry = a.y - robot.y, rd = std::hypot(rx, ry);
-        if (std::hypot(a.x + mx - robot.x, a.y + my - robot.y) < keepOut && rd > 1e-9)
-        {
+        if (std::hypot(a.x + mx - robot.x, a.y + my - robot.y) < keepOut && rd > 1e-9) {
             const double ux = rx / rd, uy = ry / rd, inward = mx * ux + my * uy;
-            double tx = mx - std::min(0.0, inward) * ux, ty = my - std::min(0.0, inward) * uy;
+            double tx = mx - std::min(0.0, inward) * ux,
+                   ty = my - std::min(0.0, inward) * uy;
             // Walking straight at the robot's centre leaves no tangential
             // component: step aside (to the left), as people do.
-            if (std::hypot(tx, ty) < 1e-6 * maxStep)
-            {
+            if (std::hypot(tx, ty) < 1e-6 * maxStep) {
                 tx = uy * maxStep;
                 ty = -ux * maxStep;
             }
             const double tl = std::hypot(tx, ty);
-            if (tl > 1e-9)
-            {
+            if (tl > 1e-9) {
                 tx *= maxStep / tl;
                 ty *= maxStep / tl;
             }
             mx = tx;
             my = ty;
-            if (tl < 1e-9 || std::hypot(a.x + mx - robot.x, a.y + my - robot.y) < std::min(keepOut, rd) - 1e-6)
-            {
+            if (tl < 1e-9 || std::hypot(a.x + mx - robot.x, a.y + my - robot.y) <
+                                 std::min(keepOut, rd) - 1e-6) {
                 a.blocked += dt;
-                if (a.blocked > a.patience)
-                {
+                if (a.blocked > a.patience) {
                     events.push_back({t, "give_up", a.source, a.name, a.x, a.y});
                     continue;
                 }
@@ -277,8 +264,7 @@ void CAgentsSim::step(double t, double dt, const mrpt::math::TPose2D& robot, dou
         a.blocked = 0;
         a.x += mx;
         a.y += my;
-        if (atEnd && std::hypot(target.x - a.x, target.y - a.y) < 0.05)
-        {
+        if (atEnd && std::hypot(target.x - a.x, target.y - a.y) < 0.05) {
             events.push_back({t, "leave", a.source, a.name, a.x, a.y});
             continue;
         }
@@ -287,13 +273,13 @@ void CAgentsSim::step(double t, double dt, const mrpt::math::TPose2D& robot, dou
     m_active.swap(keep);
 }
 
-std::vector<TDisc> CAgentsSim::discs() const
-{
+std::vector<TDisc> CAgentsSim::discs() const {
     std::vector<TDisc> d;
     d.reserve(m_active.size() + clutter.size());
     for (size_t i = 0; i < clutter.size(); i++)
         d.push_back({clutter[i].x, clutter[i].y, clutter[i].radius, -1 - int(i)});
-    for (const auto& a : m_active) d.push_back({a.x, a.y, a.radius, a.id});
+    for (const auto& a : m_active)
+        d.push_back({a.x, a.y, a.radius, a.id});
     return d;
 }
 

@@ -8,20 +8,19 @@
 
 using namespace risknav::common;
 
-namespace risknav::sim
-{
+namespace risknav::sim {
 void CRangeSensorSim::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                                   const std::string& s)
-{
+                                                   const std::string& s) {
     enabled = readBool(c, s, "enabled", enabled);
     label = readString(c, s, "label", label);
     fov_deg = readDouble(c, s, "fov_deg", fov_deg, {0, 360, true, false, "deg"});
     beams = readInt(c, s, "beams", beams, TRange::closed(2, 10000));
     max_range = readDouble(c, s, "max_range", max_range, TRange::closed(0.1, 200, "m"));
     noise_std = readDouble(c, s, "noise_std", noise_std, TRange::closed(0, 1, "m"));
-    dropout_probability =
-        readDouble(c, s, "dropout_probability", dropout_probability, {0, 1, false, true, ""});
-    frame_decimation = readInt(c, s, "frame_decimation", frame_decimation, TRange::closed(1, 1000));
+    dropout_probability = readDouble(c, s, "dropout_probability", dropout_probability,
+                                     {0, 1, false, true, ""});
+    frame_decimation =
+        readInt(c, s, "frame_decimation", frame_decimation, TRange::closed(1, 1000));
     x = readDouble(c, s, "x", x, TRange::closed(-5, 5, "m"));
     y = readDouble(c, s, "y", y, TRange::closed(-5, 5, "m"));
     z = readDouble(c, s, "z", z, TRange::closed(-5, 5, "m"));
@@ -30,8 +29,8 @@ void CRangeSensorSim::TOptions::loadFromConfigFile(const mrpt::config::CConfigFi
 
 mrpt::obs::CObservation2DRangeScan::Ptr CRangeSensorSim::simulate(
     const mrpt::maps::COccupancyGridMap2D& grid, const mrpt::math::TPose2D& robot,
-    const std::vector<TDisc>& discs, mrpt::Clock::time_point t, std::mt19937_64& rng) const
-{
+    const std::vector<TDisc>& discs, mrpt::Clock::time_point t,
+    std::mt19937_64& rng) const {
     const auto& o = options;
     auto scan = mrpt::obs::CObservation2DRangeScan::Create();
     scan->sensorLabel = o.label;
@@ -40,33 +39,38 @@ mrpt::obs::CObservation2DRangeScan::Ptr CRangeSensorSim::simulate(
     scan->maxRange = static_cast<float>(o.max_range);
     scan->rightToLeft = true;
     scan->stdError = static_cast<float>(std::max(o.noise_std, 1e-3));
-    scan->sensorPose = mrpt::poses::CPose3D(o.x, o.y, o.z, o.yaw_deg * M_PI / 180.0, 0, 0);
+    scan->sensorPose =
+        mrpt::poses::CPose3D(o.x, o.y, o.z, o.yaw_deg * M_PI / 180.0, 0, 0);
     // Static map, noise-free: noise is added once below, from our own seeded
     // generator (laserScanSimulator would draw from MRPT's global one).
-    grid.laserScanSimulator(*scan, mrpt::poses::CPose2D(robot), 0.5f, static_cast<size_t>(o.beams), 0.0f);
+    grid.laserScanSimulator(*scan, mrpt::poses::CPose2D(robot), 0.5f,
+                            static_cast<size_t>(o.beams), 0.0f);
 
     // Which discs this scan sees (per-object dropout).
     std::uniform_real_distribution<double> u01(0.0, 1.0);
     std::vector<const TDisc*> visible;
     for (const auto& d : discs)
-        if (o.dropout_probability <= 0 || u01(rng) >= o.dropout_probability) visible.push_back(&d);
+        if (o.dropout_probability <= 0 || u01(rng) >= o.dropout_probability)
+            visible.push_back(&d);
 
     const mrpt::poses::CPose2D sensor =
-        mrpt::poses::CPose2D(robot) + mrpt::poses::CPose2D(o.x, o.y, o.yaw_deg * M_PI / 180.0);
+        mrpt::poses::CPose2D(robot) +
+        mrpt::poses::CPose2D(o.x, o.y, o.yaw_deg * M_PI / 180.0);
     const size_t n = scan->getScanSize();
     const double a0 = -0.5 * scan->aperture, da = n > 1 ? scan->aperture / (n - 1) : 0.0;
     std::normal_distribution<double> noise(0.0, 1.0);
-    for (size_t i = 0; i < n; i++)
-    {
-        double r = scan->getScanRangeValidity(i) ? scan->getScanRange(i)
-                                                  : std::numeric_limits<double>::infinity();
-        if (!visible.empty())
-        {
+    for (size_t i = 0; i < n; i++) {
+        double r = scan->getScanRangeValidity(i)
+                       ? scan->getScanRange(i)
+                       : std::numeric_limits<double>::infinity();
+        if (!visible.empty()) {
             const double ang = sensor.phi() + a0 + da * i;
             const double dx = std::cos(ang), dy = std::sin(ang);
-            for (const TDisc* d : visible) r = std::min(r, rayDiscDistance(sensor.x(), sensor.y(), dx, dy, *d));
+            for (const TDisc* d : visible)
+                r = std::min(r, rayDiscDistance(sensor.x(), sensor.y(), dx, dy, *d));
         }
-        if (std::isfinite(r) && o.noise_std > 0) r += o.noise_std * noise(rng);
+        if (std::isfinite(r) && o.noise_std > 0)
+            r += o.noise_std * noise(rng);
         const bool valid = std::isfinite(r) && r > 0 && r < o.max_range;
         scan->setScanRange(i, static_cast<float>(valid ? r : o.max_range));
         scan->setScanRangeValidity(i, valid);

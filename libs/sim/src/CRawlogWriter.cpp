@@ -4,24 +4,23 @@
 
 #include <stdexcept>
 
-namespace risknav::sim
-{
+namespace risknav::sim {
 CRawlogWriter::CRawlogWriter(const std::string& path, int level)
-    : m_path(path), m_file(std::make_unique<mrpt::io::CFileGZOutputStream>())
-{
-    if (!m_file->open(path, level)) throw std::runtime_error("cannot write rawlog " + path);
+    : m_path(path), m_file(std::make_unique<mrpt::io::CFileGZOutputStream>()) {
+    if (!m_file->open(path, level))
+        throw std::runtime_error("cannot write rawlog " + path);
 }
 
-void CRawlogWriter::write(const mrpt::obs::CActionCollection& actions, const mrpt::obs::CSensoryFrame& sf)
-{
+void CRawlogWriter::write(const mrpt::obs::CActionCollection& actions,
+                          const mrpt::obs::CSensoryFrame& sf) {
     auto a = mrpt::serialization::archiveFrom(*m_file);
     a << actions << sf;
     m_frames++;
 }
 
-void CRawlogWriter::close()
-{
-    if (m_file) m_file->close();
+void CRawlogWriter::close() {
+    if (m_file)
+        m_file->close();
     m_file.reset();
 }
 

@@ -4,31 +4,27 @@
 
 #include <cmath>
 
-namespace risknav::sim
-{
-void twistFromWheels(const TWheelGeometry& g, double uL, double uR, double& v, double& w)
-{
+namespace risknav::sim {
+void twistFromWheels(const TWheelGeometry& g, double uL, double uR, double& v,
+                     double& w) {
     v = 0.5 * (g.radiusR * uR + g.radiusL * uL);
     w = (g.radiusR * uR - g.radiusL * uL) / g.tread;
 }
 
-void wheelsFromTwist(const TWheelGeometry& g, double v, double w, double& uL, double& uR)
-{
+void wheelsFromTwist(const TWheelGeometry& g, double v, double w, double& uL,
+                     double& uR) {
     uR = (v + 0.5 * w * g.tread) / g.radiusR;
     uL = (v - 0.5 * w * g.tread) / g.radiusL;
 }
 
-mrpt::math::TPose2D integrateTwist(const mrpt::math::TPose2D& p, double v, double w, double dt)
-{
+mrpt::math::TPose2D integrateTwist(const mrpt::math::TPose2D& p, double v, double w,
+                                   double dt) {
     mrpt::math::TPose2D q = p;
     const double dphi = w * dt;
-    if (std::abs(dphi) < 1e-9)
-    {
+    if (std::abs(dphi) < 1e-9) {
         q.x += v * dt * std::cos(p.phi + 0.5 * dphi);
         q.y += v * dt * std::sin(p.phi + 0.5 * dphi);
-    }
-    else
-    {
+    } else {
         const double r = v / w;
         q.x += r * (std::sin(p.phi + dphi) - std::sin(p.phi));
         q.y += -r * (std::cos(p.phi + dphi) - std::cos(p.phi));

@@ -7,30 +7,32 @@
 
 using namespace risknav::common;
 
-namespace
-{
+namespace {
 const TAppInfo kInfo{"risknav-demo", "A demo app.", ""};
 const TAppInfo kInfoExtra{"risknav-demo", "A demo app.", "[RAWLOG ...]"};
 
-TAppArgs parse(std::vector<std::string> a, const TAppInfo& i = kInfo) { return parseAppArgs(a, i); }
+TAppArgs parse(std::vector<std::string> a, const TAppInfo& i = kInfo) {
+    return parseAppArgs(a, i);
+}
 
-int runWith(std::vector<std::string> args, const std::function<void(const TAppContext&)>& body)
-{
+int runWith(std::vector<std::string> args,
+            const std::function<void(const TAppContext&)>& body) {
     args.insert(args.begin(), "risknav-demo");
     std::vector<char*> argv;
-    for (auto& s : args) argv.push_back(s.data());
+    for (auto& s : args)
+        argv.push_back(s.data());
     return runApp(int(argv.size()), argv.data(), kInfo, body);
 }
 }  // namespace
 
-TEST(CommandLine, DefaultsAndAllOptions)
-{
+TEST(CommandLine, DefaultsAndAllOptions) {
     auto a = parse({"w.ini"});
     EXPECT_EQ(a.configPath, "w.ini");
     EXPECT_EQ(a.outDir, "out/demo");
     EXPECT_FALSE(a.quiet);
     EXPECT_FALSE(a.seed.has_value());
-    a = parse({"-q", "--out", "o", "--set", "A.b=1", "--set=C.d=2", "--seed", "42", "w.ini"});
+    a = parse(
+        {"-q", "--out", "o", "--set", "A.b=1", "--set=C.d=2", "--seed", "42", "w.ini"});
     EXPECT_TRUE(a.quiet);
     EXPECT_EQ(a.outDir, "o");
     EXPECT_EQ(a.sets, (std::vector<std::string>{"A.b=1", "C.d=2"}));
@@ -43,26 +45,25 @@ TEST(CommandLine, DefaultsAndAllOptions)
     EXPECT_EQ(parse({"w.ini", "a.rawlog", "b.rawlog"}, kInfoExtra).extra.size(), 2u);
 }
 
-TEST(CommandLine, UsageErrorsAreBadInput)
-{
+TEST(CommandLine, UsageErrorsAreBadInput) {
     EXPECT_THROW(parse({}), CBadInputError);
     EXPECT_THROW(parse({"--bogus", "w.ini"}), CBadInputError);
     EXPECT_THROW(parse({"--out"}), CBadInputError);
     EXPECT_THROW(parse({"--seed", "-3", "w.ini"}), CBadInputError);
     EXPECT_THROW(parse({"--seed", "12x", "w.ini"}), CBadInputError);
-    EXPECT_THROW(parse({"w.ini", "extra"}), CBadInputError);  // this app takes no extra args
+    EXPECT_THROW(parse({"w.ini", "extra"}),
+                 CBadInputError);  // this app takes no extra args
 }
 
-TEST(CommandLine, HelpMentionsEveryOption)
-{
+TEST(CommandLine, HelpMentionsEveryOption) {
     const std::string h = appUsage(kInfo);
-    for (const char* opt : {"--out", "--set", "--quiet", "--seed", "--help", "--version", "exit status"})
+    for (const char* opt :
+         {"--out", "--set", "--quiet", "--seed", "--help", "--version", "exit status"})
         EXPECT_NE(h.find(opt), std::string::npos) << opt;
     EXPECT_NE(versionString(kInfo).find("MRPT 2.5"), std::string::npos);
 }
 
-TEST(RunApp, ExitCodes)
-{
+TEST(RunApp, ExitCodes) {
     const std::string ini = risknav::test::freshDir("cli") + "/a.ini";
     risknav::test::writeFile(ini, "[S]\nk = 1\n");
     EXPECT_EQ(runWith({"--help"}, [](const TAppContext&) { FAIL(); }), 0);
@@ -70,18 +71,21 @@ TEST(RunApp, ExitCodes)
     EXPECT_EQ(runWith({"/no/such.ini"}, [](const TAppContext&) { FAIL(); }), 2);
     EXPECT_EQ(runWith({"--nope", ini}, [](const TAppContext&) { FAIL(); }), 2);
     EXPECT_EQ(runWith({ini}, [](const TAppContext&) { throw CBadInputError("bad"); }), 2);
-    EXPECT_EQ(runWith({ini}, [](const TAppContext&) { throw std::runtime_error("boom"); }), 1);
+    EXPECT_EQ(
+        runWith({ini}, [](const TAppContext&) { throw std::runtime_error("boom"); }), 1);
     // --set reaches the config the body sees.
     double seen = 0;
-    EXPECT_EQ(runWith({"--set", "S.k=7", ini}, [&](const TAppContext& c) { seen = c.cfg.read_double("S", "k", 0); }),
-              0);
+    EXPECT_EQ(
+        runWith({"--set", "S.k=7", ini},
+                [&](const TAppContext& c) { seen = c.cfg.read_double("S", "k", 0); }),
+        0);
     EXPECT_DOUBLE_EQ(seen, 7.0);
 }
 
-TEST(RunApp, FirstLineOnly)
-{
+TEST(RunApp, FirstLineOnly) {
     EXPECT_EQ(firstLine("\n  first\nsecond\n"), "first");
     EXPECT_EQ(firstLine(""), "unknown error");
-    EXPECT_EQ(firstLine("==== MRPT exception ====\nMessage:  Undefined symbol 'x'\nLocation: a.cpp:1\n"),
+    EXPECT_EQ(firstLine("==== MRPT exception ====\nMessage:  Undefined symbol "
+                        "'x'\nLocation: a.cpp:1\n"),
               "Undefined symbol 'x'");
 }

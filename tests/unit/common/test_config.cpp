@@ -12,32 +12,25 @@ using namespace risknav::common;
 using risknav::test::freshDir;
 using risknav::test::writeFile;
 
-namespace
-{
+namespace {
 // A config file on disk (CIniConfig needs a real file: it knows its folder).
-std::string iniFile(const std::string& content, const std::string& name = "test.ini")
-{
+std::string iniFile(const std::string& content, const std::string& name = "test.ini") {
     const std::string path = freshDir("cfg") + "/" + name;
     writeFile(path, content);
     return path;
 }
 
-std::string errorOf(const std::function<void()>& f)
-{
-    try
-    {
+std::string errorOf(const std::function<void()>& f) {
+    try {
         f();
-    }
-    catch (const CBadInputError& e)
-    {
+    } catch (const CBadInputError& e) {
         return e.what();
     }
     return "(no error)";
 }
 }  // namespace
 
-TEST(TRange, ContainsAndDescribes)
-{
+TEST(TRange, ContainsAndDescribes) {
     EXPECT_TRUE(TRange::positive().contains(1e-9));
     EXPECT_FALSE(TRange::positive().contains(0.0));
     EXPECT_TRUE(TRange::nonNegative().contains(0.0));
@@ -47,81 +40,100 @@ TEST(TRange, ContainsAndDescribes)
     EXPECT_EQ(TRange::closed(0.5, 2).describe(), "must be in [0.5, 2]");
 }
 
-TEST(ConfigRead, StrictNumbersWithFullErrorMessages)
-{
+TEST(ConfigRead, StrictNumbersWithFullErrorMessages) {
     const std::string p = iniFile(
         "[Robot]\nmax_v = 0.8\nbad = 0.5 ; not an MRPT comment\nneg = -1\nword = fast\n"
         "res = 0\n");
     CIniConfig c(p);
     EXPECT_DOUBLE_EQ(readDouble(c, "Robot", "max_v", 0.0, TRange::positive("m/s")), 0.8);
-    EXPECT_DOUBLE_EQ(readDouble(c, "Robot", "missing", 1.5, TRange::positive("m/s")), 1.5);
+    EXPECT_DOUBLE_EQ(readDouble(c, "Robot", "missing", 1.5, TRange::positive("m/s")),
+                     1.5);
     // Trailing garbage is an error, not a silent 0.5 or an uncaught std::stod throw.
-    const std::string e1 = errorOf([&] { readDouble(c, "Robot", "bad", 0, TRange::any()); });
+    const std::string e1 =
+        errorOf([&] { readDouble(c, "Robot", "bad", 0, TRange::any()); });
     EXPECT_NE(e1.find(p), std::string::npos) << e1;
-    EXPECT_NE(e1.find("[Robot] bad = '0.5 ; not an MRPT comment': not a number"), std::string::npos) << e1;
-    const std::string e2 = errorOf([&] { readDouble(c, "Robot", "neg", 0, TRange::positive("m/s")); });
+    EXPECT_NE(e1.find("[Robot] bad = '0.5 ; not an MRPT comment': not a number"),
+              std::string::npos)
+        << e1;
+    const std::string e2 =
+        errorOf([&] { readDouble(c, "Robot", "neg", 0, TRange::positive("m/s")); });
     EXPECT_EQ(e2, p + ": [Robot] neg = '-1': must be in (0, inf) m/s");
-    const std::string e3 = errorOf([&] { readDouble(c, "Robot", "res", 0, TRange::closed(0.001, 10, "m")); });
+    const std::string e3 = errorOf(
+        [&] { readDouble(c, "Robot", "res", 0, TRange::closed(0.001, 10, "m")); });
     EXPECT_EQ(e3, p + ": [Robot] res = '0': must be in [0.001, 10] m");
-    EXPECT_NE(errorOf([&] { readDouble(c, "Robot", "word", 0, TRange::any()); }).find("not a number"),
+    EXPECT_NE(errorOf([&] {
+                  readDouble(c, "Robot", "word", 0, TRange::any());
+              }).find("not a number"),
               std::string::npos);
-    EXPECT_NE(errorOf([&] { requireDouble(c, "Robot", "absent", TRange::positive()); })
-                  .find("[Robot] absent: required key is missing"),
+    EXPECT_NE(errorOf([&] {
+                  requireDouble(c, "Robot", "absent", TRange::positive());
+              }).find("[Robot] absent: required key is missing"),
               std::string::npos);
 }
 
-TEST(ConfigRead, IntsBoolsChoicesLists)
-{
-    CIniConfig c(iniFile("[A]\nn = 3\nf = 2.5\nb = yes\nbb = maybe\nmode = loop\nv = [1, 2 3 4]\nodd = 1 2 3\n"));
+TEST(ConfigRead, IntsBoolsChoicesLists) {
+    CIniConfig c(
+        iniFile("[A]\nn = 3\nf = 2.5\nb = yes\nbb = maybe\nmode = loop\nv = [1, 2 3 "
+                "4]\nodd = 1 2 3\n"));
     EXPECT_EQ(readInt(c, "A", "n", 0, TRange::closed(1, 10)), 3);
-    EXPECT_NE(errorOf([&] { readInt(c, "A", "f", 0, TRange::any()); }).find("not an integer"), std::string::npos);
+    EXPECT_NE(
+        errorOf([&] { readInt(c, "A", "f", 0, TRange::any()); }).find("not an integer"),
+        std::string::npos);
     EXPECT_TRUE(readBool(c, "A", "b", false));
-    EXPECT_NE(errorOf([&] { readBool(c, "A", "bb", false); }).find("must be true or false"), std::string::npos);
+    EXPECT_NE(
+        errorOf([&] { readBool(c, "A", "bb", false); }).find("must be true or false"),
+        std::string::npos);
     EXPECT_EQ(readChoice(c, "A", "mode", "once", {"once", "loop"}), "loop");
-    EXPECT_NE(errorOf([&] { readChoice(c, "A", "mode", "once", {"once", "back_and_forth"}); })
-                  .find("must be one of: once, back_and_forth"),
+    EXPECT_NE(errorOf([&] {
+                  readChoice(c, "A", "mode", "once", {"once", "back_and_forth"});
+              }).find("must be one of: once, back_and_forth"),
               std::string::npos);
-    EXPECT_EQ(readNumbers(c, "A", "v", {}, TRange::any()), (std::vector<double>{1, 2, 3, 4}));
-    EXPECT_NE(errorOf([&] { readNumbers(c, "A", "odd", {}, TRange::any(), 0, 2); }).find("multiple of 2"),
+    EXPECT_EQ(readNumbers(c, "A", "v", {}, TRange::any()),
+              (std::vector<double>{1, 2, 3, 4}));
+    EXPECT_NE(errorOf([&] {
+                  readNumbers(c, "A", "odd", {}, TRange::any(), 0, 2);
+              }).find("multiple of 2"),
               std::string::npos);
 }
 
-TEST(ConfigRead, MrptPreprocessorWorks)
-{
-    CIniConfig c(iniFile("@define SPEED 0.4\n[R]\nv = ${SPEED}  // m/s\nw = $eval{2*SPEED}\n"));
+TEST(ConfigRead, MrptPreprocessorWorks) {
+    CIniConfig c(
+        iniFile("@define SPEED 0.4\n[R]\nv = ${SPEED}  // m/s\nw = $eval{2*SPEED}\n"));
     EXPECT_DOUBLE_EQ(readDouble(c, "R", "v", 0, TRange::any()), 0.4);
     EXPECT_DOUBLE_EQ(readDouble(c, "R", "w", 0, TRange::any()), 0.8);
 }
 
-TEST(CIniConfig, PreprocessorErrorsAreOneLineBadInput)
-{
-    const std::string e = errorOf([] { CIniConfig c(iniFile("[A]\nk = $eval{nosuchvar+1}\n")); });
+TEST(CIniConfig, PreprocessorErrorsAreOneLineBadInput) {
+    const std::string e =
+        errorOf([] { CIniConfig c(iniFile("[A]\nk = $eval{nosuchvar+1}\n")); });
     EXPECT_NE(e.find("cannot parse config file"), std::string::npos) << e;
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;
 }
 
-TEST(ConfigRead, PathsResolveAgainstTheConfigFolder)
-{
+TEST(ConfigRead, PathsResolveAgainstTheConfigFolder) {
     const std::string p = iniFile("[W]\nmap_file = maps/m.png\nabs = /etc/hostname\n");
     const std::string dir = std::filesystem::path(p).parent_path().string();
     CIniConfig c(p);
     EXPECT_EQ(readPath(c, "W", "map_file", "", false), dir + "/maps/m.png");
-    EXPECT_NE(errorOf([&] { readPath(c, "W", "map_file", "", true); }).find("file not found"), std::string::npos);
+    EXPECT_NE(
+        errorOf([&] { readPath(c, "W", "map_file", "", true); }).find("file not found"),
+        std::string::npos);
     std::filesystem::create_directories(dir + "/maps");
     writeFile(dir + "/maps/m.png", "x");
     EXPECT_EQ(readPath(c, "W", "map_file", "", true), dir + "/maps/m.png");
     EXPECT_EQ(readPath(c, "W", "abs", "", false), "/etc/hostname");
 }
 
-TEST(CIniConfig, MissingOrUnreadableFileIsBadInput)
-{
-    EXPECT_NE(errorOf([] { CIniConfig c("/nonexistent/x.ini"); }).find("config file not found"), std::string::npos);
+TEST(CIniConfig, MissingOrUnreadableFileIsBadInput) {
+    EXPECT_NE(
+        errorOf([] { CIniConfig c("/nonexistent/x.ini"); }).find("config file not found"),
+        std::string::npos);
     const std::string dir = freshDir("d");
-    EXPECT_NE(errorOf([&] { CIniConfig c(dir); }).find("not a regular file"), std::string::npos);
+    EXPECT_NE(errorOf([&] { CIniConfig c(dir); }).find("not a regular file"),
+              std::string::npos);
 }
 
-TEST(CIniConfig, ReportsKeysNobodyRead)
-{
+TEST(CIniConfig, ReportsKeysNobodyRead) {
     CIniConfig c(iniFile("[Robot]\nmax_v = 1\nmax_vv = 2\n[Other]\nk = 1\n"));
     readDouble(c, "Robot", "max_v", 0, TRange::any());
     // MRPT's own macros go through the same tracked readString().
@@ -132,8 +144,7 @@ TEST(CIniConfig, ReportsKeysNobodyRead)
     EXPECT_NE(e.find("unknown key [Robot] max_vv"), std::string::npos) << e;
 }
 
-TEST(CIniConfig, OverridesNeverTouchTheFileOnDisk)
-{
+TEST(CIniConfig, OverridesNeverTouchTheFileOnDisk) {
     const std::string text = "[Route]\nspeed = 0.2 // m/s\n\n\n[Other]\nk=1\n";
     const std::string p = iniFile(text);
     {
@@ -145,8 +156,7 @@ TEST(CIniConfig, OverridesNeverTouchTheFileOnDisk)
     EXPECT_EQ(risknav::test::readFile(p), text);
 }
 
-TEST(CIniConfig, OverridesFromTheCommandLine)
-{
+TEST(CIniConfig, OverridesFromTheCommandLine) {
     CIniConfig c(iniFile("[Route]\nspeed = 0.2\n"));
     c.applyOverride("Route.speed=0.5");
     c.applyOverride("Route.laps=4");  // a key not in the file is fine if code reads it
@@ -154,31 +164,32 @@ TEST(CIniConfig, OverridesFromTheCommandLine)
     EXPECT_EQ(readInt(c, "Route", "laps", 1, TRange::any()), 4);
     c.applyOverride("Route.lapz=4");  // a typo is caught as an unknown key
     EXPECT_EQ(c.unreadKeys(), (std::vector<std::string>{"[Route] lapz"}));
-    EXPECT_NE(errorOf([&] { c.applyOverride("Route_speed=1"); }).find("expected SECTION.KEY=VALUE"),
+    EXPECT_NE(errorOf([&] {
+                  c.applyOverride("Route_speed=1");
+              }).find("expected SECTION.KEY=VALUE"),
               std::string::npos);
-    EXPECT_NE(errorOf([&] { c.applyOverride("Route.speed"); }).find("expected SECTION.KEY=VALUE"),
+    EXPECT_NE(errorOf([&] {
+                  c.applyOverride("Route.speed");
+              }).find("expected SECTION.KEY=VALUE"),
               std::string::npos);
 }
 
-namespace
-{
-struct TDemoOptions
-{
+namespace {
+struct TDemoOptions {
     double a = 1, b = 2;
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s)
-    {
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                            const std::string& s) {
         a = readDouble(c, s, "a", a, TRange::any());
         b = readDouble(c, s, "b", b, TRange::any());
     }
-    void validate() const
-    {
-        if (b < a) throw CConfigKeyError("Demo", "b", std::to_string(b), "must be >= a");
+    void validate() const {
+        if (b < a)
+            throw CConfigKeyError("Demo", "b", std::to_string(b), "must be >= a");
     }
 };
 }  // namespace
 
-TEST(ConfigRead, LoadOptionsAddsTheFileToValidateErrors)
-{
+TEST(ConfigRead, LoadOptionsAddsTheFileToValidateErrors) {
     const std::string p = iniFile("[Demo]\na = 3\nb = 2\n");
     CIniConfig c(p);
     TDemoOptions o;

@@ -9,11 +9,9 @@
 using namespace risknav::common;
 using namespace risknav::test;
 
-namespace
-{
+namespace {
 // 40 x 20 px, white, with a black 4 x 2 px block in the top-left corner.
-std::string makePng(const std::string& dir)
-{
+std::string makePng(const std::string& dir) {
     cv::Mat img(20, 40, CV_8UC1, cv::Scalar(255));
     img(cv::Rect(0, 0, 4, 2)).setTo(0);
     img(cv::Rect(10, 10, 2, 2)).setTo(128);
@@ -23,8 +21,7 @@ std::string makePng(const std::string& dir)
 }
 }  // namespace
 
-TEST(GridIO, PngOrientationResolutionOrigin)
-{
+TEST(GridIO, PngOrientationResolutionOrigin) {
     TMapSourceOptions s;
     s.map_file = makePng(freshDir("m"));
     s.map_resolution = 0.1;
@@ -43,12 +40,12 @@ TEST(GridIO, PngOrientationResolutionOrigin)
     EXPECT_NEAR(g.getPos(0.05, 2.85), 128 / 255.0, 0.02);  // grey = uncertain
 }
 
-TEST(GridIO, RosYamlTrinary)
-{
+TEST(GridIO, RosYamlTrinary) {
     const std::string d = freshDir("m");
     makePng(d);
-    writeFile(d + "/m.yaml", "image: m.png\nresolution: 0.05\norigin: [1.0, 2.0, 0.0]\nnegate: 0\n"
-                             "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
+    writeFile(d + "/m.yaml",
+              "image: m.png\nresolution: 0.05\norigin: [1.0, 2.0, 0.0]\nnegate: 0\n"
+              "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
     TMapSourceOptions s;
     s.map_file = d + "/m.yaml";
     const auto g = loadOccupancyGrid(s);
@@ -65,12 +62,12 @@ TEST(GridIO, RosYamlTrinary)
     ASSERT_EQ(ref.getSizeY(), g.getSizeY());
     int differ = 0;
     for (unsigned y = 0; y < g.getSizeY(); y++)
-        for (unsigned x = 0; x < g.getSizeX(); x++) differ += std::abs(ref.getCell(x, y) - g.getCell(x, y)) > 0.1f;
+        for (unsigned x = 0; x < g.getSizeX(); x++)
+            differ += std::abs(ref.getCell(x, y) - g.getCell(x, y)) > 0.1f;
     EXPECT_EQ(differ, 0);
 }
 
-TEST(GridIO, GridmapRoundTrip)
-{
+TEST(GridIO, GridmapRoundTrip) {
     const std::string d = freshDir("m");
     TMapSourceOptions s;
     s.map_file = makePng(d);
@@ -81,25 +78,23 @@ TEST(GridIO, GridmapRoundTrip)
     const auto h = loadOccupancyGrid(s2);
     ASSERT_EQ(h.getSizeX(), g.getSizeX());
     for (unsigned y = 0; y < g.getSizeY(); y++)
-        for (unsigned x = 0; x < g.getSizeX(); x++) ASSERT_FLOAT_EQ(h.getCell(x, y), g.getCell(x, y));
+        for (unsigned x = 0; x < g.getSizeX(); x++)
+            ASSERT_FLOAT_EQ(h.getCell(x, y), g.getCell(x, y));
 }
 
-TEST(GridIO, BadFilesAreBadInput)
-{
+TEST(GridIO, BadFilesAreBadInput) {
     const std::string d = freshDir("m");
     TMapSourceOptions s;
     s.map_file = d + "/none.png";
     EXPECT_THROW(loadOccupancyGrid(s), CBadInputError);
     writeFile(d + "/text.png", "this is not a png");
     s.map_file = d + "/text.png";
-    try
-    {
+    try {
         loadOccupancyGrid(s);
         FAIL();
-    }
-    catch (const CBadInputError& e)
-    {
-        EXPECT_NE(std::string(e.what()).find("cannot read the map image"), std::string::npos);
+    } catch (const CBadInputError& e) {
+        EXPECT_NE(std::string(e.what()).find("cannot read the map image"),
+                  std::string::npos);
     }
     writeFile(d + "/bad.gridmap.gz", "garbage");
     s.map_file = d + "/bad.gridmap.gz";
@@ -110,8 +105,7 @@ TEST(GridIO, BadFilesAreBadInput)
 }
 
 // MRPT's own sample map (package mrpt-common): a grid built from its keyframes.
-TEST(GridIO, MrptSimplemapDataset)
-{
+TEST(GridIO, MrptSimplemapDataset) {
     TMapSourceOptions s;
     s.map_file = "/usr/share/mrpt/datasets/localization_demo.simplemap.gz";
     s.simplemap_resolution = 0.1;
@@ -121,8 +115,7 @@ TEST(GridIO, MrptSimplemapDataset)
     EXPECT_GT(g.getYMax() - g.getYMin(), 20.0);
     size_t occupied = 0, freeCells = 0;
     for (unsigned y = 0; y < g.getSizeY(); y++)
-        for (unsigned x = 0; x < g.getSizeX(); x++)
-        {
+        for (unsigned x = 0; x < g.getSizeX(); x++) {
             occupied += g.getCell(x, y) < 0.3f;
             freeCells += g.getCell(x, y) > 0.7f;
         }

@@ -12,8 +12,7 @@
 using namespace risknav::common;
 using namespace risknav::test;
 
-TEST(COutputDir, FilesAppearOnlyAtCommit)
-{
+TEST(COutputDir, FilesAppearOnlyAtCommit) {
     const std::string d = freshDir("out");
     {
         COutputDir out(d);
@@ -27,39 +26,33 @@ TEST(COutputDir, FilesAppearOnlyAtCommit)
     EXPECT_EQ(readFile(d + "/a.txt"), "new a");
 }
 
-TEST(COutputDir, AFailedRunLeavesEarlierResultsIntact)
-{
+TEST(COutputDir, AFailedRunLeavesEarlierResultsIntact) {
     const std::string d = freshDir("out");
     writeFile(d + "/summary.json", "{\"old\": true}\n");
-    try
-    {
+    try {
         COutputDir out(d);
         out.writeText("summary.json", "half-written");
         throw std::runtime_error("crash in the middle");
+    } catch (const std::runtime_error&) {
     }
-    catch (const std::runtime_error&)
-    {
-    }
-    EXPECT_EQ(listDir(d), (std::vector<std::string>{"summary.json"}));  // no temporaries left
+    EXPECT_EQ(listDir(d),
+              (std::vector<std::string>{"summary.json"}));  // no temporaries left
     EXPECT_EQ(readFile(d + "/summary.json"), "{\"old\": true}\n");
 }
 
-TEST(COutputDir, TemporariesKeepTheExtension)
-{
+TEST(COutputDir, TemporariesKeepTheExtension) {
     // OpenCV picks the image format from the extension of the temporary name.
     COutputDir out(freshDir("out"));
     EXPECT_EQ(std::filesystem::path(out.stage("world.png")).extension(), ".png");
 }
 
-TEST(COutputDir, UnusableFolderIsBadInput)
-{
+TEST(COutputDir, UnusableFolderIsBadInput) {
     const std::string f = freshDir("x") + "/file";
     writeFile(f, "i am a file");
     EXPECT_THROW(COutputDir out(f), CBadInputError);
 }
 
-TEST(WriteFileAtomic, ReplacesWholeFile)
-{
+TEST(WriteFileAtomic, ReplacesWholeFile) {
     const std::string f = freshDir("x") + "/a.txt";
     writeFile(f, "old");
     writeFileAtomic(f, "new content");
@@ -67,8 +60,7 @@ TEST(WriteFileAtomic, ReplacesWholeFile)
     EXPECT_EQ(listDir(std::filesystem::path(f).parent_path().string()).size(), 1u);
 }
 
-TEST(CCsvWriter, HeaderQuotingAndNumbers)
-{
+TEST(CCsvWriter, HeaderQuotingAndNumbers) {
     const std::string f = freshDir("x") + "/t.csv";
     CCsvWriter csv(f, {"a", "b,c"});
     csv.row({"1", "say \"hi\""});
@@ -79,22 +71,21 @@ TEST(CCsvWriter, HeaderQuotingAndNumbers)
     EXPECT_EQ(readFile(f), "a,\"b,c\"\n1,\"say \"\"hi\"\"\"\n0.3,1600000000.250\n");
 }
 
-TEST(CProgress, LineHasCountRateAndEta)
-{
+TEST(CProgress, LineHasCountRateAndEta) {
     EXPECT_EQ(CProgress::formatLine("replay", 50, 200, 10.0, "frames"),
               "replay: 50/200 frames (5 frames/s, ETA 0:30)");
     EXPECT_EQ(CProgress::formatLine("replay", 200, 200, 10.0, "frames"),
               "replay: 200/200 frames in 10.0 s (20 frames/s)");
 }
 
-TEST(CProgress, NonTerminalPrintsOneLine)
-{
+TEST(CProgress, NonTerminalPrintsOneLine) {
     const std::string f = freshDir("x") + "/p.txt";
     FILE* out = std::fopen(f.c_str(), "w");
     {
         CProgress p("work", 10, "items", false, out);
         EXPECT_FALSE(p.isTerminal());
-        for (size_t i = 1; i <= 8; i++) p.update(i);  // the total was an overestimate
+        for (size_t i = 1; i <= 8; i++)
+            p.update(i);  // the total was an overestimate
         p.finish();
         p.finish();
     }

@@ -8,8 +8,7 @@
 
 using namespace risknav::sim;
 
-TEST(CRouteFollower, ExpandsLapsAndModes)
-{
+TEST(CRouteFollower, ExpandsLapsAndModes) {
     CRouteFollower r;
     r.options.waypoints = {0, 0, 1, 0, 2, 0};
     r.options.laps = 2;
@@ -27,8 +26,7 @@ TEST(CRouteFollower, ExpandsLapsAndModes)
     EXPECT_EQ(r.legSpeeds(), (std::vector<double>{0.0, 0.3, 0.6}));
 }
 
-TEST(CRouteFollower, DrivesAnLShapedRoute)
-{
+TEST(CRouteFollower, DrivesAnLShapedRoute) {
     CRouteFollower r;
     r.options.waypoints = {0, 0, 4, 0, 4, 3};
     r.options.mode = "once";
@@ -38,8 +36,7 @@ TEST(CRouteFollower, DrivesAnLShapedRoute)
     sim.setCurrentGTPose(r.startPose());
     double maxDev = 0, t = 0;
     bool reachedCorner = false;
-    while (!r.finished() && t < 60)
-    {
+    while (!r.finished() && t < 60) {
         double v, w;
         r.compute(sim.getCurrentGTPose(), M_PI / 2, 1.0, v, w);
         sim.movementCommand(v, w);

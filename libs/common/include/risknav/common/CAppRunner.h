@@ -7,19 +7,16 @@
 #include <string>
 #include <vector>
 
-namespace risknav::common
-{
+namespace risknav::common {
 /** What an app tells the shared CLI about itself. */
-struct TAppInfo
-{
-    std::string name;         ///< e.g. "risknav-simulate"
-    std::string summary;      ///< one line for --help
-    std::string extraArgs;    ///< e.g. "[RAWLOG ...]" or "" if none accepted
+struct TAppInfo {
+    std::string name;       ///< e.g. "risknav-simulate"
+    std::string summary;    ///< one line for --help
+    std::string extraArgs;  ///< e.g. "[RAWLOG ...]" or "" if none accepted
 };
 
 /** The parsed command line, the same for every app (DESIGN.md "CLI"). */
-struct TAppArgs
-{
+struct TAppArgs {
     std::string configPath;
     std::string outDir;  ///< default out/<app>
     std::vector<std::string> sets;
@@ -36,8 +33,7 @@ std::string versionString(const TAppInfo& info);
 
 /** Everything an app body needs: the parsed CLI and the loaded config (with
  * --set overrides applied). */
-struct TAppContext
-{
+struct TAppContext {
     const TAppInfo& info;
     const TAppArgs& args;
     CIniConfig& cfg;

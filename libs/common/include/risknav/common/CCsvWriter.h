@@ -3,13 +3,11 @@
 #include <string>
 #include <vector>
 
-namespace risknav::common
-{
+namespace risknav::common {
 /** A CSV table with a header row (RFC 4180 quoting). Write it to a path
  * staged by COutputDir so that it appears only when the run succeeds. */
-class CCsvWriter
-{
-public:
+class CCsvWriter {
+  public:
     CCsvWriter(const std::string& path, const std::vector<std::string>& header);
     void row(const std::vector<std::string>& cells);
     /** Closes and throws std::runtime_error if anything failed to write. */
@@ -23,7 +21,7 @@ public:
     static std::string fixed(double v, int decimals);
     static std::string quote(const std::string& s);
 
-private:
+  private:
     std::string m_path;
     std::ofstream m_out;
     size_t m_columns, m_rows = 0;

@@ -7,8 +7,7 @@
 #include <utility>
 #include <vector>
 
-namespace risknav::common
-{
+namespace risknav::common {
 /** An MRPT .ini file (with MRPT's @define / ${VAR} / $eval{} preprocessor and
  * `//` comments) that remembers which keys were read, so that unknown keys
  * (typos) can be reported, and knows its own folder, so that relative paths
@@ -17,9 +16,8 @@ namespace risknav::common
  * All reads of the MRPT macros (MRPT_LOAD_CONFIG_VAR...) go through the
  * overridden readString(), so key tracking also covers MRPT's own options
  * structs loaded from this file. */
-class CIniConfig : public mrpt::config::CConfigFile
-{
-public:
+class CIniConfig : public mrpt::config::CConfigFile {
+  public:
     /** Loads the file; throws CBadInputError if it is missing, unreadable or a
      * directory. */
     explicit CIniConfig(const std::string& path);
@@ -38,7 +36,8 @@ public:
 
     /** Keys present in the file (in the given sections, or all sections if
      * empty) that no code has read so far: "[section] key" strings. */
-    std::vector<std::string> unreadKeys(const std::vector<std::string>& sections = {}) const;
+    std::vector<std::string> unreadKeys(
+        const std::vector<std::string>& sections = {}) const;
     /** Throws CBadInputError naming the first unread key, if any. */
     void throwOnUnreadKeys(const std::vector<std::string>& sections = {}) const;
 
@@ -46,12 +45,12 @@ public:
     bool hasKey(const std::string& section, const std::string& key) const;
     std::vector<std::string> sections() const;
 
-protected:
-    std::string readString(
-        const std::string& section, const std::string& name, const std::string& defaultStr,
-        bool failIfNotFound = false) const override;
+  protected:
+    std::string readString(const std::string& section, const std::string& name,
+                           const std::string& defaultStr,
+                           bool failIfNotFound = false) const override;
 
-private:
+  private:
     std::string m_path, m_folder;
     mutable std::set<std::pair<std::string, std::string>> m_read;
 };

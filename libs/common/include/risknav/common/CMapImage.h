@@ -8,11 +8,9 @@
 #include <string>
 #include <vector>
 
-namespace risknav::common
-{
+namespace risknav::common {
 /** An RGB colour (0-255 per channel). */
-struct TRgb
-{
+struct TRgb {
     uint8_t r = 0, g = 0, b = 0;
     cv::Scalar bgr() const { return cv::Scalar(b, g, r); }
 };
@@ -22,18 +20,9 @@ struct TRgb
  * figure, a legend, a scale bar in metres and, when a heat overlay is drawn, a
  * colour bar with units. Built on OpenCV (anti-aliased lines and text,
  * cv::applyColorMap). */
-class CMapImage
-{
-public:
-    enum class TMarker
-    {
-        Cross,
-        Plus,
-        Circle,
-        Square,
-        Triangle,
-        Star
-    };
+class CMapImage {
+  public:
+    enum class TMarker { Cross, Plus, Circle, Square, Triangle, Star };
 
     /** maxSidePx: the map is scaled so its longer side is at most this many
      * pixels (and at least 1 pixel per cell when that fits). */
@@ -49,21 +38,24 @@ public:
      * Values below `showFrom` stay transparent; alpha blends with the map.
      * Adds a colour bar "label [units]" from vmin to vmax. */
     void heatOverlay(const std::vector<float>& cellValues, float vmin, float vmax,
-                     const std::string& label, double alpha = 0.6, float showFrom = -1e30f,
-                     int colormap = 2 /* cv::COLORMAP_JET */);
+                     const std::string& label, double alpha = 0.6,
+                     float showFrom = -1e30f, int colormap = 2 /* cv::COLORMAP_JET */);
 
-    void polyline(const std::vector<mrpt::math::TPoint2D>& pts, TRgb c, int thicknessPx = 2,
-                  bool dashed = false);
+    void polyline(const std::vector<mrpt::math::TPoint2D>& pts, TRgb c,
+                  int thicknessPx = 2, bool dashed = false);
     void segment(const mrpt::math::TPoint2D& a, const mrpt::math::TPoint2D& b, TRgb c,
                  int thicknessPx = 2);
     /** The nSigma ellipse of a 2x2 position covariance [m^2] around `mean`. */
-    void ellipse(const mrpt::math::TPoint2D& mean, const mrpt::math::CMatrixFixed<double, 2, 2>& cov,
-                 double nSigma, TRgb c, int thicknessPx = 1);
-    void circle(const mrpt::math::TPoint2D& p, double radiusM, TRgb c, int thicknessPx = 1,
-                bool filled = false);
-    void marker(const mrpt::math::TPoint2D& p, TMarker m, TRgb c, int sizePx = 8, int thicknessPx = 2);
+    void ellipse(const mrpt::math::TPoint2D& mean,
+                 const mrpt::math::CMatrixFixed<double, 2, 2>& cov, double nSigma, TRgb c,
+                 int thicknessPx = 1);
+    void circle(const mrpt::math::TPoint2D& p, double radiusM, TRgb c,
+                int thicknessPx = 1, bool filled = false);
+    void marker(const mrpt::math::TPoint2D& p, TMarker m, TRgb c, int sizePx = 8,
+                int thicknessPx = 2);
     /** Text anchored at a world point (left-baseline), with a light halo. */
-    void text(const mrpt::math::TPoint2D& p, const std::string& s, TRgb c, double scale = 0.45);
+    void text(const mrpt::math::TPoint2D& p, const std::string& s, TRgb c,
+              double scale = 0.45);
 
     /** A legend entry: a short line (style Line) or a marker. */
     void legendLine(const std::string& label, TRgb c, int thicknessPx = 2);
@@ -79,17 +71,15 @@ public:
     /** A "nice" scale bar length (1, 2 or 5 x 10^k m) close to target metres. */
     static double niceLength(double targetM);
 
-private:
-    struct TLegend
-    {
+  private:
+    struct TLegend {
         std::string label;
         TRgb c;
         bool isMarker;
         TMarker m;
         int thickness;
     };
-    struct TColourBar
-    {
+    struct TColourBar {
         float vmin, vmax;
         std::string label;
         int colormap;

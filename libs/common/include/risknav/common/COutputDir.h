@@ -2,8 +2,7 @@
 #include <string>
 #include <vector>
 
-namespace risknav::common
-{
+namespace risknav::common {
 /** An output folder whose files appear all at once, at commit().
  *
  * Each result is written to a hidden temporary name in the same folder
@@ -11,9 +10,8 @@ namespace risknav::common
  * atomic on one file system). A run that throws before commit() leaves the
  * folder's earlier results untouched: the destructor removes the temporaries.
  */
-class COutputDir
-{
-public:
+class COutputDir {
+  public:
     /** Creates the folder (and parents). Throws CBadInputError if it cannot
      * (e.g. the path is a file or not writable). */
     explicit COutputDir(const std::string& dir);
@@ -33,7 +31,7 @@ public:
     /** Final names staged so far, in order. */
     std::vector<std::string> stagedNames() const;
 
-private:
+  private:
     std::string m_dir;
     std::vector<std::pair<std::string, std::string>> m_staged;  // (temp, final)
     bool m_committed = false;

@@ -5,25 +5,30 @@
 #include <string>
 #include <vector>
 
-namespace risknav::common
-{
+namespace risknav::common {
 /** Allowed interval of a numeric key, with its unit for messages. */
-struct TRange
-{
+struct TRange {
     double min = -std::numeric_limits<double>::infinity();
     double max = std::numeric_limits<double>::infinity();
     bool minOpen = false;  ///< true: value must be > min (not >=)
     bool maxOpen = false;
     std::string unit;
 
-    static TRange any(const std::string& unit = "") { return {-inf(), inf(), false, false, unit}; }
-    static TRange positive(const std::string& unit = "") { return {0, inf(), true, false, unit}; }
-    static TRange nonNegative(const std::string& unit = "") { return {0, inf(), false, false, unit}; }
-    static TRange closed(double a, double b, const std::string& unit = "")
-    {
+    static TRange any(const std::string& unit = "") {
+        return {-inf(), inf(), false, false, unit};
+    }
+    static TRange positive(const std::string& unit = "") {
+        return {0, inf(), true, false, unit};
+    }
+    static TRange nonNegative(const std::string& unit = "") {
+        return {0, inf(), false, false, unit};
+    }
+    static TRange closed(double a, double b, const std::string& unit = "") {
         return {a, b, false, false, unit};
     }
-    static TRange atLeast(double a, const std::string& unit = "") { return {a, inf(), false, false, unit}; }
+    static TRange atLeast(double a, const std::string& unit = "") {
+        return {a, inf(), false, false, unit};
+    }
     bool contains(double v) const;
     std::string describe() const;  ///< e.g. "must be in (0, inf) m/s"
     static double inf() { return std::numeric_limits<double>::infinity(); }
@@ -48,8 +53,8 @@ bool readBool(const mrpt::config::CConfigFileBase& c, const std::string& section
               const std::string& key, bool def);
 std::string readString(const mrpt::config::CConfigFileBase& c, const std::string& section,
                        const std::string& key, const std::string& def);
-std::string requireString(const mrpt::config::CConfigFileBase& c, const std::string& section,
-                          const std::string& key);
+std::string requireString(const mrpt::config::CConfigFileBase& c,
+                          const std::string& section, const std::string& key);
 /** One of a fixed set of words. */
 std::string readChoice(const mrpt::config::CConfigFileBase& c, const std::string& section,
                        const std::string& key, const std::string& def,
@@ -69,15 +74,16 @@ std::string readPath(const mrpt::config::CConfigFileBase& c, const std::string& 
 /** "file.ini: " for a CIniConfig, "" otherwise: prefix of every message. */
 std::string configWhere(const mrpt::config::CConfigFileBase& c);
 /** Throws CBadInputError "<file>: [section] key = 'value': <rule>". */
-[[noreturn]] void throwBadKey(const mrpt::config::CConfigFileBase& c, const std::string& section,
-                              const std::string& key, const std::string& value,
-                              const std::string& rule);
+[[noreturn]] void throwBadKey(const mrpt::config::CConfigFileBase& c,
+                              const std::string& section, const std::string& key,
+                              const std::string& value, const std::string& rule);
 
 /** Loads an options struct (MRPT style: loadFromConfigFile(c, section) then
  * validate()) and turns a CConfigKeyError from validate() into a
  * CBadInputError that names the file. */
 template <class OPTIONS>
-void loadOptions(OPTIONS& o, const mrpt::config::CConfigFileBase& c, const std::string& section);
+void loadOptions(OPTIONS& o, const mrpt::config::CConfigFileBase& c,
+                 const std::string& section);
 
 }  // namespace risknav::common
 
@@ -85,15 +91,11 @@ void loadOptions(OPTIONS& o, const mrpt::config::CConfigFileBase& c, const std::
 
 template <class OPTIONS>
 void risknav::common::loadOptions(OPTIONS& o, const mrpt::config::CConfigFileBase& c,
-                                  const std::string& section)
-{
+                                  const std::string& section) {
     o.loadFromConfigFile(c, section);
-    try
-    {
+    try {
         o.validate();
-    }
-    catch (const CConfigKeyError& e)
-    {
+    } catch (const CConfigKeyError& e) {
         throw CBadInputError(configWhere(c) + e.what());
     }
 }

@@ -4,20 +4,22 @@
 
 #include <string>
 
-namespace risknav::common
-{
+namespace risknav::common {
 /** Where a static occupancy map comes from; the `map_*` keys of any app
  * section. PNG/PGM bitmaps need resolution and origin; the other formats
  * carry their own. */
-struct TMapSourceOptions
-{
-    std::string map_file;       ///< .png/.pgm/.bmp, .gridmap(.gz), .yaml (ROS map_server), .simplemap(.gz)
+struct TMapSourceOptions {
+    std::string map_file;  ///< .png/.pgm/.bmp, .gridmap(.gz), .yaml (ROS map_server),
+                           ///< .simplemap(.gz)
     double map_resolution = 0.05;  ///< [m/px] bitmaps only
-    double map_origin_x = 0.0;     ///< [m] world x of the bitmap's lower-left corner (ROS convention)
-    double map_origin_y = 0.0;     ///< [m] world y of the bitmap's lower-left corner
-    double simplemap_resolution = 0.05;  ///< [m] cell size when building a grid from a .simplemap
+    double map_origin_x =
+        0.0;  ///< [m] world x of the bitmap's lower-left corner (ROS convention)
+    double map_origin_y = 0.0;  ///< [m] world y of the bitmap's lower-left corner
+    double simplemap_resolution =
+        0.05;  ///< [m] cell size when building a grid from a .simplemap
 
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& section);
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                            const std::string& section);
     void validate() const {}
 };
 

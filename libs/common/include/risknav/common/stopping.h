@@ -1,8 +1,7 @@
 #pragma once
 #include <algorithm>
 
-namespace risknav::common
-{
+namespace risknav::common {
 /** Stopping distance of a robot moving at speed v [m/s]:
  *   d_stop(v) = t_delay * v + v^2 / (2 a)
  * Choi, Chung, Song (002), eqs. (1)-(3), with the PAPER_NOTES M3 erratum: the
@@ -10,8 +9,7 @@ namespace risknav::common
  * v^2 / (2 a). t_delay [s] is the maximum detection + reaction delay,
  * a [m/s^2] the braking deceleration. With t_delay = 0.9 s, a = 1 m/s^2:
  * 0.8 -> 1.04 m, 0.5 -> 0.575 m, 0.2 -> 0.20 m (Table 1: 1.01, 0.58, 0.20). */
-inline double stoppingDistance(double v, double tDelay, double decel)
-{
+inline double stoppingDistance(double v, double tDelay, double decel) {
     v = std::max(0.0, v);
     return tDelay * v + v * v / (2.0 * decel);
 }

@@ -5,8 +5,7 @@
 
 #include <string>
 
-namespace risknav::common
-{
+namespace risknav::common {
 /** The keys every summary.json starts with: app, risknav_version,
  * mrpt_version, config (absolute path), seed, plus "overrides" (the --set list). */
 nlohmann::json summaryHeader(const TAppContext& ctx, uint64_t seed);

@@ -9,13 +9,11 @@
 #include <string>
 #include <vector>
 
-namespace risknav::sim
-{
+namespace risknav::sim {
 /** Something that happened to an agent: "emerge" (a door pedestrian came
  * out), "spawn" (a corridor walker started), "leave" (reached the end of its
  * path), "give_up" (blocked by the robot longer than its patience). */
-struct TAgentEvent
-{
+struct TAgentEvent {
     double t = 0;
     std::string kind, source, agent;
     double x = 0, y = 0;
@@ -32,30 +30,28 @@ struct TAgentEvent
  *  - [ClutterN]: static discs (furniture the map does not know).
  * Agents never steer into the robot: they keep their paths and wait while the
  * next step would touch the robot (give up after `patience` s). */
-class CAgentsSim
-{
-public:
-    struct TDoorPedestrian
-    {
+class CAgentsSim {
+  public:
+    struct TDoorPedestrian {
         std::string section;
-        double door[4] = {0, 0, 0, 0};  ///< x1 y1 x2 y2 [m]
+        double door[4] = {0, 0, 0, 0};           ///< x1 y1 x2 y2 [m]
         std::vector<mrpt::math::TPoint2D> path;  ///< from the doorway into the corridor
         double speed = 0.8, radius = 0.25, patience = 10.0;
         std::string emergence = "trigger";  ///< poisson | schedule | trigger
         double rate_per_min = 1.0;
         std::vector<double> schedule;
         double trigger_distance = 2.0, trigger_probability = 0.5;
-        mrpt::math::TPoint2D doorMid() const { return {0.5 * (door[0] + door[2]), 0.5 * (door[1] + door[3])}; }
+        mrpt::math::TPoint2D doorMid() const {
+            return {0.5 * (door[0] + door[2]), 0.5 * (door[1] + door[3])};
+        }
     };
-    struct TWalker
-    {
+    struct TWalker {
         std::string section;
         std::vector<mrpt::math::TPoint2D> path;
-        double speed_min = 1.6, speed_max = 2.0, radius = 0.25, period = 30.0, phase = 0.0,
-               patience = 10.0;
+        double speed_min = 1.6, speed_max = 2.0, radius = 0.25, period = 30.0,
+               phase = 0.0, patience = 10.0;
     };
-    struct TClutter
-    {
+    struct TClutter {
         std::string section;
         double x = 0, y = 0, radius = 0.3;
     };
@@ -79,9 +75,8 @@ public:
     /** Name ("DoorPedestrian2#3") of the person with this disc id. */
     const std::string& agentName(int id) const { return m_names.at(size_t(id)); }
 
-private:
-    struct TActive
-    {
+  private:
+    struct TActive {
         std::string name, source;
         const std::vector<mrpt::math::TPoint2D>* path;
         size_t seg = 0;
@@ -90,7 +85,8 @@ private:
         int id = 0;
         int doorIndex = -1;
     };
-    void spawn(double t, const std::string& kind, const std::string& source, size_t srcIdx, int doorIndex,
+    void spawn(double t, const std::string& kind, const std::string& source,
+               size_t srcIdx, int doorIndex,
                const std::vector<mrpt::math::TPoint2D>& path, double speed, double radius,
                double patience, std::vector<TAgentEvent>& events);
     std::vector<TActive> m_active;

@@ -7,8 +7,7 @@
 #include <random>
 #include <string>
 
-namespace risknav::sim
-{
+namespace risknav::sim {
 /** Wheel odometry of a differential-drive robot with imperfect knowledge of
  * its wheel radii and tread (the error model of Irie et al., PAPER_NOTES M2).
  *
@@ -21,18 +20,17 @@ namespace risknav::sim
  *  - per_step: drawn again every simulation step (the assumption behind the
  *    paper's eq. 15; its drift depends on the step length);
  *  - none: perfect odometry. */
-class COdometrySim
-{
-public:
-    struct TOptions
-    {
-        double wheel_radius = 0.063;        ///< [m] nominal, both wheels
-        double tread = 0.399;               ///< [m] nominal wheel separation
-        double sigma_wheel_radius = 0.001;  ///< [m] std. dev. of each wheel radius
-        double sigma_tread = 0.001;         ///< [m] std. dev. of the tread
+class COdometrySim {
+  public:
+    struct TOptions {
+        double wheel_radius = 0.063;             ///< [m] nominal, both wheels
+        double tread = 0.399;                    ///< [m] nominal wheel separation
+        double sigma_wheel_radius = 0.001;       ///< [m] std. dev. of each wheel radius
+        double sigma_tread = 0.001;              ///< [m] std. dev. of the tread
         std::string error_model = "systematic";  ///< systematic | per_step | none
 
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s);
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                const std::string& s);
         void validate() const;
     } options;
 
@@ -46,7 +44,7 @@ public:
     const TWheelGeometry& trueGeometry() const { return m_true; }
     TWheelGeometry nominalGeometry() const;
 
-private:
+  private:
     TWheelGeometry drawGeometry();
     mrpt::math::TPose2D m_pose;
     TWheelGeometry m_true;

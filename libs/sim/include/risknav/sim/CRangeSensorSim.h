@@ -10,40 +10,38 @@
 #include <string>
 #include <vector>
 
-namespace risknav::sim
-{
+namespace risknav::sim {
 /** A planar range sensor: rays cast on the static grid with MRPT's
  * COccupancyGridMap2D::laserScanSimulator and against disc obstacles (people,
  * clutter) that the map does not contain; Gaussian range noise; optional
  * per-object dropout (each disc independently missed in a whole scan, as a
  * stereo or sonar sensor misses objects). Output: a CObservation2DRangeScan
  * (MRPT ray order: -fov/2 .. +fov/2, right to left). */
-class CRangeSensorSim
-{
-public:
-    struct TOptions
-    {
+class CRangeSensorSim {
+  public:
+    struct TOptions {
         bool enabled = true;
         std::string label = "LASER";
-        double fov_deg = 180;        ///< [deg] (0, 360]
-        int beams = 181;             ///< rays per scan
-        double max_range = 8.0;      ///< [m]
-        double noise_std = 0.01;     ///< [m] range noise (1 sigma)
+        double fov_deg = 180;            ///< [deg] (0, 360]
+        int beams = 181;                 ///< rays per scan
+        double max_range = 8.0;          ///< [m]
+        double noise_std = 0.01;         ///< [m] range noise (1 sigma)
         double dropout_probability = 0;  ///< [0, 1) chance a disc is missed in a scan
-        int frame_decimation = 1;    ///< a scan every N-th frame (frames follow the main laser)
+        int frame_decimation =
+            1;  ///< a scan every N-th frame (frames follow the main laser)
         double x = 0.2, y = 0.0, z = 0.3;  ///< [m] mounting position on the robot
-        double yaw_deg = 0;          ///< [deg] mounting yaw
+        double yaw_deg = 0;                ///< [deg] mounting yaw
 
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s);
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                const std::string& s);
         void validate() const {}
     } options;
 
     /** One scan from the robot pose at timestamp t. */
-    mrpt::obs::CObservation2DRangeScan::Ptr simulate(const mrpt::maps::COccupancyGridMap2D& grid,
-                                                      const mrpt::math::TPose2D& robot,
-                                                      const std::vector<TDisc>& discs,
-                                                      mrpt::Clock::time_point t,
-                                                      std::mt19937_64& rng) const;
+    mrpt::obs::CObservation2DRangeScan::Ptr simulate(
+        const mrpt::maps::COccupancyGridMap2D& grid, const mrpt::math::TPose2D& robot,
+        const std::vector<TDisc>& discs, mrpt::Clock::time_point t,
+        std::mt19937_64& rng) const;
 };
 
 }  // namespace risknav::sim

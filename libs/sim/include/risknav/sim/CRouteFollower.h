@@ -7,21 +7,18 @@
 #include <string>
 #include <vector>
 
-namespace risknav::sim
-{
+namespace risknav::sim {
 /** Drives a differential-drive robot along a waypoint route at a commanded
  * speed profile (one speed per route segment), for `laps` laps:
- *  - once: w0 .. wn;  loop: w0 .. wn w0, repeated;  back_and_forth: w0 .. wn .. w0, repeated.
- * A waypoint-seeking controller: turn in place when the heading error exceeds
+ *  - once: w0 .. wn;  loop: w0 .. wn w0, repeated;  back_and_forth: w0 .. wn .. w0,
+ * repeated. A waypoint-seeking controller: turn in place when the heading error exceeds
  * turn_in_place_deg, otherwise proportional steering; it slows down so that
  * it can stop (with the robot's deceleration) at a sharp corner and at the end.
  * It uses the TRUE pose (a perfectly localized robot): odometry drift shows in
  * the logged odometry only. */
-class CRouteFollower
-{
-public:
-    struct TOptions
-    {
+class CRouteFollower {
+  public:
+    struct TOptions {
         std::vector<double> waypoints;  ///< x0 y0 x1 y1 ... [m], at least 2 points
         double speed = 0.2;             ///< [m/s] commanded speed of every segment
         std::vector<double> speeds;     ///< [m/s] optional, one per segment of one pass
@@ -30,9 +27,11 @@ public:
         double goal_tolerance = 0.1;          ///< [m]
         double heading_gain = 2.0;            ///< [1/s] omega = gain * heading error
         double turn_in_place_deg = 45;        ///< [deg]
-        std::optional<double> start_heading_deg;  ///< [deg] default: towards the second waypoint
+        std::optional<double>
+            start_heading_deg;  ///< [deg] default: towards the second waypoint
 
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s);
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                const std::string& s);
         void validate() const;
     } options;
 
@@ -40,7 +39,8 @@ public:
     void reset();
     /** Desired (v, omega) at this pose, before safety stops and acceleration
      * limits. maxW [rad/s], decel [m/s^2] shape corner slow-down. */
-    void compute(const mrpt::math::TPose2D& pose, double maxW, double decel, double& v, double& w);
+    void compute(const mrpt::math::TPose2D& pose, double maxW, double decel, double& v,
+                 double& w);
     bool finished() const { return m_idx >= m_points.size(); }
     /** The whole route as driven (all laps), and the speed of each leg i -> i+1. */
     const std::vector<mrpt::math::TPoint2D>& points() const { return m_points; }
@@ -52,7 +52,7 @@ public:
     /** Length of the whole route (all laps) [m]. */
     double length() const;
 
-private:
+  private:
     std::vector<mrpt::math::TPoint2D> m_points;
     std::vector<double> m_legSpeed;  // speed of leg (i-1 -> i), indexed by the target i
     size_t m_idx = 1;

@@ -1,11 +1,9 @@
 #pragma once
 #include <mrpt/math/TPose2D.h>
 
-namespace risknav::sim
-{
+namespace risknav::sim {
 /** Wheel geometry of a differential-drive robot [m]. */
-struct TWheelGeometry
-{
+struct TWheelGeometry {
     double radiusL = 0.063, radiusR = 0.063, tread = 0.399;
 };
 
@@ -18,6 +16,7 @@ void wheelsFromTwist(const TWheelGeometry& g, double v, double w, double& uL, do
 
 /** Pose after moving with constant (v, omega) for dt, on the exact arc
  * (straight line when omega = 0). Heading wrapped to (-pi, pi]. */
-mrpt::math::TPose2D integrateTwist(const mrpt::math::TPose2D& p, double v, double w, double dt);
+mrpt::math::TPose2D integrateTwist(const mrpt::math::TPose2D& p, double v, double w,
+                                   double dt);
 
 }  // namespace risknav::sim

@@ -1,11 +1,9 @@
 #pragma once
 #include <limits>
 
-namespace risknav::sim
-{
+namespace risknav::sim {
 /** A disc obstacle (person, clutter) in world coordinates [m]. */
-struct TDisc
-{
+struct TDisc {
     double x = 0, y = 0, r = 0;
     int objectId = -1;  ///< stable id, for per-object sensor dropout
 };
