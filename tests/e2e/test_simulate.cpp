@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <regex>
@@ -243,4 +244,46 @@ TEST(SimulateE2E, EveryKeyInTheDocumentedConfigIsKnown) {
     EXPECT_EQ(s["overrides"].size(), 2u);
     // 52 m at 0.3 m/s (the per-segment speed won over speed = 0.2).
     EXPECT_LT(s["duration_s"].get<double>(), 52 / 0.25);
+}
+
+TEST(SimulateE2E, MapFormatsGiveTheSameRun) {
+    // The same map as a PNG, an MRPT .gridmap.gz and a ROS map_server YAML
+    // (three loaders, one of them MRPT's deserializer) must give the same bytes.
+    const std::string w = freshDir("maps");
+    const std::string png = sourcePath("datasets/corridor-doors/corridor.png");
+    writeFile(w + "/corridor.yaml",
+              "image: " + png +
+                  "\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\nnegate: 0\n"
+                  "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
+    const std::string laps = "--set Route.laps=1 ";
+    const std::string a = simulate("corridor-doors", freshDir("png"), laps);
+    const std::string b =
+        simulate("corridor-doors", freshDir("gridmap"),
+                 laps + "--set World.map_file=" +
+                     sourcePath("datasets/corridor-doors/corridor.gridmap.gz"));
+    const std::string c = simulate("corridor-doors", freshDir("yaml"),
+                                   laps + "--set World.map_file=" + w + "/corridor.yaml");
+    const std::string ref = readFile(a + "/simulation.rawlog");
+    EXPECT_TRUE(readFile(b + "/simulation.rawlog") == ref)
+        << "gridmap.gz differs from PNG";
+    EXPECT_TRUE(readFile(c + "/simulation.rawlog") == ref) << "ROS YAML differs from PNG";
+}
+
+TEST(SimulateE2E, EffectiveConfigReproducesTheRun) {
+    const std::string a =
+        simulate("corridor-doors", freshDir("a"), "--set Route.laps=1 --seed 3");
+    const auto lines = readLines(a + "/config_effective.ini");
+    const auto has = [&](const std::string& l) {
+        return std::find(lines.begin(), lines.end(), l) != lines.end();
+    };
+    EXPECT_TRUE(has("laps = 1"));        // from --set
+    EXPECT_TRUE(has("seed = 3"));        // from --seed
+    EXPECT_TRUE(has("max_w_deg = 90"));  // a default the file does not mention
+    EXPECT_TRUE(has("map_file = " + sourcePath("datasets/corridor-doors/corridor.png")));
+    const std::string b = freshDir("b");
+    const auto r = run(binPath("risknav-simulate") + " -q -o '" + b + "' '" + a +
+                       "/config_effective.ini'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(readFile(a + "/simulation.rawlog") == readFile(b + "/simulation.rawlog"));
+    EXPECT_TRUE(readFile(a + "/agent_events.csv") == readFile(b + "/agent_events.csv"));
 }

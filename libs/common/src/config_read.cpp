@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -51,6 +52,37 @@ bool parseNumber(const std::string& txt, double& out) {
     return end && *end == '\0' && std::isfinite(out);
 }
 
+std::string text(double v) {
+    char b[40];
+    std::snprintf(b, sizeof(b), "%.9g", v);
+    return b;
+}
+std::string text(int v) {
+    return std::to_string(v);
+}
+std::string text(bool v) {
+    return v ? "true" : "false";
+}
+std::string text(const std::string& v) {
+    return v;
+}
+std::string text(const std::vector<double>& v) {
+    std::string t;
+    for (double x : v)
+        t += (t.empty() ? "" : " ") + text(x);
+    return t;
+}
+
+// Records the value a key took (from the file or the default) in a CIniConfig,
+// for config_effective.ini.
+template <class T>
+T noted(const CConfigFileBase& c, const std::string& s, const std::string& k,
+        const T& v) {
+    if (const auto* ini = dynamic_cast<const CIniConfig*>(&c))
+        ini->recordEffective(s, k, text(v));
+    return v;
+}
+
 void checkRange(const CConfigFileBase& c, const std::string& s, const std::string& k,
                 const std::string& raw, double v, const TRange& r) {
     if (!r.contains(v))
@@ -93,12 +125,12 @@ double readDouble(const CConfigFileBase& c, const std::string& s, const std::str
                   double def, const TRange& r) {
     std::string raw;
     if (!present(c, s, k, raw))
-        return def;
+        return noted(c, s, k, def);
     double v = 0;
     if (!parseNumber(raw, v))
         throwBadKey(c, s, k, raw, "not a number");
     checkRange(c, s, k, raw, v, r);
-    return v;
+    return noted(c, s, k, v);
 }
 
 double requireDouble(const CConfigFileBase& c, const std::string& s, const std::string& k,
@@ -112,40 +144,41 @@ double requireDouble(const CConfigFileBase& c, const std::string& s, const std::
 
 double readDegrees(const CConfigFileBase& c, const std::string& s, const std::string& k,
                    double defRad, const TRange& rangeDeg) {
-    return readDouble(c, s, k, defRad * 180.0 / M_PI, rangeDeg) * M_PI / 180.0;
+    return readDouble(c, s, k, defRad * 180.0 / M_PI, rangeDeg) * M_PI /
+           180.0;  // noted in deg
 }
 
 int readInt(const CConfigFileBase& c, const std::string& s, const std::string& k, int def,
             const TRange& r) {
     std::string raw;
     if (!present(c, s, k, raw))
-        return def;
+        return noted(c, s, k, def);
     double v = 0;
     if (!parseNumber(raw, v) || v != std::floor(v) || std::abs(v) > 2e9)
         throwBadKey(c, s, k, raw, "not an integer");
     checkRange(c, s, k, raw, v, r);
-    return static_cast<int>(v);
+    return noted(c, s, k, static_cast<int>(v));
 }
 
 bool readBool(const CConfigFileBase& c, const std::string& s, const std::string& k,
               bool def) {
     std::string raw;
     if (!present(c, s, k, raw))
-        return def;
+        return noted(c, s, k, def);
     std::string l = raw;
     std::transform(l.begin(), l.end(), l.begin(),
                    [](unsigned char ch) { return std::tolower(ch); });
     if (l == "true" || l == "1" || l == "yes" || l == "on")
-        return true;
+        return noted(c, s, k, true);
     if (l == "false" || l == "0" || l == "no" || l == "off")
-        return false;
+        return noted(c, s, k, false);
     throwBadKey(c, s, k, raw, "must be true or false");
 }
 
 std::string readString(const CConfigFileBase& c, const std::string& s,
                        const std::string& k, const std::string& def) {
     std::string raw;
-    return present(c, s, k, raw) ? raw : def;
+    return noted(c, s, k, present(c, s, k, raw) ? raw : def);
 }
 
 std::string requireString(const CConfigFileBase& c, const std::string& s,
@@ -174,7 +207,7 @@ std::vector<double> readNumbers(const CConfigFileBase& c, const std::string& s,
                                 const TRange& r, size_t minCount, size_t sizeMultiple) {
     std::string raw;
     if (!present(c, s, k, raw))
-        return def;
+        return noted(c, s, k, def);
     std::string body = raw;
     if (!body.empty() && body.front() == '[') {
         if (body.back() != ']')
@@ -198,7 +231,7 @@ std::vector<double> readNumbers(const CConfigFileBase& c, const std::string& s,
     if (sizeMultiple > 1 && out.size() % sizeMultiple != 0)
         throwBadKey(c, s, k, raw,
                     "needs a multiple of " + std::to_string(sizeMultiple) + " numbers");
-    return out;
+    return noted(c, s, k, out);
 }
 
 std::string readPath(const CConfigFileBase& c, const std::string& s, const std::string& k,
@@ -218,7 +251,7 @@ std::string readPath(const CConfigFileBase& c, const std::string& s, const std::
     std::error_code ec;
     if (mustExist && !fs::is_regular_file(p, ec))
         throwBadKey(c, s, k, v, "file not found (" + p.string() + ")");
-    return p.string();
+    return noted(c, s, k, p.string());  // absolute: config_effective.ini lives elsewhere
 }
 
 }  // namespace risknav::common

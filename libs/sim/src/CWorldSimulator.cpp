@@ -105,8 +105,10 @@ void CWorldSimulator::loadFromConfigFile(const CIniConfig& c,
     if (!c.sectionExists("Route"))
         throw CBadInputError(c.path() + ": missing section [Route] (waypoints)");
     loadOptions(simulation, c, "Simulation");
-    if (seedOverride)
+    if (seedOverride) {
         simulation.seed = *seedOverride;
+        c.recordEffective("Simulation", "seed", std::to_string(simulation.seed));
+    }
     loadOptions(world, c, "World");
     loadOptions(robot, c, "Robot");
     loadOptions(odometry.options, c, "Odometry");
@@ -540,6 +542,8 @@ void runSimulateApp(const TAppContext& ctx) {
     COutputDir out(ctx.args.outDir);
     json summary = summaryHeader(ctx, sim.simulation.seed);
     summary.update(sim.run(out, ctx.args.quiet));
+    out.writeText("config_effective.ini", ctx.cfg.effectiveConfigText());
+    summary["outputs"].push_back("config_effective.ini");
     summary["outputs"].push_back("summary.json");
     out.writeText("summary.json", jsonText(summary));
     out.commit();
