@@ -100,6 +100,8 @@ INSTANTIATE_TEST_SUITE_P(
               "must be one of: systematic, per_step, none"},
         TCase{"frame_not_multiple_of_dt", "", "", "--set Simulation.sim_dt=0.07",
               "whole multiple of sim_dt"},
+        TCase{"laser_decimation", "", "", "--set Laser.frame_decimation=2",
+              "[Laser] frame_decimation must be 1"},
         TCase{"bad_option", "", "", "--frobnicate", "unknown option '--frobnicate'"},
         TCase{"bad_seed", "", "", "--seed -1",
               "--seed '-1': must be a non-negative integer"}),

@@ -115,6 +115,10 @@ void CWorldSimulator::loadFromConfigFile(const CIniConfig& c,
     loadOptions(route.options, c, "Route");
     loadOptions(laser.options, c, "Laser");
     loadOptions(range2.options, c, "RangeSensor2");
+    if (laser.options.frame_decimation != 1)
+        throw CBadInputError(
+            c.path() +
+            ": [Laser] frame_decimation must be 1: the main laser defines the frames");
     if (!laser.options.enabled)
         throw CBadInputError(c.path() +
                              ": [Laser] enabled = false: the main laser defines the "
@@ -221,7 +225,7 @@ struct TSafetyEvent {
     double rx, ry, ox, oy, gap;
 };
 
-std::string f6(double v) {
+std::string num(double v) {
     return CCsvWriter::num(v, 9);
 }
 
@@ -401,7 +405,7 @@ json CWorldSimulator::run(COutputDir& out, bool quiet) {
                        {"t", "kind", "source", "agent", "x", "y"});
         for (const auto& e : agentEvents)
             csv.row({CCsvWriter::fixed(simulation.start_time + e.t, 3), e.kind, e.source,
-                     e.agent, f6(e.x), f6(e.y)});
+                     e.agent, num(e.x), num(e.y)});
         csv.close();
     }
     {
@@ -410,7 +414,7 @@ json CWorldSimulator::run(COutputDir& out, bool quiet) {
             {"t", "kind", "object", "robot_x", "robot_y", "object_x", "object_y", "gap"});
         for (const auto& e : safety)
             csv.row({CCsvWriter::fixed(simulation.start_time + e.t, 3), e.kind, e.object,
-                     f6(e.rx), f6(e.ry), f6(e.ox), f6(e.oy), f6(e.gap)});
+                     num(e.rx), num(e.ry), num(e.ox), num(e.oy), num(e.gap)});
         csv.close();
     }
     saveGridmapGz(m_grid, out.stage("map.gridmap.gz"));

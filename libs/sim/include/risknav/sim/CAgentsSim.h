@@ -71,7 +71,6 @@ class CAgentsSim {
               std::vector<TAgentEvent>& events);
     /** Discs of the active people and of the clutter; ids are stable per agent. */
     std::vector<TDisc> discs() const;
-    size_t activeCount() const { return m_active.size(); }
     /** Name ("DoorPedestrian2#3") of the person with this disc id. */
     const std::string& agentName(int id) const { return m_names.at(size_t(id)); }
 
@@ -90,7 +89,7 @@ class CAgentsSim {
                const std::vector<mrpt::math::TPoint2D>& path, double speed, double radius,
                double patience, std::vector<TAgentEvent>& events);
     std::vector<TActive> m_active;
-    std::vector<double> m_nextTime;   // per door (poisson) or walker
+    std::vector<double> m_nextTime;   // per door (poisson)
     std::vector<size_t> m_nextSched;  // per door (schedule)
     std::vector<bool> m_armed;        // per door (trigger)
     std::vector<double> m_nextWalker;
