@@ -1,0 +1,83 @@
+#include <risknav/risk/odometry_covariance.h>
+
+#include <cmath>
+
+namespace risknav::risk {
+Eigen::Matrix3d TOdometryModel::sigmaM() const {
+    Eigen::Matrix3d s = Eigen::Matrix3d::Zero();
+    s(0, 0) = sigmaRL * sigmaRL;
+    s(1, 1) = sigmaRR * sigmaRR;
+    s(2, 2) = sigmaT * sigmaT;
+    return s;
+}
+
+void twistFromWheels(const TOdometryModel& m, double uL, double uR, double& v,
+                     double& w) {
+    v = 0.5 * (m.radiusR * uR + m.radiusL * uL);
+    w = (m.radiusR * uR - m.radiusL * uL) / m.tread;
+}
+
+void wheelsFromTwist(const TOdometryModel& m, double v, double w, double& uL,
+                     double& uR) {
+    uR = (v + 0.5 * w * m.tread) / m.radiusR;
+    uL = (v - 0.5 * w * m.tread) / m.radiusL;
+}
+
+Eigen::Matrix3d jacobianPose(double theta, double v, double tau) {
+    Eigen::Matrix3d j = Eigen::Matrix3d::Identity();
+    j(0, 2) = -tau * v * std::sin(theta);
+    j(1, 2) = tau * v * std::cos(theta);
+    return j;
+}
+
+Eigen::Matrix<double, 3, 2> jacobianVelocity(double theta, double tau) {
+    Eigen::Matrix<double, 3, 2> k = Eigen::Matrix<double, 3, 2>::Zero();
+    k(0, 0) = tau * std::cos(theta);
+    k(1, 0) = tau * std::sin(theta);
+    k(2, 1) = tau;
+    return k;
+}
+
+Eigen::Matrix<double, 2, 3> jacobianWheelParams(const TOdometryModel& m, double uL,
+                                                double uR) {
+    Eigen::Matrix<double, 2, 3> l;
+    l << uL / 2, uR / 2, 0,  //
+        -uL / m.tread, uR / m.tread,
+        -(m.radiusR * uR - m.radiusL * uL) / (m.tread * m.tread);
+    return l;
+}
+
+Eigen::Matrix3d propagatePerStep(const Eigen::Matrix3d& sigmaP, double theta, double uL,
+                                 double uR, double tau, const TOdometryModel& m) {
+    double v, w;
+    twistFromWheels(m, uL, uR, v, w);
+    const Eigen::Matrix3d jp = jacobianPose(theta, v, tau);
+    const Eigen::Matrix<double, 3, 2> jv = jacobianVelocity(theta, tau);
+    const Eigen::Matrix<double, 2, 3> l = jacobianWheelParams(m, uL, uR);
+    const Eigen::Matrix2d sigmaV = l * m.sigmaM() * l.transpose();
+    return jp * sigmaP * jp.transpose() + jv * sigmaV * jv.transpose() +
+           tau * tau * m.sigmaN;
+}
+
+Eigen::Matrix<double, 6, 6> propagateSystematic(const Eigen::Matrix<double, 6, 6>& sigmaZ,
+                                                double theta, double uL, double uR,
+                                                double tau, const TOdometryModel& m) {
+    double v, w;
+    twistFromWheels(m, uL, uR, v, w);
+    Eigen::Matrix<double, 6, 6> f = Eigen::Matrix<double, 6, 6>::Identity();
+    f.block<3, 3>(0, 0) = jacobianPose(theta, v, tau);
+    f.block<3, 3>(0, 3) = jacobianVelocity(theta, tau) * jacobianWheelParams(m, uL, uR);
+    Eigen::Matrix<double, 6, 6> out = f * sigmaZ * f.transpose();
+    out.block<3, 3>(0, 0) += tau * tau * m.sigmaN;
+    return out;
+}
+
+Eigen::Matrix<double, 6, 6> augmentedInitial(const Eigen::Matrix3d& sigmaP0,
+                                             const TOdometryModel& m) {
+    Eigen::Matrix<double, 6, 6> z = Eigen::Matrix<double, 6, 6>::Zero();
+    z.block<3, 3>(0, 0) = sigmaP0;
+    z.block<3, 3>(3, 3) = m.sigmaM();
+    return z;
+}
+
+}  // namespace risknav::risk

@@ -1,0 +1,111 @@
+#include <risknav/risk/path_risk.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace risknav::risk;
+using mrpt::math::TPoint2D;
+
+namespace {
+// A straight corridor 2 m wide (walls at y = 0 and y = 2), 30 m long.
+mrpt::maps::COccupancyGridMap2D corridor() {
+    mrpt::maps::COccupancyGridMap2D g(0, 30, -0.5, 2.5, 0.05f);
+    g.fill(1.0f);
+    for (unsigned cx = 0; cx < g.getSizeX(); cx++)
+        for (unsigned cy = 0; cy < g.getSizeY(); cy++) {
+            const double y = g.idx2y(cy);
+            if (y < 0 || y > 2)
+                g.setCell(cx, cy, 0.0f);
+        }
+    return g;
+}
+
+TRiskOptions paperOptions() {
+    TRiskOptions o;  // the paper's robot (001 sections 4.4, 6.2)
+    o.sigmaP0.diagonal() << 1e-6, 1e-6, 0.01;  // (1 mm, 1 mm, 0.1 rad)^2
+    return o;
+}
+}  // namespace
+
+TEST(PathRisk, TrapezoidIntegral) {
+    EXPECT_DOUBLE_EQ(integrateRisk({0, 1, 3}, {1, 3, 3}), 2.0 + 6.0);
+    EXPECT_DOUBLE_EQ(riskDensity(2.0), 0.25);
+    EXPECT_TRUE(std::isinf(riskDensity(0.0)));
+}
+
+TEST(PathRisk, UGrowsAlongACorridorAndDropsAtASensingPoint) {
+    CObstacleField::TOptions fo;
+    fo.robot_radius = 0.25;
+    const CObstacleField f(corridor(), fo);
+    const std::vector<TPoint2D> path = {{1, 1}, {29, 1}};
+    for (TErrorModel model : {TErrorModel::PerStep, TErrorModel::Systematic}) {
+        TRiskOptions o = paperOptions();
+        o.model = model;
+        const auto r = evaluatePathRisk(path, {}, f, o);
+        ASSERT_GT(r.samples.size(), 500u);
+        EXPECT_NEAR(r.length, 28.0, 1e-9);
+        for (size_t i = 1; i < r.samples.size(); i++)
+            ASSERT_GE(r.samples[i].u, r.samples[i - 1].u * (1 - 1e-12))
+                << "s = " << r.samples[i].s;
+        EXPECT_GT(r.samples.back().u, r.samples.front().u);
+
+        // With a sensing point at x = 15: u right after it equals u of a robot
+        // starting there with the reset covariance, then grows again.
+        TSensingPoint sp;
+        sp.name = "SP";
+        sp.x = 15;
+        sp.y = 1;
+        sp.radius = 0.1;
+        sp.resetCov = o.sigmaP0;
+        const auto rs = evaluatePathRisk(path, {sp}, f, o);
+        ASSERT_EQ(rs.sensed, std::vector<std::string>{"SP"});
+        const auto it = std::find_if(rs.samples.begin(), rs.samples.end(),
+                                     [](const TRiskSample& k) { return k.sensedHere; });
+        ASSERT_NE(it, rs.samples.end());
+        const auto fresh = evaluatePathRisk({{it->x, 1}, {29, 1}}, {}, f, o);
+        EXPECT_NEAR(it->u / fresh.samples.front().u, 1.0, 0.05) << "model " << int(model);
+        EXPECT_LT(it->u, (it - 1)->u / 2);
+        EXPECT_LT(rs.U, r.U);
+        EXPECT_GT(rs.samples.back().u, it->u);
+    }
+}
+
+TEST(PathRisk, NarrowerMeansRiskier) {
+    CObstacleField::TOptions fo;
+    fo.robot_radius = 0.25;
+    const CObstacleField f(corridor(), fo);
+    const auto centre = evaluatePathRisk({{1, 1}, {20, 1}}, {}, f, paperOptions());
+    const auto offCentre = evaluatePathRisk({{1, 0.6}, {20, 0.6}}, {}, f, paperOptions());
+    EXPECT_GT(offCentre.U, centre.U);
+    EXPECT_GT(offCentre.uMax, centre.uMax);
+    EXPECT_FALSE(centre.blocked);
+    // Through the wall: D_max = 0 somewhere, u infinite: blocked.
+    EXPECT_TRUE(
+        evaluatePathRisk({{1, 1}, {5, 1}, {5, 3}}, {}, f, paperOptions()).blocked);
+}
+
+TEST(PathRisk, SensingDetours) {
+    CObstacleField::TOptions fo;
+    fo.robot_radius = 0.25;
+    const CObstacleField f(corridor(), fo);
+    const std::vector<TPoint2D> route = {{1, 1}, {29, 1}};
+    TSensingPoint a, b;
+    a.name = "A";
+    a.x = 20;
+    a.y = 1.5;  // off the route by 0.5 m: a detour
+    b.name = "B";
+    b.x = 10;
+    b.y = 1.05;  // within its radius of the route: no detour
+    std::vector<TPoint2D> out;
+    ASSERT_TRUE(routeWithSensingDetours(route, {a, b}, f, out));
+    ASSERT_EQ(out.size(), 5u);  // start, P, A, P, end
+    EXPECT_NEAR(out[1].x, 20, 1e-9);
+    EXPECT_NEAR(out[2].y, 1.5, 1e-9);
+    EXPECT_NEAR(polylineLength(out), 28 + 1.0, 1e-9);
+    // Behind a wall: no detour possible.
+    TSensingPoint c;
+    c.x = 10;
+    c.y = 2.3;
+    EXPECT_FALSE(routeWithSensingDetours(route, {c}, f, out));
+}
