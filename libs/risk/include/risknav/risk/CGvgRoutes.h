@@ -1,0 +1,57 @@
+#pragma once
+#include <risknav/risk/CObstacleField.h>
+
+#include <mrpt/math/TPoint2D.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace risknav::risk {
+/** Candidate routes along the Generalized Voronoi Graph of the free space
+ * (Irie et al. (001) section 6.1, eq. 31: points equidistant from their two
+ * closest obstacles), own implementation: MRPT 2.5.8's buildVoronoiDiagram
+ * fails on non-square grids and at borders (MRPT_NOTES section 3).
+ *
+ * 1. Distance transform of the raw obstacles with the nearest obstacle pixel
+ *    of every free pixel (OpenCV, DIST_LABEL_PIXEL).
+ * 2. A free pixel is on the GVG when a 4-neighbour's nearest obstacle point
+ *    lies far from its own: |N(p) - N(q)| >= max(2 cells, separation_ratio d(p))
+ *    (the two sides of a corridor; the ratio prunes the spurs a medial axis
+ *    grows towards corners), and the robot fits there (d(p) >= min_clearance).
+ * 3. Zhang-Suen thinning to a one-pixel skeleton.
+ * 4. Per query: start and goal join the nearest skeleton pixel they see in a
+ *    straight, obstacle-free line; junctions become nodes, the branches
+ *    between them edges; Yen's algorithm gives the k shortest loopless routes,
+ *    simplified (Douglas-Peucker, never across an obstacle). */
+class CGvgRoutes {
+  public:
+    struct TOptions {
+        double separation_ratio = 1.0;
+        double min_clearance = -1;        ///< [m] default (< 0): the field's robot radius
+        double simplify_tolerance = 0.1;  ///< [m]
+    };
+
+    CGvgRoutes(const CObstacleField& field, const TOptions& o);
+
+    /** Up to k distinct routes start -> goal, shortest first (each starts at
+     * start and ends at goal). Empty: no route (start or goal cannot reach the
+     * GVG, or the GVG does not connect them). */
+    std::vector<std::vector<mrpt::math::TPoint2D>> routes(
+        const mrpt::math::TPoint2D& start, const mrpt::math::TPoint2D& goal,
+        size_t k) const;
+
+    /** The skeleton as a row-major mask (field geometry), for pictures. */
+    const std::vector<uint8_t>& skeleton() const { return m_skel; }
+    size_t skeletonCells() const { return m_pixels.size(); }
+
+  private:
+    long attach(const mrpt::math::TPoint2D& p) const;  // skeleton pixel index or -1
+    std::vector<mrpt::math::TPoint2D> simplify(
+        const std::vector<mrpt::math::TPoint2D>& pts) const;
+    const CObstacleField& m_field;
+    TOptions m_opts;
+    std::vector<uint8_t> m_skel;
+    std::vector<uint32_t> m_pixels;  // indices of skeleton pixels
+};
+
+}  // namespace risknav::risk

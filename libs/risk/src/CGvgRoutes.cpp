@@ -1,0 +1,284 @@
+#include <risknav/risk/CGvgRoutes.h>
+#include <risknav/risk/k_shortest_paths.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <numeric>
+
+using mrpt::math::TPoint2D;
+
+namespace risknav::risk {
+namespace {
+// Zhang & Suen (1984) thinning of a 0/1 mask, in place.
+void thin(std::vector<uint8_t>& m, int w, int h) {
+    auto at = [&](int x, int y) -> int {
+        return (x >= 0 && y >= 0 && x < w && y < h) ? m[size_t(y) * w + x] : 0;
+    };
+    std::vector<size_t> del;
+    bool changed = true;
+    while (changed) {
+        changed = false;
+        for (int pass = 0; pass < 2; pass++) {
+            del.clear();
+            for (int y = 0; y < h; y++)
+                for (int x = 0; x < w; x++) {
+                    if (!m[size_t(y) * w + x])
+                        continue;
+                    // Neighbours P2..P9, clockwise from north (y grows "north" here;
+                    // symmetric anyway).
+                    const int p[8] = {
+                        at(x, y + 1), at(x + 1, y + 1), at(x + 1, y), at(x + 1, y - 1),
+                        at(x, y - 1), at(x - 1, y - 1), at(x - 1, y), at(x - 1, y + 1)};
+                    const int b = std::accumulate(p, p + 8, 0);
+                    if (b < 2 || b > 6)
+                        continue;
+                    int a = 0;
+                    for (int i = 0; i < 8; i++)
+                        a += (p[i] == 0 && p[(i + 1) % 8] == 1);
+                    if (a != 1)
+                        continue;
+                    if (pass == 0 && (p[0] * p[2] * p[4] != 0 || p[2] * p[4] * p[6] != 0))
+                        continue;
+                    if (pass == 1 && (p[0] * p[2] * p[6] != 0 || p[0] * p[4] * p[6] != 0))
+                        continue;
+                    del.push_back(size_t(y) * w + x);
+                }
+            for (size_t i : del)
+                m[i] = 0;
+            changed |= !del.empty();
+        }
+    }
+}
+}  // namespace
+
+CGvgRoutes::CGvgRoutes(const CObstacleField& f, const TOptions& o)
+    : m_field(f), m_opts(o) {
+    const int w = f.sizeX(), h = f.sizeY();
+    const double res = f.resolution();
+    const double minClear =
+        o.min_clearance >= 0 ? o.min_clearance : f.options().robot_radius;
+    cv::Mat freeMask(h, w, CV_8UC1);
+    const auto& raw = f.rawObstacles();
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            freeMask.at<uint8_t>(y, x) = raw[size_t(y) * w + x] ? 0 : 255;
+    cv::Mat dist, labels;
+    cv::distanceTransform(freeMask, dist, labels, cv::DIST_L2, cv::DIST_MASK_5,
+                          cv::DIST_LABEL_PIXEL);
+    // Label -> the obstacle pixel it names.
+    std::map<int, std::pair<int, int>> where;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            if (!freeMask.at<uint8_t>(y, x))
+                where[labels.at<int>(y, x)] = {x, y};
+    m_skel.assign(size_t(w) * h, 0);
+    if (where.empty())
+        return;  // no obstacle at all: no GVG
+    auto nearest = [&](int x, int y) { return where[labels.at<int>(y, x)]; };
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            if (!freeMask.at<uint8_t>(y, x))
+                continue;
+            const float d = dist.at<float>(y, x);
+            if (d * res < minClear)
+                continue;
+            const auto np = nearest(x, y);
+            const double need = std::max(2.0, o.separation_ratio * d);
+            const int nb[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+            for (const auto& n : nb) {
+                const int qx = x + n[0], qy = y + n[1];
+                if (qx < 0 || qy < 0 || qx >= w || qy >= h ||
+                    !freeMask.at<uint8_t>(qy, qx))
+                    continue;
+                const auto nq = nearest(qx, qy);
+                if (std::hypot(np.first - nq.first, np.second - nq.second) >= need) {
+                    m_skel[size_t(y) * w + x] = 1;
+                    break;
+                }
+            }
+        }
+    thin(m_skel, w, h);
+    for (size_t i = 0; i < m_skel.size(); i++)
+        if (m_skel[i])
+            m_pixels.push_back(uint32_t(i));
+}
+
+long CGvgRoutes::attach(const TPoint2D& p) const {
+    const int w = m_field.sizeX();
+    std::vector<std::pair<double, uint32_t>> byDist;
+    for (uint32_t i : m_pixels)
+        byDist.emplace_back(std::hypot(m_field.colToX(int(i % w)) - p.x,
+                                       m_field.rowToY(int(i / w)) - p.y),
+                            i);
+    std::sort(byDist.begin(), byDist.end());
+    for (const auto& [d, i] : byDist)
+        if (m_field.segmentFree(p.x, p.y, m_field.colToX(int(i % w)),
+                                m_field.rowToY(int(i / w))))
+            return long(i);
+    return -1;
+}
+
+std::vector<TPoint2D> CGvgRoutes::simplify(const std::vector<TPoint2D>& pts) const {
+    if (pts.size() <= 2)
+        return pts;
+    std::vector<bool> keep(pts.size(), false);
+    keep.front() = keep.back() = true;
+    std::vector<std::pair<size_t, size_t>> stack = {{0, pts.size() - 1}};
+    while (!stack.empty()) {
+        const auto [i, j] = stack.back();
+        stack.pop_back();
+        if (j <= i + 1)
+            continue;
+        const double ax = pts[i].x, ay = pts[i].y, vx = pts[j].x - ax, vy = pts[j].y - ay;
+        const double L = std::hypot(vx, vy);
+        size_t far = i + 1;
+        double farD = -1;
+        for (size_t k = i + 1; k < j; k++) {
+            const double d =
+                L > 0 ? std::abs((pts[k].x - ax) * vy - (pts[k].y - ay) * vx) / L
+                      : std::hypot(pts[k].x - ax, pts[k].y - ay);
+            if (d > farD) {
+                farD = d;
+                far = k;
+            }
+        }
+        if (farD > m_opts.simplify_tolerance ||
+            !m_field.segmentFree(ax, ay, pts[j].x, pts[j].y)) {
+            keep[far] = true;
+            stack.push_back({i, far});
+            stack.push_back({far, j});
+        }
+    }
+    std::vector<TPoint2D> out;
+    for (size_t k = 0; k < pts.size(); k++)
+        if (keep[k])
+            out.push_back(pts[k]);
+    return out;
+}
+
+std::vector<std::vector<TPoint2D>> CGvgRoutes::routes(const TPoint2D& start,
+                                                      const TPoint2D& goal,
+                                                      size_t k) const {
+    std::vector<std::vector<TPoint2D>> out;
+    const long sa = attach(start), ga = attach(goal);
+    if (sa < 0 || ga < 0 || k == 0)
+        return out;
+    const int w = m_field.sizeX(), h = m_field.sizeY();
+    auto isSkel = [&](int x, int y) {
+        return x >= 0 && y >= 0 && x < w && y < h && m_skel[size_t(y) * w + x];
+    };
+    auto neighbours = [&](uint32_t i) {
+        std::vector<uint32_t> n;
+        const int x = int(i % w), y = int(i / w);
+        for (int dy = -1; dy <= 1; dy++)
+            for (int dx = -1; dx <= 1; dx++)
+                if ((dx || dy) && isSkel(x + dx, y + dy))
+                    n.push_back(uint32_t((y + dy) * w + x + dx));
+        return n;
+    };
+    // Special pixels (junctions, ends, the two attachment points), merged into
+    // clusters when adjacent: the graph's nodes.
+    std::map<uint32_t, size_t> cluster;
+    std::vector<uint32_t> specials;
+    for (uint32_t i : m_pixels)
+        if (neighbours(i).size() != 2 || long(i) == sa || long(i) == ga)
+            specials.push_back(i);
+    std::vector<size_t> parent(specials.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    std::function<size_t(size_t)> find = [&](size_t a) {
+        return parent[a] == a ? a : parent[a] = find(parent[a]);
+    };
+    std::map<uint32_t, size_t> specIdx;
+    for (size_t s = 0; s < specials.size(); s++)
+        specIdx[specials[s]] = s;
+    for (size_t s = 0; s < specials.size(); s++)
+        for (uint32_t n : neighbours(specials[s]))
+            if (specIdx.count(n))
+                parent[find(s)] = find(specIdx[n]);
+    std::map<size_t, size_t> rootToNode;
+    for (size_t s = 0; s < specials.size(); s++) {
+        const size_t r = find(s);
+        if (!rootToNode.count(r))
+            rootToNode[r] = rootToNode.size();
+        cluster[specials[s]] = rootToNode[r];
+    }
+    // Branches between clusters: the edges, with their pixel chains.
+    std::vector<TGraphEdge> edges;
+    std::vector<std::vector<uint32_t>> chains;
+    std::vector<uint8_t> visited(m_skel.size(), 0);
+    auto pixelLen = [&](uint32_t a, uint32_t b) {
+        return std::hypot(int(a % w) - int(b % w), int(a / w) - int(b / w)) *
+               m_field.resolution();
+    };
+    for (uint32_t s : specials)
+        for (uint32_t n : neighbours(s)) {
+            if (cluster.count(n)) {
+                if (cluster[n] != cluster[s] && s < n) {
+                    edges.push_back({cluster[s], cluster[n], pixelLen(s, n)});
+                    chains.push_back({s, n});
+                }
+                continue;
+            }
+            if (visited[n])
+                continue;
+            std::vector<uint32_t> chain = {s, n};
+            visited[n] = 1;
+            uint32_t prev = s, cur = n;
+            double len = pixelLen(s, n);
+            bool ok = true;
+            while (!cluster.count(cur)) {
+                uint32_t next = UINT32_MAX;
+                for (uint32_t q : neighbours(cur))
+                    if (q != prev && (cluster.count(q) || !visited[q])) {
+                        next = q;
+                        break;
+                    }
+                if (next == UINT32_MAX) {
+                    ok = false;  // a dead loop back into visited pixels
+                    break;
+                }
+                if (!cluster.count(next))
+                    visited[next] = 1;
+                len += pixelLen(cur, next);
+                chain.push_back(next);
+                prev = cur;
+                cur = next;
+            }
+            if (!ok || cluster[cur] == cluster[s])
+                continue;
+            edges.push_back({cluster[s], cluster[cur], len});
+            chains.push_back(chain);
+        }
+    const size_t src = cluster[uint32_t(sa)], dst = cluster[uint32_t(ga)];
+    auto px = [&](uint32_t i) {
+        return TPoint2D(m_field.colToX(int(i % w)), m_field.rowToY(int(i / w)));
+    };
+    if (src == dst) {
+        out.push_back(simplify({start, px(uint32_t(sa)), px(uint32_t(ga)), goal}));
+        return out;
+    }
+    for (const auto& p : kShortestPaths(rootToNode.size(), edges, src, dst, k)) {
+        std::vector<TPoint2D> pts = {start, px(uint32_t(sa))};
+        for (size_t e = 0; e < p.edges.size(); e++) {
+            const auto& ch = chains[p.edges[e]];
+            const bool forward = edges[p.edges[e]].a == p.nodes[e];
+            for (size_t q = 0; q < ch.size(); q++)
+                pts.push_back(px(forward ? ch[q] : ch[ch.size() - 1 - q]));
+        }
+        pts.push_back(px(uint32_t(ga)));
+        pts.push_back(goal);
+        // Drop repeated points (chains share their end pixels).
+        std::vector<TPoint2D> u;
+        for (const auto& q : pts)
+            if (u.empty() || std::hypot(q.x - u.back().x, q.y - u.back().y) > 1e-9)
+                u.push_back(q);
+        out.push_back(simplify(u));
+    }
+    return out;
+}
+
+}  // namespace risknav::risk
