@@ -99,6 +99,21 @@ def office():
     return b
 
 
+def risk_two_routes():
+    """24 x 14 m, for the path evaluation of Irie et al. (M2): from a start room
+    to a goal room either through a 1.2 m wide corridor (route B, short and
+    narrow) or through a 3 m wide hall (route A, longer and wider). A pillar
+    stands against the hall's upper wall (sensing point SP1 is next to it)."""
+    b = Bitmap(24, 14)
+    b.free(0.5, 4.0, 4.0, 13.0)                  # start room
+    b.free(20.0, 4.0, 23.5, 13.0)                # goal room
+    b.free(4.0, 6.4, 20.0, 7.6)                  # route B: the narrow corridor (1.2 m)
+    b.free(4.0, 9.5, 20.0, 12.5)                 # route A: the wide hall
+    b.wall(9.2, 11.9, 9.8, 12.5)                 # the pillar by SP1
+    return b
+
+
 if __name__ == "__main__":
     corridor_doors().save(os.path.join(DATASETS, "corridor-doors", "corridor.png"))
     office().save(os.path.join(DATASETS, "office", "office.png"))
+    risk_two_routes().save(os.path.join(DATASETS, "risk-two-routes", "two_routes.png"))

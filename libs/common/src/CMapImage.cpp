@@ -91,6 +91,22 @@ void CMapImage::heatOverlay(const std::vector<float>& v, float vmin, float vmax,
     m_bars.push_back({vmin, vmax, label, colormap});
 }
 
+void CMapImage::paintCells(const std::vector<uint8_t>& mask, TRgb c) {
+    if (mask.size() != size_t(m_cellsX) * m_cellsY)
+        throw std::logic_error("paintCells: mask size does not match the grid");
+    const double cell =
+        m_pxPerM * (m_map.cols / (m_pxPerM * m_cellsX));  // pixels per cell
+    for (int cy = 0; cy < m_cellsY; cy++)
+        for (int cx = 0; cx < m_cellsX; cx++)
+            if (mask[size_t(cy) * m_cellsX + cx]) {
+                const int x0 = int(cx * cell), y0 = int((m_cellsY - 1 - cy) * cell);
+                cv::rectangle(
+                    m_map,
+                    cv::Rect(x0, y0, std::max(1, int(cell)), std::max(1, int(cell))),
+                    c.bgr(), cv::FILLED);
+            }
+}
+
 void CMapImage::polyline(const std::vector<TPoint2D>& pts, TRgb c, int t, bool dashed) {
     if (!dashed) {
         for (size_t i = 1; i < pts.size(); i++)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numeric>
 
@@ -102,9 +103,81 @@ CGvgRoutes::CGvgRoutes(const CObstacleField& f, const TOptions& o)
             }
         }
     thin(m_skel, w, h);
+    bridgeGaps(dist);
     for (size_t i = 0; i < m_skel.size(); i++)
         if (m_skel[i])
             m_pixels.push_back(uint32_t(i));
+}
+
+void CGvgRoutes::bridgeGaps(const cv::Mat& dist) {
+    // Where a corridor opens into a room the separation test leaves the
+    // medial lines a little apart. Join every skeleton end to the nearest
+    // skeleton pixel within 2.5 x its clearance that is far from it ALONG the
+    // skeleton (more than 3 x the straight distance, or not reachable at all),
+    // by a straight obstacle-free line: a bridge that makes a new way, not a
+    // shortcut along the same branch.
+    const int w = m_field.sizeX(), h = m_field.sizeY();
+    auto on = [&](int x, int y) {
+        return x >= 0 && y >= 0 && x < w && y < h && m_skel[size_t(y) * w + x];
+    };
+    std::vector<std::pair<int, int>> ends;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            if (!on(x, y))
+                continue;
+            int deg = 0;
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dx = -1; dx <= 1; dx++)
+                    deg += (dx || dy) && on(x + dx, y + dy);
+            if (deg <= 1)
+                ends.emplace_back(x, y);
+        }
+    for (const auto& [ex, ey] : ends) {
+        const double reach = std::max(3.0, 2.5 * dist.at<float>(ey, ex));
+        const int r = int(std::ceil(reach));
+        // Geodesic distances (in 8-connected steps) from the end, bounded.
+        std::map<size_t, int> geo;
+        std::vector<std::pair<int, int>> frontier = {{ex, ey}};
+        geo[size_t(ey) * w + ex] = 0;
+        const int limit = int(4 * reach) + 4;
+        for (int depth = 1; depth <= limit && !frontier.empty(); depth++) {
+            std::vector<std::pair<int, int>> next;
+            for (const auto& [x, y] : frontier)
+                for (int dy = -1; dy <= 1; dy++)
+                    for (int dx = -1; dx <= 1; dx++)
+                        if ((dx || dy) && on(x + dx, y + dy) &&
+                            !geo.count(size_t(y + dy) * w + x + dx)) {
+                            geo[size_t(y + dy) * w + x + dx] = depth;
+                            next.emplace_back(x + dx, y + dy);
+                        }
+            frontier.swap(next);
+        }
+        double bestD = reach + 1;
+        int bx = -1, by = -1;
+        for (int qy = std::max(0, ey - r); qy <= std::min(h - 1, ey + r); qy++)
+            for (int qx = std::max(0, ex - r); qx <= std::min(w - 1, ex + r); qx++) {
+                if (!on(qx, qy))
+                    continue;
+                const double d = std::hypot(qx - ex, qy - ey);
+                if (d >= bestD)
+                    continue;
+                const auto g = geo.find(size_t(qy) * w + qx);
+                if (g != geo.end() && g->second <= 3 * d + 2)
+                    continue;
+                if (!m_field.segmentFree(m_field.colToX(ex), m_field.rowToY(ey),
+                                         m_field.colToX(qx), m_field.rowToY(qy)))
+                    continue;
+                bestD = d;
+                bx = qx;
+                by = qy;
+            }
+        if (bx < 0)
+            continue;
+        const int n = int(std::ceil(bestD));
+        for (int k = 0; k <= n; k++)
+            m_skel[size_t(std::lround(ey + double(by - ey) * k / n)) * w +
+                   size_t(std::lround(ex + double(bx - ex) * k / n))] = 1;
+    }
 }
 
 long CGvgRoutes::attach(const TPoint2D& p) const {
@@ -261,7 +334,8 @@ std::vector<std::vector<TPoint2D>> CGvgRoutes::routes(const TPoint2D& start,
         out.push_back(simplify({start, px(uint32_t(sa)), px(uint32_t(ga)), goal}));
         return out;
     }
-    for (const auto& p : kShortestPaths(rootToNode.size(), edges, src, dst, k)) {
+    for (const auto& p : kShortestPaths(rootToNode.size(), edges, src, dst,
+                                        std::min<size_t>(8 * k, 200))) {
         std::vector<TPoint2D> pts = {start, px(uint32_t(sa))};
         for (size_t e = 0; e < p.edges.size(); e++) {
             const auto& ch = chains[p.edges[e]];
@@ -276,9 +350,40 @@ std::vector<std::vector<TPoint2D>> CGvgRoutes::routes(const TPoint2D& start,
         for (const auto& q : pts)
             if (u.empty() || std::hypot(q.x - u.back().x, q.y - u.back().y) > 1e-9)
                 u.push_back(q);
+        const bool variant =
+            std::any_of(out.begin(), out.end(),
+                        [&](const std::vector<TPoint2D>& o) { return sameWay(o, u); });
+        if (variant)
+            continue;
         out.push_back(simplify(u));
+        if (out.size() >= k)
+            break;
     }
     return out;
+}
+
+bool CGvgRoutes::sameWay(const std::vector<TPoint2D>& a,
+                         const std::vector<TPoint2D>& b) const {
+    std::vector<cv::Point> poly;
+    for (const auto& p : a)
+        poly.emplace_back(m_field.xToCol(p.x), m_field.yToRow(p.y));
+    for (auto it = b.rbegin(); it != b.rend(); ++it)
+        poly.emplace_back(m_field.xToCol(it->x), m_field.yToRow(it->y));
+    const cv::Rect box =
+        cv::boundingRect(poly) & cv::Rect(0, 0, m_field.sizeX(), m_field.sizeY());
+    if (box.area() == 0)
+        return true;
+    cv::Mat inside(box.height, box.width, CV_8UC1, cv::Scalar(0));
+    for (auto& q : poly)
+        q -= box.tl();
+    cv::fillPoly(inside, std::vector<std::vector<cv::Point>>{poly}, cv::Scalar(1));
+    const auto& raw = m_field.rawObstacles();
+    for (int y = 0; y < box.height; y++)
+        for (int x = 0; x < box.width; x++)
+            if (inside.at<uint8_t>(y, x) &&
+                raw[size_t(y + box.y) * m_field.sizeX() + x + box.x])
+                return false;
+    return true;
 }
 
 }  // namespace risknav::risk

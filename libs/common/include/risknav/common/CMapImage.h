@@ -41,6 +41,9 @@ class CMapImage {
                      const std::string& label, double alpha = 0.6,
                      float showFrom = -1e30f, int colormap = 2 /* cv::COLORMAP_JET */);
 
+    /** Paints the cells where mask (row-major, one byte per cell) is non-zero. */
+    void paintCells(const std::vector<uint8_t>& mask, TRgb c);
+
     void polyline(const std::vector<mrpt::math::TPoint2D>& pts, TRgb c,
                   int thicknessPx = 2, bool dashed = false);
     void segment(const mrpt::math::TPoint2D& a, const mrpt::math::TPoint2D& b, TRgb c,

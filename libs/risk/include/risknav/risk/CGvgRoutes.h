@@ -3,6 +3,8 @@
 
 #include <mrpt/math/TPoint2D.h>
 
+#include <opencv2/core.hpp>
+
 #include <cstdint>
 #include <vector>
 
@@ -18,11 +20,17 @@ namespace risknav::risk {
  *    lies far from its own: |N(p) - N(q)| >= max(2 cells, separation_ratio d(p))
  *    (the two sides of a corridor; the ratio prunes the spurs a medial axis
  *    grows towards corners), and the robot fits there (d(p) >= min_clearance).
- * 3. Zhang-Suen thinning to a one-pixel skeleton.
+ * 3. Zhang-Suen thinning to a one-pixel skeleton; each skeleton end is joined
+ *    to the nearest pixel of another skeleton component within 2.5 x its
+ *    clearance (where a corridor opens into a room the medial lines stop
+ *    short of each other).
  * 4. Per query: start and goal join the nearest skeleton pixel they see in a
  *    straight, obstacle-free line; junctions become nodes, the branches
- *    between them edges; Yen's algorithm gives the k shortest loopless routes,
- *    simplified (Douglas-Peucker, never across an obstacle). */
+ *    between them edges; Yen's algorithm gives the shortest loopless routes,
+ *    and the first k that go a different way around the obstacles than every
+ *    shorter one (not homotopic: the loop they form encloses an obstacle) are
+ *    kept, simplified (Douglas-Peucker, never across an obstacle). A branch
+ *    inside one room makes a variant, not a distinct route. */
 class CGvgRoutes {
   public:
     struct TOptions {
@@ -44,7 +52,13 @@ class CGvgRoutes {
     const std::vector<uint8_t>& skeleton() const { return m_skel; }
     size_t skeletonCells() const { return m_pixels.size(); }
 
+    /** Are two routes with the same ends the same way around the obstacles
+     * (homotopic)? True when the closed loop a + reverse(b) encloses no obstacle cell. */
+    bool sameWay(const std::vector<mrpt::math::TPoint2D>& a,
+                 const std::vector<mrpt::math::TPoint2D>& b) const;
+
   private:
+    void bridgeGaps(const cv::Mat& dist);
     long attach(const mrpt::math::TPoint2D& p) const;  // skeleton pixel index or -1
     std::vector<mrpt::math::TPoint2D> simplify(
         const std::vector<mrpt::math::TPoint2D>& pts) const;

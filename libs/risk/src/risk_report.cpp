@@ -1,0 +1,336 @@
+#include <risknav/common/CCsvWriter.h>
+#include <risknav/common/CMapImage.h>
+#include <risknav/common/CPlotImage.h>
+#include <risknav/common/summary_json.h>
+#include <risknav/risk/risk_report.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+using namespace risknav::common;
+using mrpt::math::TPoint2D;
+using nlohmann::json;
+
+namespace risknav::risk {
+namespace {
+std::string safeName(std::string s) {
+    for (char& ch : s)
+        if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_' &&
+            ch != '+')
+            ch = '_';
+    return s;
+}
+
+json finite(double v) {
+    return std::isfinite(v) ? json(v) : json(nullptr);
+}
+
+std::string num(double v) {
+    return std::isfinite(v) ? CCsvWriter::num(v) : "inf";
+}
+
+void writeCovCsv(const TRiskResult& r, const std::string& path) {
+    CCsvWriter csv(path,
+                   {"s", "x", "y", "theta", "cov_xx", "cov_xy", "cov_xtheta", "cov_yy",
+                    "cov_ytheta", "cov_thetatheta", "d_max", "u", "sensed"});
+    for (const auto& k : r.samples)
+        csv.row({num(k.s), num(k.x), num(k.y), num(k.theta), num(k.cov(0, 0)),
+                 num(k.cov(0, 1)), num(k.cov(0, 2)), num(k.cov(1, 1)), num(k.cov(1, 2)),
+                 num(k.cov(2, 2)), num(k.dmax.d), num(k.u), k.sensedHere ? "1" : "0"});
+    csv.close();
+}
+
+mrpt::math::CMatrixFixed<double, 2, 2> cov2(const Eigen::Matrix3d& c) {
+    mrpt::math::CMatrixFixed<double, 2, 2> m;
+    m(0, 0) = c(0, 0);
+    m(0, 1) = m(1, 0) = c(0, 1);
+    m(1, 1) = c(1, 1);
+    return m;
+}
+
+void drawCommon(CMapImage& img, const CRiskEvaluator& ev) {
+    img.marker(ev.start, CMapImage::TMarker::Square, {0, 160, 0}, 14, 2);
+    img.text({ev.start.x + 0.2, ev.start.y + 0.2}, "start", {0, 120, 0});
+    img.marker(ev.goal, CMapImage::TMarker::Star, {0, 0, 0}, 16, 2);
+    img.text({ev.goal.x + 0.2, ev.goal.y + 0.2}, "goal", {0, 0, 0});
+    for (const auto& sp : ev.sensingPoints) {
+        img.marker({sp.x, sp.y}, CMapImage::TMarker::Triangle, {200, 0, 200}, 14, 2);
+        img.text({sp.x + 0.15, sp.y + 0.15}, sp.name, {150, 0, 150});
+    }
+}
+
+// Standard (D = 1) and maximum (D = D_max) ellipses every `interval` metres
+// (Irie et al. Figs. 6-7); the touch points of the maximum ellipses.
+void ellipsesImage(const CRiskEvaluator& ev, const CRiskEvaluator::TRow& row,
+                   const std::string& title, const std::string& path) {
+    CMapImage img(ev.grid());
+    img.polyline(row.path, {120, 120, 120}, 2);
+    double next = 0;
+    for (const auto& k : row.result.samples) {
+        if (k.s + 1e-9 < next && !k.sensedHere)
+            continue;
+        next = k.s + ev.ellipseInterval;
+        const auto c = cov2(k.cov);
+        img.ellipse({k.x, k.y}, c, 1.0, {0, 90, 220}, 1);
+        if (std::isfinite(k.dmax.d) && k.dmax.d < 1e4) {
+            img.ellipse({k.x, k.y}, c, k.dmax.d, {220, 40, 0}, 1);
+            img.marker({k.dmax.touchX, k.dmax.touchY}, CMapImage::TMarker::Cross,
+                       {220, 40, 0}, 6, 1);
+        }
+    }
+    drawCommon(img, ev);
+    img.legendLine("path", {120, 120, 120}, 2);
+    img.legendLine("standard ellipse (D = 1, 39.3 %)", {0, 90, 220}, 1);
+    img.legendLine("maximum ellipse (D = D_max)", {220, 40, 0}, 1);
+    img.legendMarker("where it touches", CMapImage::TMarker::Cross, {220, 40, 0});
+    img.legendMarker("sensing point", CMapImage::TMarker::Triangle, {200, 0, 200});
+    img.setTitle(title);
+    img.save(path);
+}
+}  // namespace
+
+json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
+    const auto& routes = ev.routes();
+    const auto& rows = ev.rows();
+    const long best = ev.best();
+    json j;
+    j["status"] = routes.empty() ? "no route" : (best < 0 ? "all excluded" : "ok");
+
+    // Table.
+    CCsvWriter csv(out.stage("risk_table.csv"),
+                   {"route", "source", "sensing", "length_m", "U", "u_max", "s_u_max_m",
+                    "excluded", "reason", "sensed"});
+    json table = json::array();
+    for (size_t i = 0; i < rows.size(); i++) {
+        const auto& r = rows[i];
+        std::string sensed;
+        for (const auto& s : r.result.sensed)
+            sensed += (sensed.empty() ? "" : "+") + s;
+        const bool ok = r.feasible;
+        csv.row({routes[r.route].name, routes[r.route].fromGvg ? "gvg" : "config",
+                 ev.sensingName(r), ok ? num(r.result.length) : "",
+                 ok ? num(r.result.U) : "", ok ? num(r.result.uMax) : "",
+                 ok ? num(r.result.sMaxU) : "", r.excluded ? "true" : "false", r.reason,
+                 sensed});
+        table.push_back({{"route", routes[r.route].name},
+                         {"sensing", ev.sensingName(r)},
+                         {"length_m", ok ? finite(r.result.length) : json(nullptr)},
+                         {"U", ok ? finite(r.result.U) : json(nullptr)},
+                         {"u_max", ok ? finite(r.result.uMax) : json(nullptr)},
+                         {"s_u_max_m", ok ? finite(r.result.sMaxU) : json(nullptr)},
+                         {"excluded", r.excluded},
+                         {"reason", r.reason},
+                         {"best", long(i) == best}});
+    }
+    csv.close();
+    j["table"] = table;
+    if (best >= 0) {
+        const auto& b = rows[size_t(best)];
+        j["best"] = {{"route", routes[b.route].name},
+                     {"sensing", ev.sensingName(b)},
+                     {"U", b.result.U},
+                     {"u_max", b.result.uMax},
+                     {"length_m", b.result.length}};
+    } else
+        j["best"] = nullptr;
+    json jr = json::array();
+    for (const auto& r : routes) {
+        json w = json::array();
+        for (const auto& p : r.waypoints)
+            w.push_back({p.x, p.y});
+        jr.push_back({{"name", r.name},
+                      {"source", r.fromGvg ? "gvg" : "config"},
+                      {"length_m", polylineLength(r.waypoints)},
+                      {"waypoints", w}});
+    }
+    j["routes"] = jr;
+    json sp = json::array();
+    for (const auto& p : ev.sensingPoints)
+        sp.push_back({{"name", p.name}, {"x", p.x}, {"y", p.y}, {"radius", p.radius}});
+    j["sensing_points"] = sp;
+
+    // Covariance tables.
+    for (const auto& r : rows)
+        if (r.feasible) {
+            const std::string suffix = r.sensing.empty() ? "" : "+" + ev.sensingName(r);
+            writeCovCsv(
+                r.result,
+                out.stage("cov_" + safeName(routes[r.route].name + suffix) + ".csv"));
+        }
+
+    // paths.png: every candidate, labelled; the best thick.
+    {
+        CMapImage img(ev.grid());
+        if (ev.gvg()) {
+            img.paintCells(ev.gvg()->skeleton(), {235, 200, 90});
+            img.legendLine("GVG", {235, 200, 90}, 2);
+        }
+        for (size_t r = 0; r < routes.size(); r++) {
+            const bool isBest = best >= 0 && rows[size_t(best)].route == r;
+            const TRgb c = seriesColour(r);
+            img.polyline(routes[r].waypoints, c, isBest ? 5 : 2,
+                         routes[r].fromGvg && !isBest);
+            // Labels at different fractions of the routes' lengths, so they do
+            // not sit on each other.
+            const auto& w = routes[r].waypoints;
+            double want = (0.3 + 0.12 * double(r % 4)) * polylineLength(w), acc = 0;
+            TPoint2D mid = w.front();
+            for (size_t i = 1; i < w.size(); i++) {
+                const double L = std::hypot(w[i].x - w[i - 1].x, w[i].y - w[i - 1].y);
+                if (acc + L >= want && L > 0) {
+                    const double f = (want - acc) / L;
+                    mid = {w[i - 1].x + f * (w[i].x - w[i - 1].x),
+                           w[i - 1].y + f * (w[i].y - w[i - 1].y)};
+                    break;
+                }
+                acc += L;
+            }
+            char label[96];
+            const auto& plain = ev.plainRow(r);
+            std::snprintf(label, sizeof(label), "%s: U=%.2f", routes[r].name.c_str(),
+                          plain.result.U);
+            img.text({mid.x + 0.15, mid.y + 0.15}, label, c, 0.5);
+            img.legendLine(routes[r].name + (routes[r].fromGvg ? " (GVG)" : "") +
+                               (isBest ? " - best" : ""),
+                           c, isBest ? 5 : 2);
+        }
+        if (best >= 0 && !rows[size_t(best)].sensing.empty())
+            img.polyline(rows[size_t(best)].path, {0, 0, 0}, 1, true);
+        drawCommon(img, ev);
+        char title[256];
+        if (best >= 0)
+            std::snprintf(
+                title, sizeof(title),
+                "risknav-risk-eval: %zu routes | best %s with sensing %s, U = %.2f",
+                routes.size(), routes[rows[size_t(best)].route].name.c_str(),
+                ev.sensingName(rows[size_t(best)]).c_str(), rows[size_t(best)].result.U);
+        else
+            std::snprintf(title, sizeof(title), "risknav-risk-eval: %s",
+                          routes.empty() ? "no route" : "all routes excluded");
+        img.setTitle(title);
+        img.save(out.stage("paths.png"));
+    }
+
+    // Ellipses per route (no sensing) and for the best row.
+    for (size_t r = 0; r < routes.size(); r++) {
+        const auto& plain = ev.plainRow(r);
+        if (!plain.feasible)
+            continue;
+        char title[160];
+        std::snprintf(title, sizeof(title),
+                      "route %s, no sensing: U = %.2f, max u = %.2f, %.1f m",
+                      routes[r].name.c_str(), plain.result.U, plain.result.uMax,
+                      plain.result.length);
+        ellipsesImage(ev, plain, title,
+                      out.stage("ellipses_" + safeName(routes[r].name) + ".png"));
+    }
+    if (best >= 0) {
+        const auto& b = rows[size_t(best)];
+        char title[160];
+        std::snprintf(title, sizeof(title),
+                      "best: route %s, sensing %s: U = %.2f, max u = %.2f",
+                      routes[b.route].name.c_str(), ev.sensingName(b).c_str(), b.result.U,
+                      b.result.uMax);
+        ellipsesImage(ev, b, title, out.stage("ellipses_best.png"));
+    }
+
+    // u along the arc length.
+    {
+        CPlotImage plot;
+        plot.setLogY(true);
+        plot.setXLabel("arc length s [m]");
+        plot.setYLabel("u = 1 / D_max^2");
+        for (size_t r = 0; r < routes.size(); r++) {
+            const auto& plain = ev.plainRow(r);
+            if (!plain.feasible)
+                continue;
+            std::vector<double> s, u;
+            for (const auto& k : plain.result.samples) {
+                s.push_back(k.s);
+                u.push_back(k.u);
+            }
+            plot.addSeries(
+                routes[r].name + " (U=" + CCsvWriter::num(plain.result.U, 4) + ")", s, u,
+                seriesColour(r), 2);
+        }
+        if (best >= 0 && !rows[size_t(best)].sensing.empty()) {
+            const auto& b = rows[size_t(best)];
+            std::vector<double> s, u;
+            for (const auto& k : b.result.samples) {
+                s.push_back(k.s);
+                u.push_back(k.u);
+                if (k.sensedHere)
+                    plot.addVLine(k.s, "sensing", {200, 0, 200});
+            }
+            plot.addSeries("best: " + routes[b.route].name + " + " + ev.sensingName(b) +
+                               " (U=" + CCsvWriter::num(b.result.U, 4) + ")",
+                           s, u, {0, 0, 0}, 1, true);
+        }
+        plot.setTitle(
+            "risk density along each route (log scale); U = integral of u ds, eq. (30)");
+        plot.save(out.stage("risk_profile.png"));
+    }
+
+    const auto& o = ev.riskOptions;
+    j["error_model"] = o.model == TErrorModel::Systematic ? "systematic" : "per_step";
+    j["parameters"] = {{"wheel_radius_l", o.odometry.radiusL},
+                       {"wheel_radius_r", o.odometry.radiusR},
+                       {"tread", o.odometry.tread},
+                       {"sigma_wheel_radius_l", o.odometry.sigmaRL},
+                       {"sigma_wheel_radius_r", o.odometry.sigmaRR},
+                       {"sigma_tread", o.odometry.sigmaT},
+                       {"tau", o.tau},
+                       {"speed", o.speed},
+                       {"turn_rate_deg", o.turnRate * 180 / M_PI},
+                       {"init_sigma",
+                        {std::sqrt(o.sigmaP0(0, 0)), std::sqrt(o.sigmaP0(1, 1)),
+                         std::sqrt(o.sigmaP0(2, 2))}},
+                       {"eval_step", o.evalStep},
+                       {"robot_radius", ev.fieldOptions.robot_radius},
+                       {"occupied_threshold", ev.fieldOptions.occupied_threshold},
+                       {"free_threshold", ev.fieldOptions.free_threshold},
+                       {"unknown_is_obstacle", ev.fieldOptions.unknown_is_obstacle},
+                       {"u_threshold", ev.uThreshold}};
+    j["map"] = {{"file", ev.mapSource.map_file},
+                {"size_x", ev.grid().getSizeX()},
+                {"size_y", ev.grid().getSizeY()},
+                {"resolution", ev.grid().getResolution()},
+                {"obstacle_cells_grown", ev.field().obstacleCount()}};
+    j["gvg_cells"] = ev.gvg() ? ev.gvg()->skeletonCells() : 0;
+    return j;
+}
+
+void runRiskEvalApp(const TAppContext& ctx) {
+    const auto t0 = std::chrono::steady_clock::now();
+    CRiskEvaluator ev;
+    ev.loadFromConfigFile(ctx.cfg);
+    ev.evaluate();
+    COutputDir out(ctx.args.outDir);
+    json summary = summaryHeader(ctx, ctx.args.seed.value_or(0));
+    summary.update(writeRiskReport(ev, out));
+    out.writeText("config_effective.ini", ctx.cfg.effectiveConfigText());
+    summary["outputs"] = out.stagedNames();
+    summary["outputs"].push_back("summary.json");
+    summary["timing"] = {
+        {"wall_time_s",
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()}};
+    out.writeText("summary.json", jsonText(summary));
+    out.commit();
+    if (!ctx.args.quiet) {
+        if (ev.best() >= 0) {
+            const auto& b = ev.rows()[size_t(ev.best())];
+            std::fprintf(stderr,
+                         "%s: %zu routes x sensing subsets = %zu rows; best %s with "
+                         "sensing %s, U = %.3f -> %s\n",
+                         ctx.info.name.c_str(), ev.routes().size(), ev.rows().size(),
+                         ev.routes()[b.route].name.c_str(), ev.sensingName(b).c_str(),
+                         b.result.U, out.dir().c_str());
+        } else
+            std::fprintf(stderr, "%s: %s -> %s\n", ctx.info.name.c_str(),
+                         summary["status"].get<std::string>().c_str(), out.dir().c_str());
+    }
+}
+
+}  // namespace risknav::risk
