@@ -13,6 +13,8 @@ for world in corridor-doors office; do
   "$BIN/risknav-simulate" "datasets/$world/world.ini" --out "$OUT/simulate-$world"
 done
 
+"$BIN/risknav-risk-eval" datasets/risk-two-routes/risk.ini --out "$OUT/risk-eval"
+
 echo
 echo "demo results in $OUT/:"
 for world in corridor-doors office; do
@@ -20,3 +22,7 @@ for world in corridor-doors office; do
   echo "  $OUT/simulate-$world/simulation.rawlog   MRPT rawlog (rawlog-edit --info -i ...)"
   echo "  $OUT/simulate-$world/summary.json        figures"
 done
+echo "  $OUT/risk-eval/paths.png            candidate routes, the best highlighted"
+echo "  $OUT/risk-eval/ellipses_A.png       standard and maximum error ellipses along route A"
+echo "  $OUT/risk-eval/risk_profile.png     u = 1/D_max^2 along every route"
+echo "  $OUT/risk-eval/risk_table.csv       U for every route x sensing subset"

@@ -1,0 +1,256 @@
+// End-to-end: risknav-risk-eval on datasets/risk-two-routes, the two
+// experiments of Irie, Nagatani, Gofuku (001, section 6) in spirit.
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include <filesystem>
+#include <map>
+#include <regex>
+
+#include "test_support.h"
+
+using namespace risknav::test;
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kIni = "datasets/risk-two-routes/risk.ini";
+
+nlohmann::json evalRun(const std::string& out, const std::string& extra = "",
+                       const std::string& ini = kIni) {
+    const auto r = run(binPath("risknav-risk-eval") + " -q -o '" + out + "' " + extra +
+                       " '" + sourcePath(ini) + "'");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return readJson(out + "/summary.json");
+}
+
+// U of (route, sensing) from the summary table.
+std::map<std::string, double> uTable(const nlohmann::json& s) {
+    std::map<std::string, double> m;
+    for (const auto& row : s["table"])
+        if (!row["U"].is_null())
+            m[row["route"].get<std::string>() + "/" + row["sensing"].get<std::string>()] =
+                row["U"];
+    return m;
+}
+}  // namespace
+
+class RiskEvalModels : public ::testing::TestWithParam<std::string> {};
+
+// The order of the paper's results, with either error model: PATH A (longer,
+// wider) beats PATH B (shorter, narrow); with sensing points on A, sensing at
+// SP2 only is best, at SP1 only worse (SP1 is next to an obstacle), and at
+// both is not the best ("more sensing is not always better"); any sensing
+// beats none.
+TEST_P(RiskEvalModels, ReproducesTheOrderOfTable1) {
+    const auto s = evalRun(freshDir("out"), "--set Odometry.error_model=" + GetParam());
+    EXPECT_EQ(s["status"], "ok");
+    EXPECT_EQ(s["error_model"], GetParam());
+    const auto U = uTable(s);
+    EXPECT_LT(U.at("A/none"), U.at("B/none"));
+    EXPECT_LT(U.at("A/SP2"), U.at("A/SP1"));
+    EXPECT_LT(U.at("A/SP2"), U.at("A/SP1+SP2"));
+    EXPECT_LT(U.at("A/SP1+SP2"), U.at("A/SP1"));
+    EXPECT_LT(U.at("A/SP1"), U.at("A/none"));
+    std::cout << "[" << GetParam() << "] A none " << U.at("A/none") << ", SP1 "
+              << U.at("A/SP1") << ", SP2 " << U.at("A/SP2") << ", both "
+              << U.at("A/SP1+SP2") << "; B " << U.at("B/none") << "\n";
+    // The best row is a sensing-at-SP2-only variant of the hall route.
+    EXPECT_EQ(s["best"]["sensing"], "SP2");
+}
+INSTANTIATE_TEST_SUITE_P(RiskEval, RiskEvalModels,
+                         ::testing::Values("per_step", "systematic"));
+
+TEST(RiskEvalE2E, PaperModelValuesAreCloseToTable1) {
+    // Not a claim of equality (the paper's maps are not published): with its
+    // own error model (eq. 15) our values land near Table 1's
+    // (17.85, 7.41, 5.14, 6.32 for none, SP1, SP2, both).
+    const auto U = uTable(evalRun(freshDir("out")));
+    EXPECT_NEAR(U.at("A/none"), 17.85, 0.25 * 17.85);
+    EXPECT_NEAR(U.at("A/SP1"), 7.41, 0.25 * 7.41);
+    EXPECT_NEAR(U.at("A/SP2"), 5.14, 0.25 * 5.14);
+    EXPECT_NEAR(U.at("A/SP1+SP2"), 6.32, 0.25 * 6.32);
+}
+
+TEST(RiskEvalE2E, GvgFindsBothWaysAndTheOutputsAreComplete) {
+    const std::string d = freshDir("out");
+    const auto s = evalRun(d);
+    // Two distinct ways around the central block: the corridor and the hall.
+    std::vector<std::string> gvg;
+    for (const auto& r : s["routes"])
+        if (r["source"] == "gvg")
+            gvg.push_back(r["name"]);
+    EXPECT_EQ(gvg, (std::vector<std::string>{"G1", "G2"}));
+    const auto U = uTable(s);
+    EXPECT_NEAR(U.at("G1/none"), U.at("B/none"),
+                0.02 * U.at("B/none"));  // G1 = the corridor = B
+    EXPECT_NEAR(U.at("G2/none"), U.at("A/none"),
+                0.05 * U.at("A/none"));  // G2 = the hall ~ A
+    EXPECT_GT(s["gvg_cells"].get<int>(), 500);
+    // Sensing points cannot be reached from the corridor: reported, excluded.
+    int unreachable = 0;
+    for (const auto& row : s["table"])
+        unreachable += row["excluded"] == true &&
+                       row["reason"].get<std::string>().find("cannot be reached") !=
+                           std::string::npos;
+    EXPECT_EQ(unreachable, 6);  // B and G1, 3 subsets each
+    for (const char* f :
+         {"risk_table.csv", "paths.png", "ellipses_A.png", "ellipses_B.png",
+          "ellipses_G1.png", "ellipses_best.png", "risk_profile.png", "cov_A.csv",
+          "cov_A+SP2.csv", "config_effective.ini"})
+        EXPECT_TRUE(fs::is_regular_file(d + "/" + f)) << f;
+    for (const char* f : {"paths.png", "ellipses_A.png", "risk_profile.png"})
+        EXPECT_FALSE(cv::imread(d + "/" + f).empty()) << f;
+    // risk_table.csv: header + one row per route x subset.
+    EXPECT_EQ(readLines(d + "/risk_table.csv").size(), 1 + s["table"].size());
+    // cov_A.csv: s increasing, u = 1/D^2, covariances PSD-looking.
+    const auto cov = readLines(d + "/cov_A.csv");
+    ASSERT_GT(cov.size(), 500u);
+    EXPECT_EQ(cov[0],
+              "s,x,y,theta,cov_xx,cov_xy,cov_xtheta,cov_yy,cov_ytheta,cov_thetatheta,d_"
+              "max,u,sensed");
+    double lastS = -1;
+    for (size_t i = 1; i < cov.size(); i++) {
+        std::vector<double> v;
+        std::stringstream ss(cov[i]);
+        std::string cell;
+        while (std::getline(ss, cell, ','))
+            v.push_back(std::stod(cell));
+        ASSERT_EQ(v.size(), 13u);
+        EXPECT_GT(v[0], lastS);
+        lastS = v[0];
+        EXPECT_NEAR(v[11], 1 / (v[10] * v[10]), 1e-6 * v[11] + 1e-15);
+        EXPECT_GE(v[4] * v[7] - v[5] * v[5], -1e-12);
+        EXPECT_EQ(cov[i].find("nan"), std::string::npos);
+    }
+}
+
+TEST(RiskEvalE2E, EveryKeyInTheDocumentedConfigIsKnown) {
+    const auto s = evalRun(freshDir("out"), "", "config/risknav-risk-eval.ini");
+    EXPECT_EQ(s["status"], "ok");
+}
+
+TEST(RiskEvalE2E, ExclusionThreshold) {
+    // Section 5.3: with u_threshold = 3 every route through the corridor (max u
+    // ~ 27) is excluded, and so is SP1's detour past the pillar (max u ~ 24).
+    const auto s = evalRun(freshDir("out"), "--set RiskEval.u_threshold=3");
+    for (const auto& row : s["table"]) {
+        const std::string k =
+            row["route"].get<std::string>() + "/" + row["sensing"].get<std::string>();
+        if (k == "B/none" || k == "A/SP1" || k == "A/SP1+SP2") {
+            EXPECT_TRUE(row["excluded"].get<bool>()) << k;
+            EXPECT_EQ(row["reason"], "max u above u_threshold") << k;
+        }
+    }
+    EXPECT_EQ(s["best"]["sensing"], "SP2");
+}
+
+TEST(RiskEvalE2E, UnreachableGoalIsAResultNotAnError) {
+    // The goal sealed in a room of its own: no GVG route, no config route.
+    const std::string w = freshDir("world");
+    fs::copy_file(sourcePath("datasets/risk-two-routes/two_routes.png"),
+                  w + "/two_routes.png");
+    writeFile(w + "/sealed.ini",
+              "[RiskEval]\nmap_file = two_routes.png\nstart = 2.0 7.0\ngoal = 22.0 7.0\n"
+              "gvg_routes = 3\n[Odometry]\n");
+    // Seal the goal room: the corridor and the hall both end at x = 20.
+    cv::Mat img = cv::imread(w + "/two_routes.png", cv::IMREAD_GRAYSCALE);
+    img(cv::Rect(int(19.5 / 0.05), 0, 10, img.rows)).setTo(0);
+    cv::imwrite(w + "/two_routes.png", img);
+    const std::string d = freshDir("out");
+    const auto r =
+        run(binPath("risknav-risk-eval") + " -q -o '" + d + "' '" + w + "/sealed.ini'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto s = readJson(d + "/summary.json");
+    EXPECT_EQ(s["status"], "no route");
+    EXPECT_TRUE(s["best"].is_null());
+    EXPECT_TRUE(s["table"].empty());
+    EXPECT_TRUE(fs::is_regular_file(d + "/paths.png"));
+}
+
+TEST(RiskEvalE2E, ZeroCovarianceGivesNoNaN) {
+    // A perfectly known start and perfect wheels: a singular covariance.
+    const std::string d = freshDir("out");
+    const auto s = evalRun(
+        d,
+        "--set Odometry.init_sigma_x=0 --set Odometry.init_sigma_y=0 "
+        "--set Odometry.init_sigma_theta_deg=0 --set Odometry.sigma_wheel_radius_l=0 "
+        "--set Odometry.sigma_wheel_radius_r=0 --set Odometry.sigma_tread=0");
+    // Without sensing nothing grows: U ~ 0. (A sensing point resets the
+    // covariance to its own, non-zero sigmas, so those rows do carry risk.)
+    int plain = 0;
+    for (const auto& row : s["table"])
+        if (row["sensing"] == "none" && !row["U"].is_null()) {
+            EXPECT_LT(row["U"].get<double>(), 1e-6);
+            plain++;
+        }
+    EXPECT_GE(plain, 2);
+    for (const auto& f : listDir(d))
+        if (f.size() > 4 && f.substr(f.size() - 4) == ".csv")
+            EXPECT_EQ(readFile(d + "/" + f).find("nan"), std::string::npos) << f;
+}
+
+// Bad input: exit 2, one line naming the problem, earlier results untouched.
+namespace {
+struct TBad {
+    std::string name, from, to, extra, expect;
+};
+std::ostream& operator<<(std::ostream& o, const TBad& b) {
+    return o << b.name;
+}
+class RiskEvalBadInput : public ::testing::TestWithParam<TBad> {};
+}  // namespace
+
+TEST_P(RiskEvalBadInput, ExitTwoOneLineOutputUntouched) {
+    const TBad& c = GetParam();
+    const std::string w = freshDir("world");
+    fs::copy_file(sourcePath("datasets/risk-two-routes/two_routes.png"),
+                  w + "/two_routes.png");
+    std::string ini = readFile(sourcePath(kIni));
+    if (!c.from.empty()) {
+        const std::string e = std::regex_replace(ini, std::regex(c.from), c.to);
+        ASSERT_NE(e, ini) << "edit did not apply";
+        ini = e;
+    }
+    writeFile(w + "/risk.ini", ini);
+    const std::string out = freshDir("out");
+    writeFile(out + "/summary.json", "{\"earlier\": true}\n");
+    const auto r = run(binPath("risknav-risk-eval") + " -q -o '" + out + "' " + c.extra +
+                       " '" + w + "/risk.ini'");
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
+    EXPECT_EQ(listDir(out), std::vector<std::string>{"summary.json"});
+    EXPECT_EQ(readFile(out + "/summary.json"), "{\"earlier\": true}\n");
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    RiskEval, RiskEvalBadInput,
+    ::testing::Values(
+        TBad{"start_in_obstacle", "start              = 2.0 7.0", "start = 6.0 5.0", "",
+             "[RiskEval] start = '(6.00, 5.00)': inside an obstacle"},
+        TBad{"goal_in_wall_margin", "goal               = 22.0 7.0", "goal = 23.4 7.0",
+             "",
+             "[RiskEval] goal = '(23.40, 7.00)': inside an obstacle (grown by "
+             "robot_radius"},
+        TBad{"goal_off_map", "goal               = 22.0 7.0", "goal = 30 7.0", "",
+             "[RiskEval] goal = '(30.00, 7.00)': outside the map"},
+        TBad{"sensing_point_in_obstacle", "y               = 11.6", "y = 12.2", "",
+             "sensing point inside an obstacle"},
+        TBad{"negative_sigma", "sigma_tread          = 0.001", "sigma_tread = -0.001", "",
+             "[Odometry] sigma_tread = '-0.001': must be in [0, inf) m"},
+        TBad{"negative_init_sigma", "", "", "--set Odometry.init_sigma_x=-1",
+             "[Odometry] init_sigma_x = '-1'"},
+        TBad{"no_candidates", "\\[Route1\\][^]*?(?=\\[SensingPoint1\\])", "",
+             "--set RiskEval.gvg_routes=0",
+             "no candidate routes: add [RouteN] sections or set [RiskEval] gvg_routes > "
+             "0"},
+        TBad{"missing_map", "map_file           = two_routes.png", "map_file = none.png",
+             "", "file not found"},
+        TBad{"unknown_key", "\\[Odometry\\]\n", "[Odometry]\nwheel_radius = 0.06\n", "",
+             "unknown key [Odometry] wheel_radius"},
+        TBad{"unknown_section", "\\[Route2\\]", "[Rout2]", "", "unknown section [Rout2]"},
+        TBad{"bad_model", "error_model          = per_step", "error_model = exact", "",
+             "must be one of: systematic, per_step"},
+        TBad{"zero_speed", "", "", "--set Odometry.speed=0",
+             "[Odometry] speed = '0': must be in (0, 5] m/s"}),
+    [](const ::testing::TestParamInfo<TBad>& i) { return i.param.name; });
