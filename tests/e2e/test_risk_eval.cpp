@@ -185,8 +185,12 @@ TEST(RiskEvalE2E, ZeroCovarianceGivesNoNaN) {
         }
     EXPECT_GE(plain, 2);
     for (const auto& f : listDir(d))
+    {
         if (f.size() > 4 && f.substr(f.size() - 4) == ".csv")
+        {
             EXPECT_EQ(readFile(d + "/" + f).find("nan"), std::string::npos) << f;
+        }
+    }
 }
 
 // Bad input: exit 2, one line naming the problem, earlier results untouched.
