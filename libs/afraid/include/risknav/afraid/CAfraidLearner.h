@@ -1,0 +1,107 @@
+#pragma once
+#include <risknav/afraid/CAfraidDetector.h>
+#include <risknav/afraid/CAfraidGrid.h>
+#include <risknav/afraid/afraid_zones.h>
+#include <risknav/afraid/kernel_regression.h>
+#include <risknav/common/CIniConfig.h>
+#include <risknav/common/grid_io.h>
+#include <risknav/localization/CRawlogMcl.h>
+
+#include <mrpt/maps/COccupancyGridMap2D.h>
+
+#include <array>
+#include <cmath>
+#include <optional>
+
+#include <string>
+#include <vector>
+
+namespace risknav::afraid {
+/** One afraid event, for events.csv. */
+struct TAfraidEvent {
+    double t = 0;
+    std::string rawlog;
+    size_t entry = 0;
+    double robotX = 0, robotY = 0, robotPhi = 0;
+    bool obstacleFound = false;
+    double obstacleX = 0, obstacleY = 0;
+    double diff = 0, speed = 0;
+    int obsCur = 0, obsPredict = 0;
+};
+
+/** Learns where obstacles burst out (Choi, Chung, Song (002), PAPER_NOTES M3):
+ * replays rawlogs with MCL on a known map, detects afraid events, accumulates
+ * them with the exposure in a CAfraidGrid (optionally starting from an
+ * earlier .afraid file), generalizes by kernel ridge regression and finds the
+ * zones. Sections [AfraidLearn] [Localization] [PF_options] [KLD_options]
+ * [AfraidDetector]; keys in config/risknav-afraid-learn.ini. */
+class CAfraidLearner {
+  public:
+    // ---- options
+    common::TMapSourceOptions mapSource;
+    std::vector<std::string> rawlogs;
+    std::string afraidIn;  ///< earlier .afraid file to start from ("" = none)
+    std::string afraidName = "learned.afraid";
+    std::string groundTruth;  ///< optional "t x y phi" file for the MCL error
+    std::string scanLabel;    ///< "" = the first 2D scan of each frame
+    double matchDistance =
+        0.25;  ///< [m] a scan point this close to a map obstacle agrees with the map
+    double minMatch = 0.5;  ///< frames with fewer agreeing points are not localized
+    double divergedFraction = 0.5;  ///< more frames than this not localized: MCL diverged
+    TKrrOptions krr;
+    double sampleBin =
+        0.25;  ///< [m] exposure and events are pooled in bins this size before regression
+    double zoneThreshold = 0.04;     ///< level above which a cell is in a zone
+    double vMax = 0.8, vSafe = 0.2;  ///< [m/s] for the speed mask
+    uint64_t seed = 1;
+    CAfraidDetector detector;
+    localization::CRawlogMcl mcl;
+
+    void loadFromConfigFile(const common::CIniConfig& c,
+                            const std::vector<std::string>& extraRawlogs,
+                            std::optional<uint64_t> seedOverride);
+
+    /** Replays every rawlog. A corrupt rawlog stops the replay: partial()
+     * becomes true and error() says where; what was learned so far stays. */
+    void run(bool quiet);
+    /** Merges the earlier grid (if any), regresses and finds zones. */
+    void generalize();
+
+    const mrpt::maps::COccupancyGridMap2D& map() const { return m_map; }
+    const CAfraidGrid& grid() const { return m_grid; }
+    const CAfraidGrid& newExperience() const { return m_new; }
+    const std::vector<TAfraidEvent>& events() const { return m_events; }
+    const std::vector<float>& level() const { return m_level; }
+    const std::vector<TAfraidZone>& zones() const { return m_zones; }
+    const std::vector<mrpt::math::TPoint2D>& trajectory() const { return m_traj; }
+    bool partial() const { return !m_error.empty(); }
+    const std::string& error() const { return m_error; }
+    size_t frames() const { return m_frames; }
+    size_t localizedFrames() const { return m_localized; }
+    bool diverged() const;
+    /** MCL position error vs ground truth (NaN without ground truth). */
+    double mclErrorMean() const { return m_errN ? m_errSum / m_errN : std::nan(""); }
+    double mclErrorMax() const { return m_errN ? m_errMax : std::nan(""); }
+    size_t mclErrorSamples() const { return m_errN; }
+    double meanMatch() const { return m_frames ? m_matchSum / m_frames : 0.0; }
+    double replaySeconds() const { return m_replaySeconds; }
+    /** The learned level at a world point (0 off the map). */
+    double levelAt(double x, double y) const;
+
+  private:
+    void replay(const std::string& path, bool quiet, size_t rawlogIndex);
+    mrpt::maps::COccupancyGridMap2D m_map;
+    std::vector<float> m_obstDist;  // distance to the nearest map obstacle, per cell [m]
+    CAfraidGrid m_grid, m_new, m_old;
+    std::vector<TAfraidEvent> m_events;
+    std::vector<float> m_level;
+    std::vector<TAfraidZone> m_zones;
+    std::vector<mrpt::math::TPoint2D> m_traj;
+    std::vector<std::array<double, 4>> m_gt;  // t x y phi
+    std::string m_error;
+    size_t m_frames = 0, m_localized = 0, m_errN = 0;
+    double m_errSum = 0, m_errMax = 0, m_matchSum = 0, m_replaySeconds = 0;
+    bool m_sawScan = false;
+};
+
+}  // namespace risknav::afraid

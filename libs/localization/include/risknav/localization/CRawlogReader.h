@@ -1,0 +1,53 @@
+#pragma once
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose2D.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace risknav::localization {
+/** One step of a rawlog: odometry increment (as an action) + what was sensed. */
+struct TRawlogFrame {
+    mrpt::obs::CActionCollection::Ptr actions;
+    mrpt::obs::CSensoryFrame::Ptr sf;
+    size_t entry = 0;  ///< rawlog entry index of the sensory frame
+    mrpt::Clock::time_point timestamp;
+};
+
+/** Streams an MRPT rawlog, either format, in constant memory:
+ *  - action / sensory-frame pairs are passed through;
+ *  - observations-only logs are grouped: the observations between two
+ *    CObservationOdometry become a sensory frame, and the odometry change
+ *    becomes a CActionRobotMovement2D (MRPT's Gaussian motion model, with
+ *    minimum sigmas min_std_xy / min_std_phi as pf-localization's
+ *    [DummyOdometryParams]).
+ * Errors (unreadable file, corrupt or truncated data) throw
+ * std::runtime_error naming the entry index; frames read before stay valid. */
+class CRawlogReader {
+  public:
+    explicit CRawlogReader(const std::string& path, double minStdXY = 0.01,
+                           double minStdPhiDeg = 0.2);
+    /** The next frame, or nullopt at the end of the file. */
+    std::optional<TRawlogFrame> next();
+    size_t entriesRead() const { return m_entry; }
+    const std::string& path() const { return m_path; }
+    /** Compressed bytes read so far and the file size (for progress). */
+    uint64_t position();
+    uint64_t fileSize() const { return m_size; }
+
+  private:
+    std::string m_path;
+    std::unique_ptr<mrpt::io::CFileGZInputStream> m_in;
+    size_t m_entry = 0;
+    uint64_t m_size = 0;
+    double m_minStdXY, m_minStdPhi;
+    // observations-only state
+    std::optional<mrpt::poses::CPose2D> m_lastOdo;
+    mrpt::obs::CSensoryFrame::Ptr m_pending;
+    bool m_eof = false;
+};
+
+}  // namespace risknav::localization

@@ -1,0 +1,90 @@
+#include <risknav/common/config_read.h>
+#include <risknav/localization/CRawlogMcl.h>
+
+#include <mrpt/random/RandomGenerators.h>
+
+using namespace risknav::common;
+
+namespace risknav::localization {
+void CRawlogMcl::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                              const std::string& s) {
+    particles = readInt(c, s, "particles", particles, TRange::closed(10, 1000000));
+    init = readChoice(c, s, "init", init, {"pose", "global"});
+    const auto p =
+        readNumbers(c, s, "init_pose",
+                    {initPose.x, initPose.y, initPose.phi * 180 / M_PI}, TRange::any());
+    if (p.size() != 3)
+        throwBadKey(c, s, "init_pose", readString(c, s, "init_pose", ""),
+                    "needs x y phi_deg");
+    initPose = {p[0], p[1], p[2] * M_PI / 180};
+    init_xy = readDouble(c, s, "init_xy", init_xy, TRange::closed(0, 1000, "m"));
+    init_phi_deg =
+        readDouble(c, s, "init_phi_deg", init_phi_deg, TRange::closed(0, 180, "deg"));
+    lf_std_hit =
+        readDouble(c, s, "lf_std_hit", lf_std_hit, TRange::closed(0.001, 10, "m"));
+    lf_decimation =
+        readInt(c, s, "lf_decimation", lf_decimation, TRange::closed(1, 1000));
+    lf_max_corrs_distance =
+        readDouble(c, s, "lf_max_corrs_distance", lf_max_corrs_distance,
+                   TRange::closed(0.01, 10, "m"));
+}
+
+CRawlogMcl::CRawlogMcl() {
+    // pf-localization's defaults (localization_demo.ini).
+    pfOptions.PF_algorithm = mrpt::bayes::CParticleFilter::pfStandardProposal;
+    pfOptions.resamplingMethod = mrpt::bayes::CParticleFilter::prMultinomial;
+    pfOptions.adaptiveSampleSize = true;
+    pfOptions.BETA = 0.5;
+    kldOptions.KLD_binSize_PHI = 10 * M_PI / 180;
+    kldOptions.KLD_binSize_XY = 0.10;
+    kldOptions.KLD_delta = 0.01;
+    kldOptions.KLD_epsilon = 0.01;
+    kldOptions.KLD_maxSampleSize = 40000;
+    kldOptions.KLD_minSampleSize = 150;
+    kldOptions.KLD_minSamplesPerBin = 0;
+}
+
+void CRawlogMcl::loadFromConfigFile(const mrpt::config::CConfigFileBase& c) {
+    loadOptions(options, c, "Localization");
+    if (c.sectionExists("PF_options"))
+        pfOptions.loadFromConfigFile(c, "PF_options");
+    if (c.sectionExists("KLD_options"))
+        kldOptions.loadFromConfigFile(c, "KLD_options");
+}
+
+void CRawlogMcl::initialize(const mrpt::maps::COccupancyGridMap2D& grid, uint64_t seed) {
+    mrpt::random::getRandomGenerator().randomize(static_cast<uint32_t>(seed));
+    m_map = std::make_shared<mrpt::maps::COccupancyGridMap2D>(grid);
+    auto& lo = m_map->likelihoodOptions;
+    lo.likelihoodMethod = mrpt::maps::COccupancyGridMap2D::lmLikelihoodField_Thrun;
+    lo.LF_stdHit = float(options.lf_std_hit);
+    lo.LF_decimation = uint32_t(options.lf_decimation);
+    lo.LF_maxCorrsDistance = float(options.lf_max_corrs_distance);
+    m_pf.m_options = pfOptions;
+    m_pdf.options.KLD_params = kldOptions;
+    m_pdf.options.metricMap = m_map;
+    if (options.init == "global")
+        m_pdf.resetUniformFreeSpace(m_map.get(), 0.7, options.particles);
+    else {
+        const auto& p = options.initPose;
+        const double dphi = options.init_phi_deg * M_PI / 180;
+        m_pdf.resetUniform(p.x - options.init_xy, p.x + options.init_xy,
+                           p.y - options.init_xy, p.y + options.init_xy, p.phi - dphi,
+                           p.phi + dphi, options.particles);
+    }
+}
+
+TMclEstimate CRawlogMcl::step(const mrpt::obs::CActionCollection& actions,
+                              const mrpt::obs::CSensoryFrame& sf) {
+    mrpt::bayes::CParticleFilter::TParticleFilterStats stats;
+    m_pf.executeOn(m_pdf, &actions, &sf, &stats);
+    TMclEstimate e;
+    const auto [cov, mean] = m_pdf.getCovarianceAndMean();
+    e.mean = mean.asTPose();
+    e.cov = cov;
+    e.particles = m_pdf.size();
+    e.ess = m_pdf.ESS();
+    return e;
+}
+
+}  // namespace risknav::localization
