@@ -1,0 +1,150 @@
+#include <risknav/afraid/CAfraidGrid.h>
+#include <risknav/afraid/afraid_zones.h>
+#include <risknav/afraid/kernel_regression.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include "test_support.h"
+
+using namespace risknav::afraid;
+
+TEST(KernelRegression, SparseSolveEqualsDenseReference) {
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int trial = 0; trial < 5; trial++) {
+        std::vector<TKrrSample> s;
+        for (int i = 0; i < 150; i++)
+            s.push_back({u(rng) * 6, u(rng) * 3, u(rng) < 0.1 ? 1.0 : 0.0});
+        TKrrOptions o;
+        o.bandwidth = 0.3 + 0.2 * trial;
+        o.lambda = 0.05 + 0.2 * trial;
+        const auto a = krrFit(s, o), b = krrFitDense(s, o);
+        ASSERT_EQ(a.size(), b.size());
+        double maxDiff = 0, maxVal = 0;
+        for (size_t i = 0; i < a.size(); i++) {
+            maxDiff = std::max(maxDiff, std::abs(a[i] - b[i]));
+            maxVal = std::max(maxVal, std::abs(b[i]));
+        }
+        EXPECT_LT(maxDiff, 1e-6 * std::max(1.0, maxVal)) << "trial " << trial;
+        // The grid evaluation equals the pointwise one.
+        const auto grid = krrPredictGrid(s, a, o, 0, 0, 0.1, 60, 30);
+        for (int k = 0; k < 20; k++) {
+            const int cx = int(u(rng) * 60), cy = int(u(rng) * 30);
+            EXPECT_NEAR(grid[size_t(cy) * 60 + cx],
+                        krrPredict(s, a, o, 0.05 + 0.1 * cx, 0.05 + 0.1 * cy), 1e-5);
+        }
+    }
+}
+
+TEST(KernelRegression, RecoversASmoothBump) {
+    // Samples of a Gaussian bump: the fit reproduces it between the samples.
+    std::vector<TKrrSample> s;
+    for (double x = 0; x <= 10; x += 0.1)
+        s.push_back({x, 0, std::exp(-std::pow(x - 5, 2) / 2)});
+    TKrrOptions o;
+    o.bandwidth = 0.5;
+    o.lambda = 1e-3;
+    const auto a = krrFit(s, o);
+    for (double x = 1; x <= 9; x += 0.37)
+        EXPECT_NEAR(krrPredict(s, a, o, x, 0), std::exp(-std::pow(x - 5, 2) / 2), 0.02);
+}
+
+namespace {
+mrpt::maps::COccupancyGridMap2D smallMap() {
+    mrpt::maps::COccupancyGridMap2D g(0, 10, 0, 4, 0.05f);
+    g.fill(1.0f);
+    return g;
+}
+}  // namespace
+
+TEST(CAfraidGrid, SaveLoadMergeEqualsLearningOnBoth) {
+    const auto map = smallMap();
+    // "Rawlog" 1 and 2 as event/exposure streams; learning on both at once
+    // must equal learning each and merging the saved files.
+    CAfraidGrid both(map), one(map), two(map);
+    auto feed = [](CAfraidGrid& g, int seed) {
+        std::mt19937_64 rng(seed);
+        std::uniform_real_distribution<double> u(0, 1);
+        for (int i = 0; i < 500; i++) {
+            const double x = u(rng) * 10, y = 2 + 0.1 * u(rng);
+            g.addExposure(x, y);
+            if (u(rng) < 0.05) {
+                g.addRobotEvent(x, y);
+                g.addObstacleEvent(x + 0.5, y + 0.5);
+            }
+        }
+        g.frames += 500;
+        g.runs += 1;
+    };
+    feed(one, 1);
+    feed(two, 2);
+    feed(both, 1);
+    feed(both, 2);
+    const std::string d = risknav::test::freshDir("afraid");
+    one.save(d + "/one.afraid");
+    two.save(d + "/two.afraid");
+    CAfraidGrid merged = CAfraidGrid::load(d + "/one.afraid");
+    merged.merge(CAfraidGrid::load(d + "/two.afraid"));
+    EXPECT_EQ(merged.exposure(), both.exposure());
+    EXPECT_EQ(merged.robotEvents(), both.robotEvents());
+    EXPECT_EQ(merged.obstacleEvents(), both.obstacleEvents());
+    EXPECT_EQ(merged.runs, 2u);
+    EXPECT_EQ(merged.frames, 1000u);
+    EXPECT_GT(merged.totalRobotEvents(), 20u);
+}
+
+TEST(CAfraidGrid, BadFilesAndForeignGeometry) {
+    const std::string d = risknav::test::freshDir("afraid");
+    risknav::test::writeFile(d + "/text.afraid", "not an afraid file");
+    EXPECT_THROW(CAfraidGrid::load(d + "/text.afraid"), std::runtime_error);
+    EXPECT_THROW(CAfraidGrid::load(d + "/missing.afraid"), std::runtime_error);
+    CAfraidGrid g(smallMap());
+    g.save(d + "/ok.afraid");
+    // Truncated: cut the (uncompressed-equivalent) stream short.
+    const std::string full = risknav::test::readFile(d + "/ok.afraid");
+    risknav::test::writeFile(d + "/cut.afraid", full.substr(0, full.size() / 2));
+    EXPECT_THROW(CAfraidGrid::load(d + "/cut.afraid"), std::runtime_error);
+    mrpt::maps::COccupancyGridMap2D other(0, 12, 0, 4, 0.05f);
+    CAfraidGrid h(other);
+    EXPECT_FALSE(g.sameGeometry(h));
+    EXPECT_THROW(g.merge(h), std::runtime_error);
+}
+
+TEST(AfraidZones, ConnectedRegionsAndSpeedLimit) {
+    const auto map = smallMap();
+    CAfraidGrid g(map);
+    std::vector<float> level(size_t(g.sizeX()) * g.sizeY(), 0.f);
+    auto set = [&](double x0, double x1) {
+        for (int cy = 30; cy < 50; cy++)
+            for (int cx = g.xToCol(x0 + 1e-3); cx < g.xToCol(x1 + 1e-3); cx++)
+                level[size_t(cy) * g.sizeX() + cx] = 0.3f;
+    };
+    set(2, 3);
+    set(6, 7.5);
+    const auto z = findZones(level, g, 0.1);
+    ASSERT_EQ(z.size(), 2u);
+    EXPECT_NEAR(z[0].xMin, 2, 1e-6);
+    EXPECT_NEAR(z[0].xMax, 3, 1e-6);
+    EXPECT_NEAR(z[1].area, 1.5 * 1.0, 1e-6);
+    auto lv = [&](double x, double y) {
+        const int cx = g.xToCol(x), cy = g.yToRow(y);
+        return g.inside(cx, cy) ? double(level[size_t(cy) * g.sizeX() + cx]) : 0.0;
+    };
+    // d_stop(0.8) = 1.04 m: at x = 0.5 the zone (x >= 2) is out of reach, fast;
+    // at x = 1.2 it is within the stopping distance ahead: already slow.
+    EXPECT_DOUBLE_EQ(
+        afraidSpeedLimit(lv, {{0.5, 2}, {9, 2}}, 0.8, 0.8, 0.2, 0.1, 0.9, 1.0), 0.8);
+    EXPECT_DOUBLE_EQ(
+        afraidSpeedLimit(lv, {{1.2, 2}, {9, 2}}, 0.8, 0.8, 0.2, 0.1, 0.9, 1.0), 0.2);
+    EXPECT_DOUBLE_EQ(
+        afraidSpeedLimit(lv, {{2.5, 2}, {9, 2}}, 0.8, 0.8, 0.2, 0.1, 0.9, 1.0), 0.2);
+    EXPECT_DOUBLE_EQ(
+        afraidSpeedLimit(lv, {{3.5, 2}, {9, 2}}, 0.8, 0.8, 0.2, 0.1, 0.9, 1.0), 0.8);
+    // min with the behaviour's own speed.
+    EXPECT_DOUBLE_EQ(
+        afraidSpeedLimit(lv, {{3.5, 2}, {9, 2}}, 0.5, 0.8, 0.2, 0.1, 0.9, 1.0), 0.5);
+}
