@@ -184,10 +184,8 @@ TEST(RiskEvalE2E, ZeroCovarianceGivesNoNaN) {
             plain++;
         }
     EXPECT_GE(plain, 2);
-    for (const auto& f : listDir(d))
-    {
-        if (f.size() > 4 && f.substr(f.size() - 4) == ".csv")
-        {
+    for (const auto& f : listDir(d)) {
+        if (f.size() > 4 && f.substr(f.size() - 4) == ".csv") {
             EXPECT_EQ(readFile(d + "/" + f).find("nan"), std::string::npos) << f;
         }
     }

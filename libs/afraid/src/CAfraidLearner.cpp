@@ -15,6 +15,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 using namespace risknav::common;
@@ -34,8 +35,32 @@ void CAfraidLearner::loadFromConfigFile(const CIniConfig& c,
     loadOptions(mapSource, c, A);
     // Rawlogs: from the config (relative to it) and the command line (relative to the
     // CWD).
-    std::istringstream list(readString(c, A, "rawlogs", ""));
-    for (std::string r; list >> r;) {
+    // Whitespace-separated; "double quotes" keep a path with spaces together.
+    std::vector<std::string> listed;
+    {
+        const std::string v = readString(c, A, "rawlogs", "");
+        std::string cur;
+        bool quoted = false, have = false;
+        for (char ch : v) {
+            if (ch == '"') {
+                quoted = !quoted;
+                have = true;
+            } else if (std::isspace(static_cast<unsigned char>(ch)) && !quoted) {
+                if (have)
+                    listed.push_back(cur);
+                cur.clear();
+                have = false;
+            } else {
+                cur += ch;
+                have = true;
+            }
+        }
+        if (quoted)
+            throwBadKey(c, A, "rawlogs", v, "unbalanced double quote");
+        if (have)
+            listed.push_back(cur);
+    }
+    for (const auto& r : listed) {
         fs::path p(r);
         if (p.is_relative())
             p = fs::path(c.folder()) / p;
@@ -153,7 +178,12 @@ void CAfraidLearner::replay(const std::string& path, bool quiet, size_t index) {
     localization::CRawlogReader reader(path);
     CProgress progress("replay " + fs::path(path).filename().string(), total, "frames",
                        quiet);
-    mcl.initialize(m_map, seed + index);
+    // A seed per rawlog that does not depend on the order of the rawlogs, so
+    // that learning on A then B (resumed from A's .afraid) equals learning on
+    // A and B in one run.
+    mcl.initialize(m_map, seed ^ std::hash<std::string>{}(
+                                     fs::absolute(path).lexically_normal().string()));
+    (void)index;
     detector.reset();
     std::optional<mrpt::Clock::time_point> lastT;
     size_t done = 0;
@@ -171,7 +201,6 @@ void CAfraidLearner::replay(const std::string& path, bool quiet, size_t index) {
         progress.update(++done);
         if (!frame->actions || !frame->sf)
             continue;
-        const auto est = mcl.step(*frame->actions, *frame->sf);
         mrpt::obs::CObservation2DRangeScan::Ptr scan;
         for (const auto& o : *frame->sf) {
             auto s = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(o);
@@ -183,6 +212,7 @@ void CAfraidLearner::replay(const std::string& path, bool quiet, size_t index) {
         if (!scan)
             continue;
         m_sawScan = true;
+        const auto est = mcl.step(*frame->actions, *frame->sf);
         // Speed from the odometry increment and the time since the last frame.
         double speed = 0;
         const auto t = scan->timestamp;
@@ -211,6 +241,8 @@ void CAfraidLearner::replay(const std::string& path, bool quiet, size_t index) {
         m_matchSum += match;
         m_frames++;
         const auto step = detector.step(*scan, est.mean, speed, m_map);
+        m_est.push_back({mrpt::Clock::toDouble(t), est.mean.x, est.mean.y, est.mean.phi,
+                         est.cov(0, 0), est.cov(1, 1), match, est.particles, localized});
         if (localized) {
             m_localized++;
             m_new.addExposure(est.mean.x, est.mean.y);

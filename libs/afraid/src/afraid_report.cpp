@@ -79,6 +79,17 @@ json writeAfraidReport(const CAfraidLearner& l, COutputDir& out) {
                      num(e.speed)});
         csv.close();
     }
+    // trajectory.csv: the localization of every frame.
+    {
+        CCsvWriter csv(out.stage("trajectory.csv"),
+                       {"t", "x", "y", "phi", "cov_xx", "cov_yy", "particles",
+                        "scan_map_agreement", "localized"});
+        for (const auto& e : l.estimates())
+            csv.row({CCsvWriter::fixed(e.t, 3), num(e.x), num(e.y), num(e.phi),
+                     num(e.covXX), num(e.covYY), std::to_string(e.particles),
+                     num(e.agreement), e.localized ? "1" : "0"});
+        csv.close();
+    }
     // zones.csv
     json zones = json::array();
     {
@@ -231,14 +242,19 @@ json writeAfraidReport(const CAfraidLearner& l, COutputDir& out) {
     j["error"] = l.error();
     j["rawlogs"] = l.rawlogs;
     j["frames"] = l.frames();
-    j["localization"] = {{"localized_frames", l.localizedFrames()},
-                         {"localized_fraction",
-                          l.frames() ? double(l.localizedFrames()) / l.frames() : 0.0},
-                         {"mean_scan_map_agreement", l.meanMatch()},
-                         {"diverged", l.diverged()},
-                         {"mcl_error_mean_m", finite(l.mclErrorMean())},
-                         {"mcl_error_max_m", finite(l.mclErrorMax())},
-                         {"mcl_error_samples", l.mclErrorSamples()}};
+    j["localization"] = {
+        {"localized_frames", l.localizedFrames()},
+        {"localized_fraction",
+         l.frames() ? double(l.localizedFrames()) / l.frames() : 0.0},
+        {"mean_scan_map_agreement", l.meanMatch()},
+        {"diverged", l.diverged()},
+        {"mcl_error_mean_m", finite(l.mclErrorMean())},
+        {"mcl_error_max_m", finite(l.mclErrorMax())},
+        {"mcl_error_samples", l.mclErrorSamples()},
+        {"final_pose", l.estimates().empty()
+                           ? json(nullptr)
+                           : json({l.estimates().back().x, l.estimates().back().y,
+                                   l.estimates().back().phi * 180 / M_PI})}};
     j["events"] = l.events().size();
     j["events_total"] = g.totalRobotEvents();
     j["runs_total"] = g.runs;

@@ -1,3 +1,4 @@
+#include <risknav/common/CBadInputError.h>
 #include <risknav/common/config_read.h>
 #include <risknav/localization/CRawlogMcl.h>
 
@@ -53,7 +54,12 @@ void CRawlogMcl::loadFromConfigFile(const mrpt::config::CConfigFileBase& c) {
 }
 
 void CRawlogMcl::initialize(const mrpt::maps::COccupancyGridMap2D& grid, uint64_t seed) {
-    mrpt::random::getRandomGenerator().randomize(static_cast<uint32_t>(seed));
+    // A whole new generator, not just randomize(): the old one may hold a
+    // cached Gaussian draw, which would make a rawlog's result depend on the
+    // rawlogs replayed before it in the same process.
+    mrpt::random::getRandomGenerator() =
+        mrpt::random::CRandomGenerator(static_cast<uint32_t>(seed));
+    m_pdf = mrpt::slam::CMonteCarloLocalization2D();
     m_map = std::make_shared<mrpt::maps::COccupancyGridMap2D>(grid);
     auto& lo = m_map->likelihoodOptions;
     lo.likelihoodMethod = mrpt::maps::COccupancyGridMap2D::lmLikelihoodField_Thrun;
@@ -63,14 +69,21 @@ void CRawlogMcl::initialize(const mrpt::maps::COccupancyGridMap2D& grid, uint64_
     m_pf.m_options = pfOptions;
     m_pdf.options.KLD_params = kldOptions;
     m_pdf.options.metricMap = m_map;
-    if (options.init == "global")
-        m_pdf.resetUniformFreeSpace(m_map.get(), 0.7, options.particles);
-    else {
-        const auto& p = options.initPose;
-        const double dphi = options.init_phi_deg * M_PI / 180;
-        m_pdf.resetUniform(p.x - options.init_xy, p.x + options.init_xy,
-                           p.y - options.init_xy, p.y + options.init_xy, p.phi - dphi,
-                           p.phi + dphi, options.particles);
+    // Particles only on free cells (as pf-localization's init_PDF_mode 0).
+    try {
+        if (options.init == "global")
+            m_pdf.resetUniformFreeSpace(m_map.get(), 0.7, options.particles);
+        else {
+            const auto& p = options.initPose;
+            const double dphi = options.init_phi_deg * M_PI / 180;
+            m_pdf.resetUniformFreeSpace(m_map.get(), 0.7, options.particles,
+                                        p.x - options.init_xy, p.x + options.init_xy,
+                                        p.y - options.init_xy, p.y + options.init_xy,
+                                        p.phi - dphi, p.phi + dphi);
+        }
+    } catch (const std::exception&) {
+        throw common::CBadInputError(
+            "[Localization] init_pose / init_xy: no free map cell in the initial box");
     }
 }
 

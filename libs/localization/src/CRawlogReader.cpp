@@ -2,7 +2,6 @@
 
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationOdometry.h>
-#include <mrpt/obs/CRawlog.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <cmath>
@@ -26,39 +25,70 @@ uint64_t CRawlogReader::position() {
     return m_in ? m_in->getPosition() : m_size;
 }
 
+namespace {
+std::string firstMessage(const std::exception& e) {
+    std::string msg = e.what();
+    const auto m = msg.find("Message:");
+    msg = msg.substr(m == std::string::npos ? 0 : m + 8);
+    msg = msg.substr(0, msg.find('\n'));
+    const auto b = msg.find_first_not_of(' ');
+    return b == std::string::npos ? msg : msg.substr(b);
+}
+}  // namespace
+
 std::optional<TRawlogFrame> CRawlogReader::next() {
     using namespace mrpt::obs;
+    // Objects are read one by one (not with CRawlog::getActionObservationPair...,
+    // which prints and swallows a broken object as if the file had ended): a
+    // clean end of file is CExceptionEOF at an object boundary, anything else
+    // is a corrupt or truncated rawlog.
     auto arch = mrpt::serialization::archiveFrom(*m_in);
-    while (!m_eof) {
-        CActionCollection::Ptr act;
-        CSensoryFrame::Ptr sf;
-        CObservation::Ptr obs;
-        const size_t before = m_entry;
-        bool ok = false;
+    auto readObject = [&](bool eofAllowed) -> mrpt::serialization::CSerializable::Ptr {
         try {
-            ok = CRawlog::getActionObservationPairOrObservation(arch, act, sf, obs,
-                                                                m_entry);
+            auto o = arch.ReadObject();
+            m_entry++;
+            return o;
+        } catch (const mrpt::serialization::CExceptionEOF&) {
+            if (eofAllowed)
+                return nullptr;
+            throw std::runtime_error(m_path + ": truncated rawlog at entry " +
+                                     std::to_string(m_entry) +
+                                     " (an action without its sensory frame)");
         } catch (const std::exception& e) {
-            std::string msg = e.what();
-            const auto m = msg.find("Message:");
-            msg = msg.substr(m == std::string::npos ? 0 : m + 9);
-            msg = msg.substr(0, msg.find('\n'));
             throw std::runtime_error(m_path + ": corrupt or truncated rawlog at entry " +
-                                     std::to_string(before) + " (" + msg + ")");
+                                     std::to_string(m_entry) + " (" + firstMessage(e) +
+                                     ")");
         }
-        if (!ok) {
+    };
+    while (!m_eof) {
+        const auto o = readObject(true);
+        if (!o) {
             m_eof = true;
             break;
         }
-        if (!obs) {
+        if (auto act = std::dynamic_pointer_cast<CActionCollection>(o)) {
+            const auto next = readObject(false);
+            auto sf = std::dynamic_pointer_cast<CSensoryFrame>(next);
+            if (!sf)
+                throw std::runtime_error(
+                    m_path + ": corrupt rawlog at entry " + std::to_string(m_entry - 1) +
+                    ": an action is followed by a " + next->GetRuntimeClass()->className +
+                    ", not a sensory frame");
             TRawlogFrame f;
             f.actions = act;
             f.sf = sf;
-            f.entry = m_entry > 0 ? m_entry - 1 : 0;
+            f.entry = m_entry - 1;
             f.timestamp =
-                sf && sf->size() ? (*sf->begin())->timestamp : mrpt::Clock::time_point();
+                sf->size() ? (*sf->begin())->timestamp : mrpt::Clock::time_point();
             return f;
         }
+        if (std::dynamic_pointer_cast<CSensoryFrame>(o))
+            continue;  // a leading frame without odometry: skipped
+        auto obs = std::dynamic_pointer_cast<CObservation>(o);
+        if (!obs)
+            throw std::runtime_error(m_path + ": not a rawlog: entry " +
+                                     std::to_string(m_entry - 1) + " is a " +
+                                     o->GetRuntimeClass()->className);
         // Observations-only format.
         if (auto odo = std::dynamic_pointer_cast<CObservationOdometry>(obs)) {
             const mrpt::poses::CPose2D now = odo->odometry;
@@ -74,7 +104,7 @@ std::optional<TRawlogFrame> CRawlogReader::next() {
                 mv.timestamp = odo->timestamp;
                 f.actions->insert(mv);
                 f.sf = m_pending;
-                f.entry = m_entry > 0 ? m_entry - 1 : 0;
+                f.entry = m_entry - 1;
                 f.timestamp = odo->timestamp;
                 out = f;
             }

@@ -17,6 +17,13 @@
 #include <vector>
 
 namespace risknav::afraid {
+/** The localization of one frame, for trajectory.csv. */
+struct TTrajectoryPoint {
+    double t = 0, x = 0, y = 0, phi = 0, covXX = 0, covYY = 0, agreement = 0;
+    size_t particles = 0;
+    bool localized = false;
+};
+
 /** One afraid event, for events.csv. */
 struct TAfraidEvent {
     double t = 0;
@@ -74,6 +81,8 @@ class CAfraidLearner {
     const std::vector<float>& level() const { return m_level; }
     const std::vector<TAfraidZone>& zones() const { return m_zones; }
     const std::vector<mrpt::math::TPoint2D>& trajectory() const { return m_traj; }
+    /** Every frame's estimate (all rawlogs, in order). */
+    const std::vector<TTrajectoryPoint>& estimates() const { return m_est; }
     bool partial() const { return !m_error.empty(); }
     const std::string& error() const { return m_error; }
     size_t frames() const { return m_frames; }
@@ -97,6 +106,7 @@ class CAfraidLearner {
     std::vector<float> m_level;
     std::vector<TAfraidZone> m_zones;
     std::vector<mrpt::math::TPoint2D> m_traj;
+    std::vector<TTrajectoryPoint> m_est;
     std::vector<std::array<double, 4>> m_gt;  // t x y phi
     std::string m_error;
     size_t m_frames = 0, m_localized = 0, m_errN = 0;

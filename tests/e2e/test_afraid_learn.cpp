@@ -1,0 +1,346 @@
+// End-to-end: risknav-afraid-learn on simulated corridors (datasets/corridor-doors)
+// and on MRPT's own real logs, against MRPT's pf-localization.
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "test_support.h"
+
+using namespace risknav::test;
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kLearn = "risknav-afraid-learn";
+
+// A corridor rawlog from the dataset world: `laps` laps, with or without the
+// door pedestrians (the corridor walkers stay), given seed.
+std::string simulateCorridor(const std::string& dir, int laps, bool doors, int seed) {
+    fs::create_directories(dir);
+    fs::copy_file(sourcePath("datasets/corridor-doors/corridor.png"),
+                  dir + "/corridor.png", fs::copy_options::overwrite_existing);
+    std::ifstream in(sourcePath("datasets/corridor-doors/world.ini"));
+    std::ostringstream ini;
+    bool skip = false;
+    for (std::string line; std::getline(in, line);) {
+        if (!line.empty() && line[0] == '[')
+            skip = !doors && line.rfind("[DoorPedestrian", 0) == 0;
+        if (!skip)
+            ini << line << "\n";
+    }
+    writeFile(dir + "/world.ini", ini.str());
+    const auto r =
+        run(binPath("risknav-simulate") + " -q -o '" + dir + "/sim' --seed " +
+            std::to_string(seed) + " --set Route.laps=" + std::to_string(laps) + " '" +
+            dir + "/world.ini'");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return dir + "/sim";
+}
+
+nlohmann::json learn(const std::string& out, const std::string& extra,
+                     const std::string& ini = "datasets/corridor-doors/afraid.ini") {
+    const auto r = run(binPath(kLearn) + " -q -o '" + out + "' " + extra + " '" +
+                       sourcePath(ini) + "'");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return readJson(out + "/summary.json");
+}
+
+std::string onSim(const std::string& sim) {
+    return "--set AfraidLearn.rawlogs=" + sim +
+           "/simulation.rawlog --set AfraidLearn.groundtruth_file=" + sim +
+           "/groundtruth.txt";
+}
+}  // namespace
+
+// The paper's experiment: slow laps with people bursting out of three doors.
+TEST(AfraidLearnE2E, OneZonePerDoorAndNoOther) {
+    const std::string d = freshDir("out");
+    const auto s = learn(d, "");
+    EXPECT_EQ(s["status"], "ok");
+    EXPECT_EQ(s["frames"], 3959);
+    const double doors[3][2] = {{11.21, 12.02}, {13.68, 15.10}, {17.53, 18.95}};
+    ASSERT_EQ(s["zones"].size(), 3u) << s["zones"].dump();
+    std::vector<int> zoneOfDoor(3, 0);
+    for (const auto& z : s["zones"]) {
+        int hits = 0;
+        for (int k = 0; k < 3; k++)
+            if (z["x_max"].get<double>() > doors[k][0] &&
+                z["x_min"].get<double>() < doors[k][1]) {
+                zoneOfDoor[size_t(k)]++;
+                hits++;
+            }
+        EXPECT_EQ(hits, 1) << "zone " << z["id"] << " must overlap exactly one door span";
+        EXPECT_GT(z["y_max"].get<double>(), 4.4);  // on the robot's line (y = 4.5)
+        EXPECT_LT(z["y_min"].get<double>(), 4.6);
+    }
+    EXPECT_EQ(zoneOfDoor, (std::vector<int>{1, 1, 1}));
+    // The committed rawlog holds 8 door emergences (datasets/README.md): one
+    // event each, every one in front of a door.
+    EXPECT_EQ(s["events"], 8);
+    for (const auto& line : readLines(d + "/events.csv")) {
+        if (line.rfind("t,", 0) == 0)
+            continue;
+        std::stringstream ss(line);
+        std::vector<std::string> c;
+        for (std::string x; std::getline(ss, x, ',');)
+            c.push_back(x);
+        const double rx = std::stod(c[3]);
+        bool near = false;
+        for (const auto& dd : doors)
+            near |= rx > dd[0] - 1.0 && rx < dd[1] + 1.0;
+        EXPECT_TRUE(near) << line;
+    }
+    // MCL against the simulator's ground truth.
+    const auto& loc = s["localization"];
+    std::cout << "[MCL vs ground truth] mean " << loc["mcl_error_mean_m"] << " m, max "
+              << loc["mcl_error_max_m"] << " m over " << loc["mcl_error_samples"]
+              << " frames\n";
+    EXPECT_LT(loc["mcl_error_mean_m"].get<double>(), 0.1);
+    // The maximum includes the first frames, converging from a +-1 m, any-heading box.
+    EXPECT_LT(loc["mcl_error_max_m"].get<double>(), 1.0);
+    EXPECT_FALSE(loc["diverged"].get<bool>());
+    for (const char* f :
+         {"corridor.afraid", "afraid.png", "profile.png", "zones.csv", "events.csv",
+          "trajectory.csv", "speed_mask.pgm", "speed_mask.yaml", "config_effective.ini"})
+        EXPECT_TRUE(fs::is_regular_file(d + "/" + f)) << f;
+    for (const char* f : {"afraid.png", "profile.png"})
+        EXPECT_FALSE(cv::imread(d + "/" + f).empty()) << f;
+    // The Nav2 mask: 25 % speed (v_safe / v_max) in the zones, no limit elsewhere.
+    const cv::Mat mask = cv::imread(d + "/speed_mask.pgm", cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(mask.cols, 600);
+    ASSERT_EQ(mask.rows, 200);
+    EXPECT_EQ(int(mask.at<uint8_t>(200 - 1 - 90, 0)), 255);  // x = 0, no limit
+    int limited = 0;
+    for (int x = 0; x < 600; x++)
+        limited += mask.at<uint8_t>(200 - 1 - 90, x) != 255;
+    EXPECT_GT(limited, 20);
+    EXPECT_NE(readFile(d + "/speed_mask.yaml").find("mode: scale"), std::string::npos);
+}
+
+TEST(AfraidLearnE2E, NoPedestriansNoEvents) {
+    const std::string sim = simulateCorridor(freshDir("w"), 1, false, 3);
+    const auto s = learn(freshDir("out"), onSim(sim));
+    EXPECT_GT(readJson(sim + "/summary.json")["walkers_spawned"].get<int>(),
+              3);  // people, but only expected ones
+    EXPECT_EQ(s["events"], 0);
+    EXPECT_EQ(s["zones"].size(), 0u);
+    EXPECT_EQ(s["status"], "ok");
+}
+
+TEST(AfraidLearnE2E, ResumingFromAnAfraidFileEqualsLearningOnBoth) {
+    const std::string a = simulateCorridor(freshDir("a"), 1, true, 21),
+                      b = simulateCorridor(freshDir("b"), 1, true, 22);
+    const std::string outA = freshDir("outA"), outB = freshDir("outB"),
+                      outAB = freshDir("outAB");
+    const auto sa = learn(outA, "--set AfraidLearn.rawlogs=" + a + "/simulation.rawlog");
+    const auto sb =
+        learn(outB, "--set AfraidLearn.rawlogs=" + b +
+                        "/simulation.rawlog --set AfraidLearn.afraid_in=" + outA +
+                        "/corridor.afraid");
+    learn(outAB, "--set 'AfraidLearn.rawlogs=" + a + "/simulation.rawlog " + b +
+                     "/simulation.rawlog'");
+    EXPECT_EQ(sb["runs_total"], 2);
+    EXPECT_EQ(sb["events_total"].get<int>(),
+              sa["events"].get<int>() + sb["events"].get<int>());
+    // The merged file is byte-identical to learning on both rawlogs in one run.
+    EXPECT_TRUE(readFile(outB + "/corridor.afraid") ==
+                readFile(outAB + "/corridor.afraid"));
+}
+
+TEST(AfraidLearnE2E, MrptLocalizationDemoMatchesPfLocalization) {
+    // MRPT's real log and map; our MCL's final pose vs MRPT's pf-localization
+    // on the same rawlog, map and initial box (40000 particles, as its demo).
+    const std::string w = freshDir("w");
+    writeFile(w + "/demo.ini",
+              "[AfraidLearn]\nmap_file = "
+              "/usr/share/mrpt/datasets/localization_demo.simplemap.gz\n"
+              "rawlogs = /usr/share/mrpt/datasets/localization_demo.rawlog\nafraid_name "
+              "= demo.afraid\n"
+              "[Localization]\nparticles = 40000\ninit_pose = 0 -10 0\ninit_xy = 10\n");
+    const std::string d = freshDir("out");
+    const auto r = run(binPath(kLearn) + " -q -o '" + d + "' '" + w + "/demo.ini'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto s = readJson(d + "/summary.json");
+    EXPECT_EQ(s["frames"], 37);
+    EXPECT_FALSE(s["localization"]["diverged"].get<bool>());
+    writeFile(
+        w + "/pf.ini",
+        "[KLD_options]\nKLD_binSize_PHI_deg=10\nKLD_binSize_XY=0.10\nKLD_delta=0.01\nKLD_"
+        "epsilon=0.01\n"
+        "KLD_maxSampleSize=40000\nKLD_minSampleSize=150\nKLD_minSamplesPerBin=0\n"
+        "[PF_options]\nPF_algorithm=0\nresamplingMethod=0\nadaptiveSampleSize=1\nBETA=0."
+        "5\nsampleSize=1\n"
+        "[LocalizationExperiment]\nmap_file=/usr/share/mrpt/datasets/"
+        "localization_demo.simplemap.gz\n"
+        "rawlog_file=/usr/share/mrpt/datasets/localization_demo.rawlog\nlogOutput_dir=" +
+            w +
+            "/LOG\n3DSceneFrequency=-1\nparticles_count=40000\ninit_PDF_mode=0\ninit_PDF_"
+            "min_x=-10\n"
+            "init_PDF_max_x=10\ninit_PDF_min_y=-20\ninit_PDF_max_y=0\nSHOW_PROGRESS_3D_"
+            "REAL_TIME=false\n"
+            "[MetricMap]\noccupancyGrid_count=1\n[MetricMap_occupancyGrid_00_"
+            "creationOpts]\nresolution=0.05\n"
+            "[MetricMap_occupancyGrid_00_likelihoodOpts]\nlikelihoodMethod=4\nLF_"
+            "decimation=5\n"
+            "LF_stdHit=0.20\nLF_maxCorrsDistance=0.30\n");
+    const auto pf = run("cd '" + w + "' && pf-localization pf.ini");
+    ASSERT_EQ(pf.exitCode, 0);
+    std::smatch m;
+    std::string last;
+    const std::regex est("PDF estimation: \\(([-0-9.]+),([-0-9.]+),");
+    for (auto it = std::sregex_iterator(pf.out.begin(), pf.out.end(), est);
+         it != std::sregex_iterator(); ++it)
+        last = it->str();
+    ASSERT_TRUE(std::regex_search(last, m, std::regex("\\(([-0-9.]+),([-0-9.]+),")));
+    const double dx = s["localization"]["final_pose"][0].get<double>() - std::stod(m[1]);
+    const double dy = s["localization"]["final_pose"][1].get<double>() - std::stod(m[2]);
+    std::cout << "[localization_demo] ours vs pf-localization final position: "
+              << std::hypot(dx, dy) << " m\n";
+    EXPECT_LT(std::hypot(dx, dy), 0.2);
+}
+
+TEST(AfraidLearnE2E, MalagaSenaWithAMapBuiltByIcpSlam) {
+    const std::string w = freshDir("w");
+    const std::string rawlog =
+        "/usr/share/mrpt/datasets/2006-01ENE-21-SENA_Telecom "
+        "Faculty_one_loop_only.rawlog";
+    // MRPT's icp-slam builds the map from the same rawlog.
+    std::string icp =
+        readFile("/usr/share/mrpt/config_files/icp-slam/icp-slam_demo_classic.ini");
+    icp = std::regex_replace(icp, std::regex("\nrawlog_file=[^\n]*"),
+                             "\nrawlog_file=" + rawlog);
+    icp = std::regex_replace(icp, std::regex("\nlogOutput_dir=[^\n]*"),
+                             "\nlogOutput_dir=" + w + "/ICP");
+    icp = std::regex_replace(icp, std::regex("\nSHOW_PROGRESS_3D_REAL_TIME=1"),
+                             "\nSHOW_PROGRESS_3D_REAL_TIME=0");
+    icp = std::regex_replace(icp, std::regex("\nSAVE_3D_SCENE=1"), "\nSAVE_3D_SCENE=0");
+    writeFile(w + "/icp.ini", icp);
+    ASSERT_EQ(run("cd '" + w + "' && icp-slam icp.ini").exitCode, 0);
+    ASSERT_TRUE(fs::is_regular_file(w + "/ICP/_finalmap_.simplemap"));
+    writeFile(w + "/sena.ini",
+              "[AfraidLearn]\nmap_file = ICP/_finalmap_.simplemap\nrawlogs = \"" +
+                  rawlog +
+                  "\"\nafraid_name = sena.afraid\n[Localization]\nparticles = 5000\n"
+                  "init_pose = 0 0 0\ninit_xy = 1\ninit_phi_deg = 20\n");
+    const std::string d = freshDir("out");
+    const auto r = run(binPath(kLearn) + " -q -o '" + d + "' '" + w + "/sena.ini'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto s = readJson(d + "/summary.json");
+    EXPECT_EQ(s["frames"],
+              224);  // to the end (the leading sensory frame without action is skipped)
+    EXPECT_FALSE(s["localization"]["diverged"].get<bool>());
+    EXPECT_GT(s["localization"]["localized_fraction"].get<double>(), 0.95);
+    std::cout << "[SENA] localized " << s["localization"]["localized_fraction"]
+              << ", scan/map agreement " << s["localization"]["mean_scan_map_agreement"]
+              << ", events " << s["events"] << ", zones " << s["zones"].size()
+              << ", final pose " << s["localization"]["final_pose"] << "\n";
+}
+
+// ---- bad input
+TEST(AfraidLearnBadInput, TruncatedRawlogSavesPartialResultsAndKeepsEarlierFiles) {
+    const std::string sim = simulateCorridor(freshDir("w"), 1, true, 5);
+    const std::string full = readFile(sim + "/simulation.rawlog");
+    writeFile(sim + "/cut.rawlog", full.substr(0, full.size() * 6 / 10));
+    // An earlier complete result in the output folder, and an earlier .afraid to resume
+    // from.
+    const std::string out = freshDir("out"), prev = freshDir("prev");
+    learn(prev, "--set AfraidLearn.rawlogs=" + sim + "/simulation.rawlog");
+    fs::copy_file(prev + "/corridor.afraid", out + "/corridor.afraid");
+    const std::string before = readFile(out + "/corridor.afraid"),
+                      earlier = readFile(prev + "/corridor.afraid");
+    const auto r =
+        run(binPath(kLearn) + " -q -o '" + out + "' --set AfraidLearn.rawlogs=" + sim +
+            "/cut.rawlog --set AfraidLearn.afraid_in=" + prev + "/corridor.afraid '" +
+            sourcePath("datasets/corridor-doors/afraid.ini") + "'");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("corrupt or truncated rawlog at entry"), std::string::npos)
+        << r.err;
+    const auto s = readJson(out + "/summary.json");
+    EXPECT_EQ(s["status"], "partial");
+    EXPECT_TRUE(s["partial"].get<bool>());
+    EXPECT_GT(s["frames"].get<int>(), 100);
+    EXPECT_TRUE(fs::is_regular_file(out + "/corridor.partial.afraid"));
+    EXPECT_TRUE(readFile(out + "/corridor.afraid") ==
+                before);  // the complete earlier file is untouched
+    EXPECT_TRUE(readFile(prev + "/corridor.afraid") == earlier);
+}
+
+TEST(AfraidLearnBadInput, MapRawlogMismatchIsDetected) {
+    // A corridor log localized on the office map: MCL cannot agree with it.
+    const std::string sim = simulateCorridor(freshDir("w"), 1, false, 4);
+    const std::string d = freshDir("out");
+    const auto s = learn(d, "--set AfraidLearn.rawlogs=" + sim +
+                                "/simulation.rawlog --set AfraidLearn.map_file=" +
+                                sourcePath("datasets/office/office.png") +
+                                " --set Localization.init_pose=3,3,0 --set "
+                                "KLD_options.KLD_maxSampleSize=5000");
+    EXPECT_TRUE(s["localization"]["diverged"].get<bool>());
+    EXPECT_EQ(s["status"], "diverged");
+    EXPECT_LT(s["localization"]["localized_fraction"].get<double>(), 0.5);
+}
+
+namespace {
+struct TBad {
+    std::string name, extra, expect;
+};
+std::ostream& operator<<(std::ostream& o, const TBad& b) {
+    return o << b.name;
+}
+class AfraidLearnBadArgs : public ::testing::TestWithParam<TBad> {};
+}  // namespace
+
+TEST_P(AfraidLearnBadArgs, ExitTwoOneLineOutputUntouched) {
+    const auto& c = GetParam();
+    const std::string w = freshDir("w");
+    writeFile(w + "/text.afraid", "not an afraid file\n");
+    if (c.name == "foreign_afraid") {
+        // Learned on another map: MRPT's localization demo.
+        writeFile(w + "/demo.ini",
+                  "[AfraidLearn]\nmap_file = "
+                  "/usr/share/mrpt/datasets/localization_demo.simplemap.gz\n"
+                  "rawlogs = /usr/share/mrpt/datasets/localization_demo.rawlog\n"
+                  "afraid_name = corridor.afraid\n[Localization]\ninit_pose = 0 -10 "
+                  "0\ninit_xy = 10\n");
+        const auto r =
+            run(binPath(kLearn) + " -q -o '" + w + "/office' '" + w + "/demo.ini'");
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+    }
+    if (c.name == "no_laser")
+        ASSERT_EQ(run("rawlog-edit --remove-label LASER -i '" +
+                      sourcePath("datasets/corridor-doors/corridor.rawlog") + "' -o '" +
+                      w + "/nolaser.rawlog'")
+                      .exitCode,
+                  0);
+    const std::string out = freshDir("out");
+    writeFile(out + "/summary.json", "{\"earlier\": true}\n");
+    std::string extra = std::regex_replace(c.extra, std::regex("@W"), w);
+    const auto r = run(binPath(kLearn) + " -q -o '" + out + "' " + extra + " '" +
+                       sourcePath("datasets/corridor-doors/afraid.ini") + "'");
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
+    EXPECT_EQ(listDir(out), std::vector<std::string>{"summary.json"});
+    EXPECT_EQ(readFile(out + "/summary.json"), "{\"earlier\": true}\n");
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AfraidLearn, AfraidLearnBadArgs,
+    ::testing::Values(
+        TBad{"unreadable_afraid", "--set AfraidLearn.afraid_in=@W/text.afraid",
+             "not a risknav .afraid file"},
+        TBad{"foreign_afraid", "--set AfraidLearn.afraid_in=@W/office/corridor.afraid",
+             "learned on another map"},
+        TBad{"no_laser", "--set AfraidLearn.rawlogs=@W/nolaser.rawlog",
+             "no 2D laser scan (CObservation2DRangeScan)"},
+        TBad{"missing_rawlog", "--set AfraidLearn.rawlogs=@W/none.rawlog",
+             "rawlog not found"},
+        TBad{"bad_name", "--set AfraidLearn.afraid_name=x.txt",
+             "must be a file name ending in .afraid"},
+        TBad{"bad_speeds", "--set AfraidLearn.v_safe=1.0", "[AfraidLearn] v_safe"},
+        TBad{"unknown_key", "--set AfraidDetector.betta=0.3",
+             "unknown key [AfraidDetector] betta"}),
+    [](const ::testing::TestParamInfo<TBad>& i) { return i.param.name; });
