@@ -29,3 +29,61 @@ print("D_max, 1000 poses, 1000 x 1000 grid, 5 %% obstacles: fast %.3f ms, brute 
 print("50 m route at 5 cm steps: %.2f ms" % b["BM_Route50m"]["real_time"])
 PY
 rm -f "$json"
+
+# Afraid learner vs MRPT's pf-localization: same rawlog, map, initial box and
+# particle settings (5000 initial, KLD as pf-localization's demo), one after
+# the other in this run; and peak memory for a 1-lap vs a 10-lap rawlog.
+tmp=$(mktemp -d)
+cat > "$tmp/pf.ini" <<INI
+[KLD_options]
+KLD_binSize_PHI_deg=10
+KLD_binSize_XY=0.10
+KLD_delta=0.01
+KLD_epsilon=0.01
+KLD_maxSampleSize=40000
+KLD_minSampleSize=150
+KLD_minSamplesPerBin=0
+[PF_options]
+PF_algorithm=0
+resamplingMethod=0
+adaptiveSampleSize=1
+BETA=0.5
+sampleSize=1
+[LocalizationExperiment]
+map_file=$PWD/datasets/corridor-doors/corridor.gridmap.gz
+rawlog_file=$PWD/datasets/corridor-doors/corridor.rawlog
+logOutput_dir=$tmp/pflog
+3DSceneFrequency=-1
+particles_count=5000
+init_PDF_mode=0
+init_PDF_min_x=1
+init_PDF_max_x=3
+init_PDF_min_y=3.5
+init_PDF_max_y=5.5
+SHOW_PROGRESS_3D_REAL_TIME=false
+[MetricMap]
+occupancyGrid_count=1
+[MetricMap_occupancyGrid_00_creationOpts]
+resolution=0.05
+[MetricMap_occupancyGrid_00_likelihoodOpts]
+likelihoodMethod=4
+LF_decimation=5
+LF_stdHit=0.20
+LF_maxCorrsDistance=0.30
+INI
+/usr/bin/time -f "%e %M" -o "$tmp/t_pf" pf-localization "$tmp/pf.ini" < /dev/null > /dev/null 2>&1
+/usr/bin/time -f "%e %M" -o "$tmp/t_ours" build/bin/risknav-afraid-learn -q -o "$tmp/af" datasets/corridor-doors/afraid.ini
+pf=$(tail -1 "$tmp/t_pf"); ours=$(tail -1 "$tmp/t_ours")
+python3 -c "
+pf, ours = '$pf'.split(), '$ours'.split()
+print('corridor rawlog (3959 frames): pf-localization %s s, %d MB; risknav-afraid-learn %s s, %d MB: %.2fx its wall time' % (pf[0], int(pf[1])//1024, ours[0], int(ours[1])//1024, float(ours[0]) / float(pf[0])))"
+for laps in 1 10; do
+  mkdir -p "$tmp/w$laps"
+  cp datasets/corridor-doors/corridor.png "$tmp/w$laps/"
+  build/bin/risknav-simulate -q -o "$tmp/w$laps/sim" --set Route.laps=$laps --set Simulation.duration_max=20000 datasets/corridor-doors/world.ini
+  /usr/bin/time -f "%e %M" -o "$tmp/t_$laps" build/bin/risknav-afraid-learn -q -o "$tmp/w$laps/af" --set AfraidLearn.rawlogs="$tmp/w$laps/sim/simulation.rawlog" --set AfraidLearn.groundtruth_file="$tmp/w$laps/sim/groundtruth.txt" datasets/corridor-doors/afraid.ini
+  r=$(tail -1 "$tmp/t_$laps")
+  frames=$(python3 -c "import json; print(json.load(open('$tmp/w$laps/af/summary.json'))['frames'])")
+  echo "afraid-learn, $laps lap(s), $frames frames: wall ${r% *} s, peak RSS $(( ${r#* } / 1024 )) MB"
+done
+rm -rf "$tmp"

@@ -14,6 +14,7 @@ for world in corridor-doors office; do
 done
 
 "$BIN/risknav-risk-eval" datasets/risk-two-routes/risk.ini --out "$OUT/risk-eval"
+"$BIN/risknav-afraid-learn" datasets/corridor-doors/afraid.ini --out "$OUT/afraid-learn"
 
 echo
 echo "demo results in $OUT/:"
@@ -26,3 +27,7 @@ echo "  $OUT/risk-eval/paths.png            candidate routes, the best highlight
 echo "  $OUT/risk-eval/ellipses_A.png       standard and maximum error ellipses along route A"
 echo "  $OUT/risk-eval/risk_profile.png     u = 1/D_max^2 along every route"
 echo "  $OUT/risk-eval/risk_table.csv       U for every route x sensing subset"
+echo "  $OUT/afraid-learn/afraid.png        the learned afraid level, events and zones on the map"
+echo "  $OUT/afraid-learn/profile.png       events and level along the corridor (cf. the paper's Figs. 8-9)"
+echo "  $OUT/afraid-learn/speed.png         the resulting speed limit along the corridor"
+echo "  $OUT/afraid-learn/speed_mask.yaml   Nav2 Speed Filter mask of the zones"

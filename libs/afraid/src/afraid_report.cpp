@@ -149,7 +149,7 @@ json writeAfraidReport(const CAfraidLearner& l, COutputDir& out) {
     {
         CMapImage img(l.map());
         img.heatOverlay(lvl, 0.f, float(std::max(peak, l.zoneThreshold * 2)),
-                        "level [events/pass]", 0.65, float(0.25 * l.zoneThreshold));
+                        "afraid level", 0.65, float(0.25 * l.zoneThreshold));
         img.polyline(l.trajectory(), {150, 150, 150}, 1);
         for (const auto& e : l.events()) {
             img.circle({e.robotX, e.robotY}, 0.04, {0, 0, 0}, 1, true);
@@ -213,20 +213,22 @@ json writeAfraidReport(const CAfraidLearner& l, COutputDir& out) {
         std::vector<double> scaled(level.size());
         for (size_t i = 0; i < level.size(); i++)
             scaled[i] = level[i] / std::max(peak, 1e-9) * cmax;
-        // Axis origin: the trajectory's lowest projection, as "position along the route".
+        // Positions are world coordinates projected on the axis (for a corridor
+        // along x: x itself, so door positions compare directly).
+        const double o = mx * ux + my * uy;
         std::vector<double> pos(xs.size());
         for (size_t i = 0; i < xs.size(); i++)
-            pos[i] = xs[i] - lo;
+            pos[i] = xs[i] + o;
         CPlotImage plot;
-        plot.setXLabel("position along the route's main axis [m]");
+        plot.setXLabel(
+            "position along the route's main axis (world coordinates projected) [m]");
         plot.setYLabel("events per 10 cm");
         plot.addSeries("afraid events (robot position), per 10 cm", pos, counts,
                        {40, 40, 40}, 1);
         plot.addSeries("generalized level (scaled to the event maximum)", pos, scaled,
                        {220, 40, 0}, 2);
         for (const auto& z : l.zones()) {
-            const double a = (z.xMin - mx) * ux + (z.yMin - my) * uy - lo,
-                         b = (z.xMax - mx) * ux + (z.yMax - my) * uy - lo;
+            const double a = z.xMin * ux + z.yMin * uy, b = z.xMax * ux + z.yMax * uy;
             plot.addVLine(std::min(a, b), "zone " + std::to_string(z.id), {200, 0, 200});
             plot.addVLine(std::max(a, b), "", {200, 0, 200});
         }
@@ -234,9 +236,66 @@ json writeAfraidReport(const CAfraidLearner& l, COutputDir& out) {
             "afraid events and the learned level along the route (cf. Choi et al. Figs. "
             "8-9)");
         plot.save(out.stage("profile.png"));
-        axis = {{"origin", {mx + lo * ux, my + lo * uy}}, {"direction", {ux, uy}}};
+        axis = {{"direction", {ux, uy}}, {"from_m", pos.front()}, {"to_m", pos.back()}};
+
+        // The speed limit along the axis (eqs. 13-14 with the look-ahead),
+        // driving towards +axis, and the paper's 10 m comparison: the time for
+        // 10 m starting 1 m before the first zone, at the learning speed
+        // (v_safe everywhere, "before learning") and with the limit ("after").
+        auto levelFn = [&](double x, double y) { return l.levelAt(x, y); };
+        const auto& d = l.detector.options;
+        std::vector<double> vs(pos.size());
+        for (size_t i = 0; i < pos.size(); i++) {
+            const double s0 = pos[i] - o;
+            const TPoint2D p0(mx + s0 * ux, my + s0 * uy),
+                p1(mx + (s0 + 5) * ux, my + (s0 + 5) * uy);
+            vs[i] = afraidSpeedLimit(levelFn, {p0, p1}, l.vMax, l.vMax, l.vSafe,
+                                     l.zoneThreshold, d.t_delay, d.decel);
+        }
+        CPlotImage sp;
+        sp.setXLabel(
+            "position along the route's main axis (world coordinates projected) [m]");
+        sp.setYLabel("speed [m/s]");
+        sp.addSeries("v = min(v_behaviour, v_afraid), driving towards +axis", pos, vs,
+                     {0, 90, 200}, 2);
+        std::vector<double> safe(pos.size(), l.vSafe);
+        sp.addSeries("before learning: v_safe everywhere", pos, safe, {120, 120, 120}, 1,
+                     true);
+        for (const auto& z : l.zones()) {
+            const double a = z.xMin * ux + z.yMin * uy, b = z.xMax * ux + z.yMax * uy;
+            sp.addVLine(std::min(a, b), "zone " + std::to_string(z.id), {200, 0, 200});
+            sp.addVLine(std::max(a, b), "", {200, 0, 200});
+        }
+        double firstZone = 1e18;
+        for (const auto& z : l.zones())
+            firstZone = std::min(firstZone, std::min(z.xMin * ux + z.yMin * uy,
+                                                     z.xMax * ux + z.yMax * uy));
+        if (!l.zones().empty() && pos.size() > 1) {
+            const double s0 = std::max(pos.front(), firstZone - 1.0), s1 = s0 + 10.0;
+            double tAfter = 0;
+            for (size_t i = 1; i < pos.size(); i++)
+                if (pos[i] > s0 && pos[i] <= s1)
+                    tAfter += (pos[i] - pos[i - 1]) / vs[i];
+            const double span = std::min(s1, pos.back()) - s0;
+            j["ten_metre_section"] = {
+                {"from_m", s0},
+                {"to_m", s0 + span},
+                {"time_before_s", span / l.vSafe},
+                {"time_after_s", tAfter},
+                {"mean_speed_after", tAfter > 0 ? span / tAfter : 0.0}};
+            char t[200];
+            std::snprintf(t, sizeof(t),
+                          "speed limit along the route: %.1f m from %.1f m in %.1f s "
+                          "(%.1f s at v_safe)",
+                          span, s0, tAfter, span / l.vSafe);
+            sp.setTitle(t);
+        } else
+            sp.setTitle("speed limit along the route (no zone: v_max everywhere)");
+        sp.save(out.stage("speed.png"));
     }
 
+    if (!j.contains("ten_metre_section"))
+        j["ten_metre_section"] = nullptr;
     j["status"] = l.partial() ? "partial" : (l.diverged() ? "diverged" : "ok");
     j["partial"] = l.partial();
     j["error"] = l.error();

@@ -151,14 +151,22 @@ cv::Mat CPlotImage::render() const {
         if (r.rows + yPos <= img.rows && r.cols + 4 <= left)
             r.copyTo(img(cv::Rect(4, yPos, r.cols, r.rows)));
     }
-    // Legend under the axis label.
-    for (size_t i = 0; i < m_series.size(); i++) {
-        const int lx = left + int(i % 4) * ((m_w - left) / 4),
-                  ly = area.y + area.height + 62 + 20 * int(i / 4);
-        cv::line(img, {lx, ly - 4}, {lx + 28, ly - 4}, m_series[i].c.bgr(), m_series[i].t,
-                 cv::LINE_AA);
-        cv::putText(img, m_series[i].label, {lx + 34, ly}, kFont, 0.42, kBlack, 1,
-                    cv::LINE_AA);
+    // Legend under the axis label, entries flowing by their text width.
+    {
+        int lx = left, ly = area.y + area.height + 62;
+        for (const auto& se : m_series) {
+            int base = 0;
+            const int w =
+                34 + cv::getTextSize(se.label, kFont, 0.42, 1, &base).width + 24;
+            if (lx + w > m_w - right && lx > left) {
+                lx = left;
+                ly += 20;
+            }
+            cv::line(img, {lx, ly - 4}, {lx + 28, ly - 4}, se.c.bgr(), se.t, cv::LINE_AA);
+            cv::putText(img, se.label, {lx + 34, ly}, kFont, 0.42, kBlack, 1,
+                        cv::LINE_AA);
+            lx += w;
+        }
     }
     return img;
 }
