@@ -30,6 +30,9 @@ print("50 m route at 5 cm steps: %.2f ms" % b["BM_Route50m"]["real_time"])
 PY
 rm -f "$json"
 
+# Kernel ridge regression at map scale (2000 x 2000 cells).
+build/bin/risknav_bench_afraid
+
 # Afraid learner vs MRPT's pf-localization: same rawlog, map, initial box and
 # particle settings (5000 initial, KLD as pf-localization's demo), one after
 # the other in this run; and peak memory for a 1-lap vs a 10-lap rawlog.

@@ -89,28 +89,18 @@ std::optional<TRawlogFrame> CRawlogReader::next() {
             throw std::runtime_error(m_path + ": not a rawlog: entry " +
                                      std::to_string(m_entry - 1) + " is a " +
                                      o->GetRuntimeClass()->className);
-        // Observations-only format.
+        // Observations-only format: odometry k, then the observations taken
+        // there. A frame = the motion from odometry k-1 to k (zero for the
+        // first) + the observations after odometry k; it is complete when
+        // odometry k+1 (or the end of the file) arrives.
         if (auto odo = std::dynamic_pointer_cast<CObservationOdometry>(obs)) {
-            const mrpt::poses::CPose2D now = odo->odometry;
-            std::optional<TRawlogFrame> out;
-            if (m_lastOdo && m_pending && m_pending->size()) {
-                TRawlogFrame f;
-                f.actions = CActionCollection::Create();
-                CActionRobotMovement2D mv;
-                CActionRobotMovement2D::TMotionModelOptions mo;
-                mo.gaussianModel.minStdXY = m_minStdXY;
-                mo.gaussianModel.minStdPHI = m_minStdPhi;
-                mv.computeFromOdometry(now - *m_lastOdo, mo);
-                mv.timestamp = odo->timestamp;
-                f.actions->insert(mv);
-                f.sf = m_pending;
-                f.entry = m_entry - 1;
-                f.timestamp = odo->timestamp;
-                out = f;
-            }
-            if (!m_lastOdo || (m_pending && m_pending->size()))
-                m_lastOdo = now;
+            std::optional<TRawlogFrame> out = pendingFrame();
+            m_prevOdo =
+                m_curOdo ? m_curOdo : std::optional<mrpt::poses::CPose2D>(odo->odometry);
+            m_curOdo = odo->odometry;
+            m_curOdoTime = odo->timestamp;
             m_pending = CSensoryFrame::Create();
+            m_pendingEntry = m_entry - 1;
             if (out)
                 return out;
             continue;
@@ -119,7 +109,31 @@ std::optional<TRawlogFrame> CRawlogReader::next() {
             m_pending = CSensoryFrame::Create();
         m_pending->insert(obs);
     }
+    // The last frame of an observations-only log.
+    if (auto out = pendingFrame()) {
+        m_pending.reset();
+        return out;
+    }
     return std::nullopt;
+}
+
+std::optional<TRawlogFrame> CRawlogReader::pendingFrame() {
+    using namespace mrpt::obs;
+    if (!m_curOdo || !m_pending || m_pending->size() == 0)
+        return std::nullopt;
+    TRawlogFrame f;
+    f.actions = CActionCollection::Create();
+    CActionRobotMovement2D mv;
+    CActionRobotMovement2D::TMotionModelOptions mo;
+    mo.gaussianModel.minStdXY = m_minStdXY;
+    mo.gaussianModel.minStdPHI = m_minStdPhi;
+    mv.computeFromOdometry(*m_curOdo - *m_prevOdo, mo);
+    mv.timestamp = m_curOdoTime;
+    f.actions->insert(mv);
+    f.sf = m_pending;
+    f.entry = m_pendingEntry;
+    f.timestamp = (*m_pending->begin())->timestamp;
+    return f;
 }
 
 }  // namespace risknav::localization

@@ -19,11 +19,11 @@ struct TRawlogFrame {
 
 /** Streams an MRPT rawlog, either format, in constant memory:
  *  - action / sensory-frame pairs are passed through;
- *  - observations-only logs are grouped: the observations between two
- *    CObservationOdometry become a sensory frame, and the odometry change
- *    becomes a CActionRobotMovement2D (MRPT's Gaussian motion model, with
- *    minimum sigmas min_std_xy / min_std_phi as pf-localization's
- *    [DummyOdometryParams]).
+ *  - observations-only logs are grouped: the observations after a
+ *    CObservationOdometry (until the next one) become a sensory frame, and
+ *    the odometry change up to it becomes a CActionRobotMovement2D (zero for
+ *    the first; MRPT's Gaussian motion model, with minimum sigmas as
+ *    pf-localization's [DummyOdometryParams]).
  * Errors (unreadable file, corrupt or truncated data) throw
  * std::runtime_error naming the entry index; frames read before stay valid. */
 class CRawlogReader {
@@ -45,8 +45,11 @@ class CRawlogReader {
     uint64_t m_size = 0;
     double m_minStdXY, m_minStdPhi;
     // observations-only state
-    std::optional<mrpt::poses::CPose2D> m_lastOdo;
+    std::optional<TRawlogFrame> pendingFrame();
+    std::optional<mrpt::poses::CPose2D> m_prevOdo, m_curOdo;
+    mrpt::Clock::time_point m_curOdoTime;
     mrpt::obs::CSensoryFrame::Ptr m_pending;
+    size_t m_pendingEntry = 0;
     bool m_eof = false;
 };
 

@@ -1,0 +1,124 @@
+#include <risknav/localization/CRawlogReader.h>
+
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+using namespace risknav::localization;
+using mrpt::poses::CPose2D;
+
+namespace {
+// N frames of a robot driving an arc: odometry poses and one scan each
+// (range i + k/100 on ray i, so scans are told apart).
+struct TLog {
+    std::vector<CPose2D> odo;
+    std::vector<mrpt::obs::CObservation2DRangeScan::Ptr> scans;
+};
+TLog makeLog(size_t n) {
+    TLog l;
+    CPose2D p;
+    for (size_t k = 0; k < n; k++) {
+        l.odo.push_back(p);
+        auto s = mrpt::obs::CObservation2DRangeScan::Create();
+        s->sensorLabel = "LASER";
+        s->timestamp = mrpt::Clock::fromDouble(1000.0 + 0.2 * k);
+        s->resizeScan(5);
+        for (size_t i = 0; i < 5; i++) {
+            s->setScanRange(i, float(1 + i + k / 100.0));
+            s->setScanRangeValidity(i, true);
+        }
+        l.scans.push_back(s);
+        p = p + CPose2D(0.05, 0.0, 0.02);
+    }
+    return l;
+}
+}  // namespace
+
+TEST(CRawlogReader, BothFormatsGiveTheSameFrames) {
+    const auto log = makeLog(30);
+    const std::string d = risknav::test::freshDir("rawlog");
+    {
+        // Action / sensory-frame pairs.
+        mrpt::io::CFileGZOutputStream f(d + "/pairs.rawlog");
+        auto a = mrpt::serialization::archiveFrom(f);
+        for (size_t k = 0; k < log.odo.size(); k++) {
+            mrpt::obs::CActionCollection acts;
+            mrpt::obs::CActionRobotMovement2D mv;
+            mv.computeFromOdometry(k ? log.odo[k] - log.odo[k - 1] : CPose2D(), {});
+            acts.insert(mv);
+            mrpt::obs::CSensoryFrame sf;
+            sf.insert(log.scans[k]);
+            a << acts << sf;
+        }
+    }
+    {
+        // Observations only: odometry k, then the scan taken there.
+        mrpt::io::CFileGZOutputStream f(d + "/obsonly.rawlog");
+        auto a = mrpt::serialization::archiveFrom(f);
+        for (size_t k = 0; k < log.odo.size(); k++) {
+            mrpt::obs::CObservationOdometry o;
+            o.odometry = log.odo[k];
+            o.timestamp = log.scans[k]->timestamp;
+            a << o << *log.scans[k];
+        }
+    }
+    CRawlogReader pairs(d + "/pairs.rawlog"), obsOnly(d + "/obsonly.rawlog");
+    for (size_t k = 0; k < log.odo.size(); k++) {
+        const auto fa = pairs.next(), fb = obsOnly.next();
+        ASSERT_TRUE(fa && fb) << "frame " << k;
+        const auto ia = fa->actions->getActionByClass<mrpt::obs::CActionRobotMovement2D>()
+                            ->poseChange->getMeanVal();
+        const auto ib = fb->actions->getActionByClass<mrpt::obs::CActionRobotMovement2D>()
+                            ->poseChange->getMeanVal();
+        EXPECT_NEAR(ia.x(), ib.x(), 1e-9) << k;
+        EXPECT_NEAR(ia.y(), ib.y(), 1e-9) << k;
+        EXPECT_NEAR(ia.phi(), ib.phi(), 1e-9) << k;
+        const auto sa =
+            fa->sf->getObservationByClass<mrpt::obs::CObservation2DRangeScan>();
+        const auto sb =
+            fb->sf->getObservationByClass<mrpt::obs::CObservation2DRangeScan>();
+        ASSERT_TRUE(sa && sb);
+        EXPECT_FLOAT_EQ(sa->getScanRange(0), sb->getScanRange(0))
+            << "the scan of frame " << k;
+    }
+    EXPECT_FALSE(pairs.next());
+    EXPECT_FALSE(obsOnly.next());
+}
+
+TEST(CRawlogReader, TruncationIsAnErrorWithTheEntryIndex) {
+    const auto log = makeLog(200);
+    const std::string d = risknav::test::freshDir("rawlog");
+    {
+        mrpt::io::CFileGZOutputStream f(d + "/full.rawlog");
+        auto a = mrpt::serialization::archiveFrom(f);
+        for (size_t k = 0; k < log.odo.size(); k++) {
+            mrpt::obs::CActionCollection acts;
+            mrpt::obs::CActionRobotMovement2D mv;
+            mv.computeFromOdometry(CPose2D(0.05, 0, 0), {});
+            acts.insert(mv);
+            mrpt::obs::CSensoryFrame sf;
+            sf.insert(log.scans[k]);
+            a << acts << sf;
+        }
+    }
+    const std::string full = risknav::test::readFile(d + "/full.rawlog");
+    risknav::test::writeFile(d + "/cut.rawlog", full.substr(0, full.size() / 2));
+    CRawlogReader r(d + "/cut.rawlog");
+    size_t frames = 0;
+    try {
+        while (r.next())
+            frames++;
+        FAIL() << "a truncated rawlog read as complete";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("at entry"), std::string::npos) << e.what();
+    }
+    EXPECT_GT(frames, 10u);
+    EXPECT_LT(frames, 200u);
+    EXPECT_THROW(CRawlogReader(d + "/missing.rawlog"), std::runtime_error);
+}
