@@ -152,14 +152,15 @@ TEST(AfraidLearnE2E, ResumingFromAnAfraidFileEqualsLearningOnBoth) {
 
 TEST(AfraidLearnE2E, MrptLocalizationDemoMatchesPfLocalization) {
     // MRPT's real log and map; our MCL's final pose vs MRPT's pf-localization
-    // on the same rawlog, map and initial box (40000 particles, as its demo).
+    // on the same rawlog, map and initial box (40000 particles and the box of
+    // MRPT's own localization_demo.ini: x in [-10, 10], y in [-15, -5]).
     const std::string w = freshDir("w");
     writeFile(w + "/demo.ini",
               "[AfraidLearn]\nmap_file = "
               "/usr/share/mrpt/datasets/localization_demo.simplemap.gz\n"
               "rawlogs = /usr/share/mrpt/datasets/localization_demo.rawlog\nafraid_name "
               "= demo.afraid\n"
-              "[Localization]\nparticles = 40000\ninit_pose = 0 -10 0\ninit_xy = 10\n");
+              "[Localization]\nparticles = 40000\ninit_pose = 0 -10 0\ninit_xy = 10 5\n");
     const std::string d = freshDir("out");
     const auto r = run(binPath(kLearn) + " -q -o '" + d + "' '" + w + "/demo.ini'");
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -179,7 +180,7 @@ TEST(AfraidLearnE2E, MrptLocalizationDemoMatchesPfLocalization) {
             w +
             "/LOG\n3DSceneFrequency=-1\nparticles_count=40000\ninit_PDF_mode=0\ninit_PDF_"
             "min_x=-10\n"
-            "init_PDF_max_x=10\ninit_PDF_min_y=-20\ninit_PDF_max_y=0\nSHOW_PROGRESS_3D_"
+            "init_PDF_max_x=10\ninit_PDF_min_y=-15\ninit_PDF_max_y=-5\nSHOW_PROGRESS_3D_"
             "REAL_TIME=false\n"
             "[MetricMap]\noccupancyGrid_count=1\n[MetricMap_occupancyGrid_00_"
             "creationOpts]\nresolution=0.05\n"

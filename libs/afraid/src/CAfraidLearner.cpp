@@ -181,8 +181,13 @@ void CAfraidLearner::replay(const std::string& path, bool quiet, size_t index) {
     // A seed per rawlog that does not depend on the order of the rawlogs, so
     // that learning on A then B (resumed from A's .afraid) equals learning on
     // A and B in one run.
-    mcl.initialize(m_map, seed ^ std::hash<std::string>{}(
-                                     fs::absolute(path).lexically_normal().string()));
+    // Name and size, not the full path: the same log gives the same result
+    // wherever it is stored.
+    std::error_code ec;
+    const uint64_t size = fs::file_size(path, ec);
+    mcl.initialize(
+        m_map, seed ^ std::hash<std::string>{}(fs::path(path).filename().string() + "#" +
+                                               std::to_string(size)));
     (void)index;
     detector.reset();
     std::optional<mrpt::Clock::time_point> lastT;

@@ -18,7 +18,13 @@ void CRawlogMcl::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBas
         throwBadKey(c, s, "init_pose", readString(c, s, "init_pose", ""),
                     "needs x y phi_deg");
     initPose = {p[0], p[1], p[2] * M_PI / 180};
-    init_xy = readDouble(c, s, "init_xy", init_xy, TRange::closed(0, 1000, "m"));
+    const auto xy =
+        readNumbers(c, s, "init_xy", {init_xy, init_xy}, TRange::closed(0, 1000, "m"));
+    if (xy.size() != 1 && xy.size() != 2)
+        throwBadKey(c, s, "init_xy", readString(c, s, "init_xy", ""),
+                    "needs one half-width, or x and y half-widths");
+    init_xy = xy[0];
+    init_y = xy.size() == 2 ? xy[1] : xy[0];
     init_phi_deg =
         readDouble(c, s, "init_phi_deg", init_phi_deg, TRange::closed(0, 180, "deg"));
     lf_std_hit =
@@ -78,7 +84,7 @@ void CRawlogMcl::initialize(const mrpt::maps::COccupancyGridMap2D& grid, uint64_
             const double dphi = options.init_phi_deg * M_PI / 180;
             m_pdf.resetUniformFreeSpace(m_map.get(), 0.7, options.particles,
                                         p.x - options.init_xy, p.x + options.init_xy,
-                                        p.y - options.init_xy, p.y + options.init_xy,
+                                        p.y - options.init_y, p.y + options.init_y,
                                         p.phi - dphi, p.phi + dphi);
         }
     } catch (const std::exception&) {

@@ -29,10 +29,11 @@ struct TMclEstimate {
 class CRawlogMcl {
   public:
     struct TOptions {
-        int particles = 5000;                ///< initial particles
-        std::string init = "pose";           ///< pose | global
-        mrpt::math::TPose2D initPose;        ///< init = pose: centre of a uniform box
-        double init_xy = 1.0;                ///< [m] half-width of the box
+        int particles = 5000;          ///< initial particles
+        std::string init = "pose";     ///< pose | global
+        mrpt::math::TPose2D initPose;  ///< init = pose: centre of a uniform box
+        double init_xy = 1.0;  ///< [m] half-width of the box in x (init_xy = "hx [hy]")
+        double init_y = 1.0;   ///< [m] half-width of the box in y
         double init_phi_deg = 180;           ///< [deg] half-width of the heading range
         double lf_std_hit = 0.2;             ///< [m] likelihood field sigma
         int lf_decimation = 5;               ///< use every N-th ray
