@@ -215,14 +215,11 @@ TEST_P(RiskEvalBadInput, ExitTwoOneLineOutputUntouched) {
     }
     writeFile(w + "/risk.ini", ini);
     const std::string out = freshDir("out");
-    writeFile(out + "/summary.json", "{\"earlier\": true}\n");
+    const TEarlierOutput earlier = {{"summary.json", "{\"earlier\": true}\n"}};
+    writeEarlierOutput(out, earlier);
     const auto r = run(binPath("risknav-risk-eval") + " -q -o '" + out + "' " + c.extra +
                        " '" + w + "/risk.ini'");
-    EXPECT_EQ(r.exitCode, 2) << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
-    EXPECT_EQ(listDir(out), std::vector<std::string>{"summary.json"});
-    EXPECT_EQ(readFile(out + "/summary.json"), "{\"earlier\": true}\n");
+    expectBadInput(r, c.expect, out, earlier);
 }
 
 INSTANTIATE_TEST_SUITE_P(

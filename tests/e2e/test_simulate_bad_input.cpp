@@ -43,22 +43,15 @@ TEST_P(BadInput, ExitTwoOneLineOutputUntouched) {
 
     // An earlier run's results in the output folder.
     const std::string out = freshDir("out");
-    writeFile(out + "/summary.json", "{\"earlier\": true}\n");
-    writeFile(out + "/simulation.rawlog", "earlier rawlog");
+    const TEarlierOutput earlier = {{"simulation.rawlog", "earlier rawlog"},
+                                    {"summary.json", "{\"earlier\": true}\n"}};
+    writeEarlierOutput(out, earlier);
     const std::string cfg =
         c.name == "missing_config" ? work + "/nope.ini" : work + "/world.ini";
 
     const auto r = run(binPath("risknav-simulate") + " -q -o '" + out + "' " +
                        c.extraArgs + " '" + cfg + "'");
-    EXPECT_EQ(r.exitCode, 2) << r.err;
-    ASSERT_FALSE(r.err.empty());
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    EXPECT_EQ(r.err.rfind("risknav-simulate: error: ", 0), 0u) << r.err;
-    EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
-    EXPECT_EQ(listDir(out),
-              (std::vector<std::string>{"simulation.rawlog", "summary.json"}));
-    EXPECT_EQ(readFile(out + "/summary.json"), "{\"earlier\": true}\n");
-    EXPECT_EQ(readFile(out + "/simulation.rawlog"), "earlier rawlog");
+    expectBadInput(r, c.expect, out, earlier, "risknav-simulate: error: ");
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -83,4 +83,26 @@ std::vector<std::string> listDir(const std::string& dir) {
     return v;
 }
 
+void writeEarlierOutput(const std::string& dir, const TEarlierOutput& files) {
+    for (const auto& [name, content] : files)
+        writeFile(dir + "/" + name, content);
+}
+
+void expectBadInput(const TRun& r, const std::string& expect, const std::string& outDir,
+                    const TEarlierOutput& earlier, const std::string& appPrefix) {
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_FALSE(r.err.empty());
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    if (!appPrefix.empty()) {
+        EXPECT_EQ(r.err.rfind(appPrefix, 0), 0u) << r.err;
+    }
+    EXPECT_NE(r.err.find(expect), std::string::npos) << r.err;
+    std::vector<std::string> names;
+    for (const auto& e : earlier)
+        names.push_back(e.first);
+    EXPECT_EQ(listDir(outDir), names);
+    for (const auto& [name, content] : earlier)
+        EXPECT_EQ(readFile(outDir + "/" + name), content) << name;
+}
+
 }  // namespace risknav::test

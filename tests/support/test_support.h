@@ -1,6 +1,8 @@
 #pragma once
 #include <nlohmann/json.hpp>
 
+#include <map>
+
 #include <string>
 #include <vector>
 
@@ -29,5 +31,15 @@ nlohmann::json readJson(const std::string& path);
 std::vector<std::string> readLines(const std::string& path);
 /** Names of the files in a folder (sorted). */
 std::vector<std::string> listDir(const std::string& dir);
+
+/** An earlier run's results in an output folder (file name -> content). */
+using TEarlierOutput = std::map<std::string, std::string>;
+/** Writes them into `dir` (a bad-input run must leave them as they are). */
+void writeEarlierOutput(const std::string& dir, const TEarlierOutput& files);
+/** The checks of every bad-input case: exit code 2, exactly one line on
+ * stderr that contains `expect` (and starts with "<appPrefix>" when given),
+ * and the output folder holding exactly the earlier files, unchanged. */
+void expectBadInput(const TRun& r, const std::string& expect, const std::string& outDir,
+                    const TEarlierOutput& earlier, const std::string& appPrefix = "");
 
 }  // namespace risknav::test

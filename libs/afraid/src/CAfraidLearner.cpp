@@ -154,7 +154,7 @@ void CAfraidLearner::loadFromConfigFile(const CIniConfig& c,
 void CAfraidLearner::run(bool quiet) {
     const auto t0 = std::chrono::steady_clock::now();
     for (size_t i = 0; i < rawlogs.size() && m_error.empty(); i++)
-        replay(rawlogs[i], quiet, i);
+        replay(rawlogs[i], quiet);
     m_replaySeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!m_sawScan && m_error.empty())
@@ -166,7 +166,7 @@ void CAfraidLearner::run(bool quiet) {
     m_new.frames = m_frames;
 }
 
-void CAfraidLearner::replay(const std::string& path, bool quiet, size_t index) {
+void CAfraidLearner::replay(const std::string& path, bool quiet) {
     // Count the frames first (cheap: no filtering) for the progress line.
     size_t total = 0;
     try {
@@ -188,7 +188,6 @@ void CAfraidLearner::replay(const std::string& path, bool quiet, size_t index) {
     mcl.initialize(
         m_map, seed ^ std::hash<std::string>{}(fs::path(path).filename().string() + "#" +
                                                std::to_string(size)));
-    (void)index;
     detector.reset();
     std::optional<mrpt::Clock::time_point> lastT;
     size_t done = 0;

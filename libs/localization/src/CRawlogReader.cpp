@@ -15,14 +15,9 @@ CRawlogReader::CRawlogReader(const std::string& path, double minStdXY,
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw std::runtime_error(path + ": rawlog not found");
-    m_size = std::filesystem::file_size(path, ec);
     m_in = std::make_unique<mrpt::io::CFileGZInputStream>();
     if (!m_in->open(path))
         throw std::runtime_error(path + ": cannot open rawlog");
-}
-
-uint64_t CRawlogReader::position() {
-    return m_in ? m_in->getPosition() : m_size;
 }
 
 namespace {

@@ -11,18 +11,6 @@ Eigen::Matrix3d TOdometryModel::sigmaM() const {
     return s;
 }
 
-void twistFromWheels(const TOdometryModel& m, double uL, double uR, double& v,
-                     double& w) {
-    v = 0.5 * (m.radiusR * uR + m.radiusL * uL);
-    w = (m.radiusR * uR - m.radiusL * uL) / m.tread;
-}
-
-void wheelsFromTwist(const TOdometryModel& m, double v, double w, double& uL,
-                     double& uR) {
-    uR = (v + 0.5 * w * m.tread) / m.radiusR;
-    uL = (v - 0.5 * w * m.tread) / m.radiusL;
-}
-
 Eigen::Matrix3d jacobianPose(double theta, double v, double tau) {
     Eigen::Matrix3d j = Eigen::Matrix3d::Identity();
     j(0, 2) = -tau * v * std::sin(theta);

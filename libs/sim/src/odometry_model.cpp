@@ -5,18 +5,6 @@
 #include <cmath>
 
 namespace risknav::sim {
-void twistFromWheels(const TWheelGeometry& g, double uL, double uR, double& v,
-                     double& w) {
-    v = 0.5 * (g.radiusR * uR + g.radiusL * uL);
-    w = (g.radiusR * uR - g.radiusL * uL) / g.tread;
-}
-
-void wheelsFromTwist(const TWheelGeometry& g, double v, double w, double& uL,
-                     double& uR) {
-    uR = (v + 0.5 * w * g.tread) / g.radiusR;
-    uL = (v - 0.5 * w * g.tread) / g.radiusL;
-}
-
 mrpt::math::TPose2D integrateTwist(const mrpt::math::TPose2D& p, double v, double w,
                                    double dt) {
     mrpt::math::TPose2D q = p;

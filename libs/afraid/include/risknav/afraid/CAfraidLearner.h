@@ -98,7 +98,7 @@ class CAfraidLearner {
     double levelAt(double x, double y) const;
 
   private:
-    void replay(const std::string& path, bool quiet, size_t rawlogIndex);
+    void replay(const std::string& path, bool quiet);
     mrpt::maps::COccupancyGridMap2D m_map;
     std::vector<float> m_obstDist;  // distance to the nearest map obstacle, per cell [m]
     CAfraidGrid m_grid, m_new, m_old;

@@ -32,17 +32,12 @@ class CRawlogReader {
                            double minStdPhiDeg = 0.2);
     /** The next frame, or nullopt at the end of the file. */
     std::optional<TRawlogFrame> next();
-    size_t entriesRead() const { return m_entry; }
     const std::string& path() const { return m_path; }
-    /** Compressed bytes read so far and the file size (for progress). */
-    uint64_t position();
-    uint64_t fileSize() const { return m_size; }
 
   private:
     std::string m_path;
     std::unique_ptr<mrpt::io::CFileGZInputStream> m_in;
     size_t m_entry = 0;
-    uint64_t m_size = 0;
     double m_minStdXY, m_minStdPhi;
     // observations-only state
     std::optional<TRawlogFrame> pendingFrame();

@@ -1,4 +1,6 @@
 #pragma once
+#include <risknav/common/diff_drive.h>
+
 #include <Eigen/Dense>
 
 namespace risknav::risk {
@@ -12,6 +14,7 @@ struct TOdometryModel {
      */
     Eigen::Matrix3d sigmaN = Eigen::Matrix3d::Zero();
     Eigen::Matrix3d sigmaM() const;  ///< eq. (25)
+    common::TWheelGeometry geometry() const { return {radiusL, radiusR, tread}; }
 };
 
 /** How the wheel-parameter error acts.
@@ -22,10 +25,16 @@ struct TOdometryModel {
  *    going beyond the paper (PAPER_NOTES M2 "Note"). */
 enum class TErrorModel { PerStep, Systematic };
 
-/** Body twist from wheel speeds, eqs. (18)-(19). */
-void twistFromWheels(const TOdometryModel& m, double uL, double uR, double& v, double& w);
+/** Body twist from wheel speeds, eqs. (18)-(19), with the nominal m. */
+inline void twistFromWheels(const TOdometryModel& m, double uL, double uR, double& v,
+                            double& w) {
+    common::twistFromWheels(m.geometry(), uL, uR, v, w);
+}
 /** Wheel speeds for a body twist (inverse of eqs. 18-19, nominal m). */
-void wheelsFromTwist(const TOdometryModel& m, double v, double w, double& uL, double& uR);
+inline void wheelsFromTwist(const TOdometryModel& m, double v, double w, double& uL,
+                            double& uR) {
+    common::wheelsFromTwist(m.geometry(), v, w, uL, uR);
+}
 
 /** J_P = d f / d P, the 3x3 Jacobian of eq. (10) (PAPER_NOTES erratum: the paper
  * calls it j[t] but names the Jacobians the other way round in (8)-(9)):
