@@ -83,8 +83,8 @@ T noted(const CConfigFileBase& c, const std::string& s, const std::string& k,
     return v;
 }
 
-void checkRange(const CConfigFileBase& c, const std::string& s, const std::string& k,
-                const std::string& raw, double v, const TRange& r) {
+void checkReadRange(const CConfigFileBase& c, const std::string& s, const std::string& k,
+                    const std::string& raw, double v, const TRange& r) {
     if (!r.contains(v))
         throwBadKey(c, s, k, raw, r.describe());
 }
@@ -129,7 +129,7 @@ double readDouble(const CConfigFileBase& c, const std::string& s, const std::str
     double v = 0;
     if (!parseNumber(raw, v))
         throwBadKey(c, s, k, raw, "not a number");
-    checkRange(c, s, k, raw, v, r);
+    checkReadRange(c, s, k, raw, v, r);
     return noted(c, s, k, v);
 }
 
@@ -156,7 +156,7 @@ int readInt(const CConfigFileBase& c, const std::string& s, const std::string& k
     double v = 0;
     if (!parseNumber(raw, v) || v != std::floor(v) || std::abs(v) > 2e9)
         throwBadKey(c, s, k, raw, "not an integer");
-    checkRange(c, s, k, raw, v, r);
+    checkReadRange(c, s, k, raw, v, r);
     return noted(c, s, k, static_cast<int>(v));
 }
 
@@ -222,7 +222,7 @@ std::vector<double> readNumbers(const CConfigFileBase& c, const std::string& s,
         double v = 0;
         if (!parseNumber(tok, v))
             throwBadKey(c, s, k, raw, "'" + tok + "' is not a number");
-        checkRange(c, s, k, raw, v, r);
+        checkReadRange(c, s, k, raw, v, r);
         out.push_back(v);
     }
     if (out.size() < minCount)
@@ -252,6 +252,81 @@ std::string readPath(const CConfigFileBase& c, const std::string& s, const std::
     if (mustExist && !fs::is_regular_file(p, ec))
         throwBadKey(c, s, k, v, "file not found (" + p.string() + ")");
     return noted(c, s, k, p.string());  // absolute: config_effective.ini lives elsewhere
+}
+
+std::string numberText(double v) {
+    if (std::isnan(v))
+        return "nan";
+    if (std::isinf(v))
+        return v > 0 ? "inf" : "-inf";
+    char b[40];
+    for (int digits = 6; digits <= 17; digits++) {
+        std::snprintf(b, sizeof(b), "%.*g", digits, v);
+        if (std::strtod(b, nullptr) == v)
+            break;
+    }
+    return b;
+}
+
+void writeKey(CConfigFileBase& c, const std::string& s, const std::string& k, double v) {
+    c.write(s, k, numberText(v));
+}
+void writeKey(CConfigFileBase& c, const std::string& s, const std::string& k, int v) {
+    c.write(s, k, std::to_string(v));
+}
+void writeKey(CConfigFileBase& c, const std::string& s, const std::string& k, bool v) {
+    c.write(s, k, std::string(v ? "true" : "false"));
+}
+void writeKey(CConfigFileBase& c, const std::string& s, const std::string& k,
+              const std::string& v) {
+    c.write(s, k, v);
+}
+void writeKey(CConfigFileBase& c, const std::string& s, const std::string& k,
+              const std::vector<double>& v) {
+    std::string t;
+    for (double x : v)
+        t += (t.empty() ? "" : " ") + numberText(x);
+    c.write(s, k, t);
+}
+void writeDegrees(CConfigFileBase& c, const std::string& s, const std::string& k,
+                  double rad) {
+    writeKey(c, s, k, rad * 180.0 / M_PI);
+}
+
+void checkKey(const std::string& s, const std::string& k, double v, const TRange& r) {
+    if (!r.contains(v))
+        throw CConfigKeyError(s, k, numberText(v), r.describe());
+}
+void checkKey(const std::string& s, const std::string& k, const std::vector<double>& v,
+              const TRange& r) {
+    for (double x : v)
+        if (!r.contains(x)) {
+            std::string t;
+            for (double y : v)
+                t += (t.empty() ? "" : " ") + numberText(y);
+            throw CConfigKeyError(s, k, t, "'" + numberText(x) + "' " + r.describe());
+        }
+}
+void checkDegrees(const std::string& s, const std::string& k, double rad,
+                  const TRange& rangeDeg) {
+    checkKey(s, k, rad * 180.0 / M_PI, rangeDeg);
+}
+void checkRule(bool ok, const std::string& s, const std::string& k,
+               const std::string& value, const std::string& rule) {
+    if (!ok)
+        throw CConfigKeyError(s, k, value, rule);
+}
+
+std::string effectiveConfigText(const std::string& sourcePath,
+                                const mrpt::config::CConfigFileMemory& saved) {
+    std::string body;
+    saved.getContent(body);
+    return "; Effective configuration of this run: every key with the value used\n"
+           "; (from " +
+           sourcePath +
+           ", --set overrides, or the default), written by the options'\n"
+           "; saveToConfigFile(). Running the app on this file reproduces the run.\n\n" +
+           body;
 }
 
 }  // namespace risknav::common

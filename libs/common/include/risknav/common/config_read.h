@@ -1,5 +1,6 @@
 #pragma once
 #include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/config/CConfigFileMemory.h>
 
 #include <limits>
 #include <string>
@@ -41,14 +42,14 @@ struct TRange {
  * A missing key gives the default, except for the require*() variants.
  * @{ */
 double readDouble(const mrpt::config::CConfigFileBase& c, const std::string& section,
-                  const std::string& key, double def, const TRange& range);
+                  const std::string& key, double def, const TRange& range = {});
 double requireDouble(const mrpt::config::CConfigFileBase& c, const std::string& section,
                      const std::string& key, const TRange& range);
 /** Reads degrees from the file and returns radians (MRPT convention). */
 double readDegrees(const mrpt::config::CConfigFileBase& c, const std::string& section,
                    const std::string& key, double defRad, const TRange& rangeDeg);
 int readInt(const mrpt::config::CConfigFileBase& c, const std::string& section,
-            const std::string& key, int def, const TRange& range);
+            const std::string& key, int def, const TRange& range = {});
 bool readBool(const mrpt::config::CConfigFileBase& c, const std::string& section,
               const std::string& key, bool def);
 std::string readString(const mrpt::config::CConfigFileBase& c, const std::string& section,
@@ -70,6 +71,45 @@ std::vector<double> readNumbers(const mrpt::config::CConfigFileBase& c,
 std::string readPath(const mrpt::config::CConfigFileBase& c, const std::string& section,
                      const std::string& key, const std::string& def, bool mustExist);
 /** @} */
+
+/** @name Writing, for saveToConfigFile(): every value reads back to the same bits
+ * (so config_effective.ini reproduces a run byte for byte).
+ * @{ */
+/** Shortest text that reads back to the same double ("0.25", "1e-05", "90"). */
+std::string numberText(double v);
+void writeKey(mrpt::config::CConfigFileBase& c, const std::string& section,
+              const std::string& key, double v);
+void writeKey(mrpt::config::CConfigFileBase& c, const std::string& section,
+              const std::string& key, int v);
+void writeKey(mrpt::config::CConfigFileBase& c, const std::string& section,
+              const std::string& key, bool v);
+void writeKey(mrpt::config::CConfigFileBase& c, const std::string& section,
+              const std::string& key, const std::string& v);
+void writeKey(mrpt::config::CConfigFileBase& c, const std::string& section,
+              const std::string& key, const std::vector<double>& v);
+/** Radians in code, degrees in the file (MRPT convention). */
+void writeDegrees(mrpt::config::CConfigFileBase& c, const std::string& section,
+                  const std::string& key, double rad);
+/** @} */
+
+/** @name Checks for validate(): throw CConfigKeyError "[section] key = 'value': rule".
+ * @{ */
+void checkKey(const std::string& section, const std::string& key, double v,
+              const TRange& range);
+void checkKey(const std::string& section, const std::string& key,
+              const std::vector<double>& v, const TRange& range);
+/** Radians in code, the range in degrees (as in the file). */
+void checkDegrees(const std::string& section, const std::string& key, double rad,
+                  const TRange& rangeDeg);
+/** Throws CConfigKeyError(section, key, value, rule) unless ok. */
+void checkRule(bool ok, const std::string& section, const std::string& key,
+               const std::string& value, const std::string& rule);
+/** @} */
+
+/** config_effective.ini: the header naming the source, then the keys the
+ * options wrote with saveToConfigFile() into `saved`. */
+std::string effectiveConfigText(const std::string& sourcePath,
+                                const mrpt::config::CConfigFileMemory& saved);
 
 /** "file.ini: " for a CIniConfig, "" otherwise: prefix of every message. */
 std::string configWhere(const mrpt::config::CConfigFileBase& c);

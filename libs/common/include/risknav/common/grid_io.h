@@ -1,4 +1,6 @@
 #pragma once
+#include <risknav/common/CValidatedOptions.h>
+
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/maps/COccupancyGridMap2D.h>
 
@@ -8,7 +10,7 @@ namespace risknav::common {
 /** Where a static occupancy map comes from; the `map_*` keys of any app
  * section. PNG/PGM bitmaps need resolution and origin; the other formats
  * carry their own. */
-struct TMapSourceOptions {
+struct TMapSourceOptions : public CValidatedOptions {
     std::string map_file;  ///< .png/.pgm/.bmp, .gridmap(.gz), .yaml (ROS map_server),
                            ///< .simplemap(.gz)
     double map_resolution = 0.05;  ///< [m/px] bitmaps only
@@ -18,9 +20,14 @@ struct TMapSourceOptions {
     double simplemap_resolution =
         0.05;  ///< [m] cell size when building a grid from a .simplemap
 
+    /** The host section the keys were loaded from (for messages). */
+    std::string section = "World";
+
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& section);
-    void validate() const {}
+                            const std::string& section) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                          const std::string& section) const override;
+    void validate() const override;
 };
 
 /** Loads a grid. Bitmaps: P(free) = grey/255 (white free, black occupied),

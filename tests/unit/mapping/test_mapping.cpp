@@ -1,0 +1,129 @@
+#include <risknav/common/CBadInputError.h>
+#include <risknav/mapping/CDistanceField.h>
+#include <risknav/mapping/scan_points.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+using namespace risknav::mapping;
+using mrpt::maps::COccupancyGridMap2D;
+
+namespace {
+// A 3 x 2 m map, 10 cm cells, free except for the given cells.
+COccupancyGridMap2D smallMap(const std::vector<std::pair<int, int>>& obstacles) {
+    COccupancyGridMap2D g(-1.0, 2.0, 0.0, 2.0, 0.1f);
+    g.fill(1.0f);
+    for (const auto& [cx, cy] : obstacles)
+        g.setCell(cx, cy, 0.0f);
+    return g;
+}
+}  // namespace
+
+TEST(ObstacleRule, ThresholdsAndUnknown) {
+    TObstacleRule r;
+    EXPECT_TRUE(r.isObstacle(0.0f));
+    EXPECT_FALSE(r.isObstacle(1.0f));
+    EXPECT_TRUE(r.isObstacle(0.5f));  // unknown, counted as obstacle
+    r.unknown_is_obstacle = false;
+    EXPECT_FALSE(r.isObstacle(0.5f));
+    EXPECT_TRUE(r.isObstacle(0.3f));   // occupancy 0.7 >= 0.65
+    EXPECT_FALSE(r.isObstacle(0.7f));  // occupancy 0.3 <= 0.35: free
+}
+
+TEST(ObstacleRule, ValidateRejectsCrossedThresholds) {
+    TObstacleRule r;
+    r.free_threshold = 0.7;
+    try {
+        r.validate();
+        FAIL() << "no error";
+    } catch (const risknav::common::CConfigKeyError& e) {
+        EXPECT_NE(std::string(e.what()).find("[World] free_threshold"), std::string::npos)
+            << e.what();
+    }
+    r.free_threshold = 0.35;
+    r.occupied_threshold = 2;
+    EXPECT_THROW(r.validate(), risknav::common::CConfigKeyError);
+}
+
+TEST(DistanceField, IndexingEqualsMrpt) {
+    const auto g = smallMap({});
+    CDistanceField f(g, TObstacleRule{});
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> ux(g.getXMin(), g.getXMax() - 1e-9),
+        uy(g.getYMin(), g.getYMax() - 1e-9);
+    for (int i = 0; i < 2000; i++) {
+        const double x = ux(rng), y = uy(rng);
+        ASSERT_EQ(f.x2idx(x), g.x2idx(x)) << x;
+        ASSERT_EQ(f.y2idx(y), g.y2idx(y)) << y;
+    }
+    EXPECT_EQ(f.x2idx(g.getXMin() - 0.01), -1);  // MRPT truncates to 0 here
+}
+
+TEST(DistanceField, ClearanceEqualsBruteForce) {
+    std::mt19937 rng(5);
+    std::vector<std::pair<int, int>> obst;
+    for (int i = 0; i < 12; i++)
+        obst.emplace_back(int(rng() % 30), int(rng() % 20));
+    const auto g = smallMap(obst);
+    for (bool outside : {true, false}) {
+        TObstacleRule rule;
+        rule.outside_is_obstacle = outside;
+        CDistanceField f(g, rule);
+        for (int cy = 0; cy < f.sizeY(); cy++)
+            for (int cx = 0; cx < f.sizeX(); cx++) {
+                double best = std::numeric_limits<double>::infinity();
+                for (int oy = -1; oy <= f.sizeY(); oy++)
+                    for (int ox = -1; ox <= f.sizeX(); ox++) {
+                        const bool in = f.inside(ox, oy);
+                        const bool o = in ? g.getCell(ox, oy) < 0.5f : outside;
+                        if (o)
+                            best = std::min(best, 0.1 * std::hypot(ox - cx, oy - cy));
+                    }
+                ASSERT_NEAR(f.clearance(cx, cy), best, 1e-3) << cx << " " << cy;
+                ASSERT_EQ(f.isObstacle(cx, cy), g.getCell(cx, cy) < 0.5f);
+            }
+        EXPECT_EQ(f.isObstacle(-1, 0), outside);
+        EXPECT_LE(f.obstacleCount(), obst.size());
+    }
+}
+
+TEST(DistanceField, OpenMapIsBoundedByItsOutside) {
+    const auto g = smallMap({});
+    TObstacleRule rule;
+    CDistanceField f(g, rule);
+    // Centre cell (15, 10): the outside ring is 11 cells away (row -1 or 20).
+    EXPECT_NEAR(f.clearance(15, 10), 1.0, 1e-6);
+    EXPECT_EQ(f.clearanceAt(-5, 1), 0.0);
+    rule.outside_is_obstacle = false;
+    CDistanceField open(g, rule);
+    EXPECT_TRUE(std::isinf(open.clearance(15, 10)));
+}
+
+TEST(ScanPoints, RightToLeftAndSensorPose) {
+    mrpt::obs::CObservation2DRangeScan s;
+    s.aperture = M_PI;
+    s.resizeScan(3);
+    for (size_t i = 0; i < 3; i++) {
+        s.setScanRange(i, 2.0f);
+        s.setScanRangeValidity(i, true);
+    }
+    s.setScanRangeValidity(1, false);
+    s.sensorPose = mrpt::poses::CPose3D(0.5, 0.1, 0.3, 0, 0, 0);
+    s.rightToLeft = true;
+    auto p = scanToRobotFrame(s);
+    ASSERT_EQ(p.size(), 2u);
+    EXPECT_NEAR(p[0].x, 0.5, 1e-6);  // ray 0 points right (-90 deg)
+    EXPECT_NEAR(p[0].y, 0.1 - 2.0, 1e-6);
+    EXPECT_NEAR(p[1].y, 0.1 + 2.0, 1e-6);
+    s.rightToLeft = false;
+    p = scanToRobotFrame(s);
+    EXPECT_NEAR(p[0].y, 0.1 + 2.0, 1e-6);  // mirrored: ray 0 points left
+    s.sensorPose = mrpt::poses::CPose3D(0, 0, 0, M_PI / 2, 0, 0);
+    s.rightToLeft = true;
+    p = scanToRobotFrame(s);
+    EXPECT_NEAR(p[0].x, 2.0, 1e-6);  // rotated by the sensor's yaw
+    EXPECT_NEAR(p[0].y, 0.0, 1e-6);
+}
