@@ -1,5 +1,7 @@
+#include <risknav/geometry/graph.h>
+#include <risknav/geometry/homotopy.h>
+#include <risknav/geometry/polyline.h>
 #include <risknav/risk/CGvgRoutes.h>
-#include <risknav/risk/k_shortest_paths.h>
 
 #include <opencv2/imgproc.hpp>
 
@@ -11,6 +13,7 @@
 #include <numeric>
 
 using mrpt::math::TPoint2D;
+using risknav::geometry::TGraphEdge;
 
 namespace risknav::risk {
 namespace {
@@ -196,41 +199,10 @@ long CGvgRoutes::attach(const TPoint2D& p) const {
 }
 
 std::vector<TPoint2D> CGvgRoutes::simplify(const std::vector<TPoint2D>& pts) const {
-    if (pts.size() <= 2)
-        return pts;
-    std::vector<bool> keep(pts.size(), false);
-    keep.front() = keep.back() = true;
-    std::vector<std::pair<size_t, size_t>> stack = {{0, pts.size() - 1}};
-    while (!stack.empty()) {
-        const auto [i, j] = stack.back();
-        stack.pop_back();
-        if (j <= i + 1)
-            continue;
-        const double ax = pts[i].x, ay = pts[i].y, vx = pts[j].x - ax, vy = pts[j].y - ay;
-        const double L = std::hypot(vx, vy);
-        size_t far = i + 1;
-        double farD = -1;
-        for (size_t k = i + 1; k < j; k++) {
-            const double d =
-                L > 0 ? std::abs((pts[k].x - ax) * vy - (pts[k].y - ay) * vx) / L
-                      : std::hypot(pts[k].x - ax, pts[k].y - ay);
-            if (d > farD) {
-                farD = d;
-                far = k;
-            }
-        }
-        if (farD > m_opts.simplify_tolerance ||
-            !m_field.segmentFree(ax, ay, pts[j].x, pts[j].y)) {
-            keep[far] = true;
-            stack.push_back({i, far});
-            stack.push_back({far, j});
-        }
-    }
-    std::vector<TPoint2D> out;
-    for (size_t k = 0; k < pts.size(); k++)
-        if (keep[k])
-            out.push_back(pts[k]);
-    return out;
+    return geometry::simplifyDouglasPeucker(
+        pts, m_opts.simplify_tolerance, [this](const TPoint2D& a, const TPoint2D& b) {
+            return m_field.segmentFree(a.x, a.y, b.x, b.y);
+        });
 }
 
 std::vector<std::vector<TPoint2D>> CGvgRoutes::routes(const TPoint2D& start,
@@ -334,8 +306,8 @@ std::vector<std::vector<TPoint2D>> CGvgRoutes::routes(const TPoint2D& start,
         out.push_back(simplify({start, px(uint32_t(sa)), px(uint32_t(ga)), goal}));
         return out;
     }
-    for (const auto& p : kShortestPaths(rootToNode.size(), edges, src, dst,
-                                        std::min<size_t>(8 * k, 200))) {
+    for (const auto& p : geometry::kShortestPaths(rootToNode.size(), edges, src, dst,
+                                                  std::min<size_t>(8 * k, 200))) {
         std::vector<TPoint2D> pts = {start, px(uint32_t(sa))};
         for (size_t e = 0; e < p.edges.size(); e++) {
             const auto& ch = chains[p.edges[e]];
@@ -364,26 +336,19 @@ std::vector<std::vector<TPoint2D>> CGvgRoutes::routes(const TPoint2D& start,
 
 bool CGvgRoutes::sameWay(const std::vector<TPoint2D>& a,
                          const std::vector<TPoint2D>& b) const {
-    std::vector<cv::Point> poly;
-    for (const auto& p : a)
-        poly.emplace_back(m_field.xToCol(p.x), m_field.yToRow(p.y));
-    for (auto it = b.rbegin(); it != b.rend(); ++it)
-        poly.emplace_back(m_field.xToCol(it->x), m_field.yToRow(it->y));
-    const cv::Rect box =
-        cv::boundingRect(poly) & cv::Rect(0, 0, m_field.sizeX(), m_field.sizeY());
-    if (box.area() == 0)
-        return true;
-    cv::Mat inside(box.height, box.width, CV_8UC1, cv::Scalar(0));
-    for (auto& q : poly)
-        q -= box.tl();
-    cv::fillPoly(inside, std::vector<std::vector<cv::Point>>{poly}, cv::Scalar(1));
+    // The RAW obstacles (not grown by the robot radius): a route may pass
+    // close to an obstacle, only one enclosed between the routes counts.
+    geometry::TObstacleRaster r;
+    r.sizeX = m_field.sizeX();
+    r.sizeY = m_field.sizeY();
+    r.xMin = m_field.xMin();
+    r.yMin = m_field.yMin();
+    r.resolution = m_field.resolution();
     const auto& raw = m_field.rawObstacles();
-    for (int y = 0; y < box.height; y++)
-        for (int x = 0; x < box.width; x++)
-            if (inside.at<uint8_t>(y, x) &&
-                raw[size_t(y + box.y) * m_field.sizeX() + x + box.x])
-                return false;
-    return true;
+    r.isObstacle = [&raw, w = r.sizeX](int cx, int cy) {
+        return raw[size_t(cy) * w + cx] != 0;
+    };
+    return geometry::sameHomotopy(a, b, r);
 }
 
 }  // namespace risknav::risk

@@ -1,3 +1,4 @@
+#include <risknav/geometry/polyline.h>
 #include <risknav/risk/CObstacleField.h>
 
 #include <opencv2/imgproc.hpp>
@@ -166,12 +167,9 @@ TDmax CObstacleField::dMaxBruteForce(double x, double y,
 }
 
 bool CObstacleField::segmentFree(double x0, double y0, double x1, double y1) const {
-    const double len = std::hypot(x1 - x0, y1 - y0);
-    const int n = std::max(1, int(std::ceil(len / (0.5 * m_res))));
-    for (int k = 0; k <= n; k++)
-        if (isObstacleAt(x0 + (x1 - x0) * k / n, y0 + (y1 - y0) * k / n))
-            return false;
-    return true;
+    return geometry::segmentFree(x0, y0, x1, y1, 0.5 * m_res, [this](double x, double y) {
+        return isObstacleAt(x, y);
+    });
 }
 
 double CObstacleField::clearance(double x, double y) const {

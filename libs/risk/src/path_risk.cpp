@@ -24,13 +24,6 @@ double integrateRisk(const std::vector<double>& s, const std::vector<double>& u)
     return U;
 }
 
-double polylineLength(const std::vector<TPoint2D>& p) {
-    double L = 0;
-    for (size_t i = 1; i < p.size(); i++)
-        L += std::hypot(p[i].x - p[i - 1].x, p[i].y - p[i - 1].y);
-    return L;
-}
-
 namespace {
 // Pose covariance state under either error model.
 struct TCovState {

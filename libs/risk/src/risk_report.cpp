@@ -2,6 +2,7 @@
 #include <risknav/common/CMapImage.h>
 #include <risknav/common/CPlotImage.h>
 #include <risknav/common/summary_json.h>
+#include <risknav/geometry/polyline.h>
 #include <risknav/risk/risk_report.h>
 
 #include <chrono>
@@ -12,6 +13,7 @@
 using namespace risknav::common;
 using mrpt::math::TPoint2D;
 using nlohmann::json;
+using risknav::geometry::polylineLength;
 
 namespace risknav::risk {
 namespace {

@@ -1,3 +1,4 @@
+#include <risknav/geometry/polyline.h>
 #include <risknav/risk/path_risk.h>
 
 #include <gtest/gtest.h>
@@ -6,6 +7,7 @@
 
 using namespace risknav::risk;
 using mrpt::math::TPoint2D;
+using risknav::geometry::polylineLength;
 
 namespace {
 // A straight corridor 2 m wide (walls at y = 0 and y = 2), 30 m long.

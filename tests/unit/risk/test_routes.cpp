@@ -1,79 +1,11 @@
+#include <risknav/geometry/polyline.h>
 #include <risknav/risk/CGvgRoutes.h>
-#include <risknav/risk/k_shortest_paths.h>
-#include <risknav/risk/path_risk.h>
 
 #include <gtest/gtest.h>
 
-#include <functional>
-#include <random>
-
 using namespace risknav::risk;
 using mrpt::math::TPoint2D;
-
-namespace {
-// Every simple path (as edge lists) by depth-first search: the reference.
-std::vector<TGraphPath> allSimplePaths(size_t n, const std::vector<TGraphEdge>& edges,
-                                       size_t s, size_t t) {
-    std::vector<TGraphPath> out;
-    std::vector<bool> onPath(n, false);
-    TGraphPath cur;
-    std::function<void(size_t)> dfs = [&](size_t u) {
-        if (u == t) {
-            out.push_back(cur);
-            return;
-        }
-        onPath[u] = true;
-        for (size_t e = 0; e < edges.size(); e++) {
-            if (edges[e].a != u && edges[e].b != u)
-                continue;
-            const size_t v = edges[e].a == u ? edges[e].b : edges[e].a;
-            if (onPath[v])
-                continue;
-            cur.edges.push_back(e);
-            cur.length += edges[e].length;
-            dfs(v);
-            cur.edges.pop_back();
-            cur.length -= edges[e].length;
-        }
-        onPath[u] = false;
-    };
-    dfs(s);
-    std::sort(out.begin(), out.end(), [](const TGraphPath& a, const TGraphPath& b) {
-        return a.length < b.length;
-    });
-    return out;
-}
-}  // namespace
-
-TEST(KShortestPaths, MatchesExhaustiveEnumerationOnRandomMultigraphs) {
-    std::mt19937_64 rng(99);
-    std::uniform_real_distribution<double> len(1, 10);
-    for (int g = 0; g < 30; g++) {
-        const size_t n = 6 + g % 4;
-        std::vector<TGraphEdge> edges;
-        std::uniform_int_distribution<size_t> node(0, n - 1);
-        for (size_t e = 0; e < 2 * n; e++) {
-            const size_t a = node(rng), b = node(rng);
-            if (a != b)
-                edges.push_back(
-                    {a, b, std::round(len(rng) * 8) / 8 + 1e-3 * e});  // distinct lengths
-        }
-        const auto ref = allSimplePaths(n, edges, 0, n - 1);
-        const auto yen = kShortestPaths(n, edges, 0, n - 1, 6);
-        ASSERT_EQ(yen.size(), std::min<size_t>(6, ref.size())) << "graph " << g;
-        for (size_t i = 0; i < yen.size(); i++) {
-            EXPECT_NEAR(yen[i].length, ref[i].length, 1e-9)
-                << "graph " << g << " path " << i;
-            EXPECT_EQ(yen[i].edges, ref[i].edges) << "graph " << g << " path " << i;
-            EXPECT_EQ(yen[i].nodes.front(), 0u);
-            EXPECT_EQ(yen[i].nodes.back(), n - 1);
-        }
-    }
-}
-
-TEST(KShortestPaths, Unreachable) {
-    EXPECT_TRUE(kShortestPaths(4, {{0, 1, 1.0}, {2, 3, 1.0}}, 0, 3, 3).empty());
-}
+using risknav::geometry::polylineLength;
 
 namespace {
 mrpt::maps::COccupancyGridMap2D room(bool island) {

@@ -53,13 +53,15 @@ class CGvgRoutes {
     size_t skeletonCells() const { return m_pixels.size(); }
 
     /** Are two routes with the same ends the same way around the obstacles
-     * (homotopic)? True when the closed loop a + reverse(b) encloses no obstacle cell. */
+     * (homotopic)? True when the closed loop a + reverse(b) encloses no raw
+     * obstacle cell (geometry::sameHomotopy on this field). */
     bool sameWay(const std::vector<mrpt::math::TPoint2D>& a,
                  const std::vector<mrpt::math::TPoint2D>& b) const;
 
   private:
     void bridgeGaps(const cv::Mat& dist);
     long attach(const mrpt::math::TPoint2D& p) const;  // skeleton pixel index or -1
+    // Douglas-Peucker at simplify_tolerance, never across a grown obstacle.
     std::vector<mrpt::math::TPoint2D> simplify(
         const std::vector<mrpt::math::TPoint2D>& pts) const;
     const CObstacleField& m_field;

@@ -63,7 +63,8 @@ class CObstacleField {
     bool isObstacleAt(double x, double y) const {
         return isObstacle(xToCol(x), yToRow(y));
     }
-    /** Is the straight segment free of grown obstacles (sampled at res/2)? */
+    /** Is the straight segment free of grown obstacles (sampled at res/2,
+     * geometry::segmentFree)? */
     bool segmentFree(double x0, double y0, double x1, double y1) const;
     /** Distance [m] from (x, y) to the nearest RAW (not grown) obstacle cell centre. */
     double clearance(double x, double y) const;

@@ -94,6 +94,4 @@ bool routeWithSensingDetours(const std::vector<mrpt::math::TPoint2D>& route,
                              const CObstacleField& field,
                              std::vector<mrpt::math::TPoint2D>& out);
 
-double polylineLength(const std::vector<mrpt::math::TPoint2D>& p);
-
 }  // namespace risknav::risk

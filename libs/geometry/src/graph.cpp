@@ -1,11 +1,11 @@
-#include <risknav/risk/k_shortest_paths.h>
+#include <risknav/geometry/graph.h>
 
 #include <algorithm>
 #include <limits>
 #include <queue>
 #include <set>
 
-namespace risknav::risk {
+namespace risknav::geometry {
 TGraphPath shortestPath(size_t n, const std::vector<TGraphEdge>& edges, size_t source,
                         size_t target, const std::vector<bool>& edgeRemoved,
                         const std::vector<bool>& nodeRemoved) {
@@ -61,6 +61,12 @@ TGraphPath shortestPath(size_t n, const std::vector<TGraphEdge>& edges, size_t s
     return p;
 }
 
+TGraphPath shortestPath(size_t n, const std::vector<TGraphEdge>& edges, size_t source,
+                        size_t target) {
+    return shortestPath(n, edges, source, target, std::vector<bool>(edges.size(), false),
+                        std::vector<bool>(n, false));
+}
+
 std::vector<TGraphPath> kShortestPaths(size_t n, const std::vector<TGraphEdge>& edges,
                                        size_t source, size_t target, size_t k) {
     std::vector<TGraphPath> A;
@@ -114,4 +120,4 @@ std::vector<TGraphPath> kShortestPaths(size_t n, const std::vector<TGraphEdge>& 
     return A;
 }
 
-}  // namespace risknav::risk
+}  // namespace risknav::geometry

@@ -2,12 +2,16 @@
 #include <cstddef>
 #include <vector>
 
-namespace risknav::risk {
+/** Weighted undirected graphs and their shortest paths: shared by the risk
+ * evaluator (GVG candidate routes, M2) and the viewpoint planner (visibility
+ * graph, M4), so it lives below both. */
+namespace risknav::geometry {
 /** An undirected multigraph edge (parallel edges allowed: two corridors
- * between the same junctions are different routes). */
+ * between the same junctions are different routes). A graph is a node count
+ * plus a list of these; an edge's id is its index in the list. */
 struct TGraphEdge {
     size_t a = 0, b = 0;
-    double length = 0;
+    double length = 0;  ///< weight, >= 0
 };
 
 /** A path as the list of edge ids from source to target, with its node sequence. */
@@ -17,18 +21,25 @@ struct TGraphPath {
 };
 
 /** Dijkstra on the undirected multigraph; edges/nodes flagged in the masks are
- * skipped. Returns an empty path (no nodes) when the target is unreachable. */
+ * skipped (Yen's spur searches need that). Returns an empty path (no nodes)
+ * when the target is unreachable. Preconditions (not checked, as in a hot
+ * loop): every node id < nNodes, edgeRemoved.size() == edges.size(),
+ * nodeRemoved.size() == nNodes. */
 TGraphPath shortestPath(size_t nNodes, const std::vector<TGraphEdge>& edges,
                         size_t source, size_t target,
                         const std::vector<bool>& edgeRemoved,
                         const std::vector<bool>& nodeRemoved);
 
+/** Dijkstra on the whole graph (nothing removed). */
+TGraphPath shortestPath(size_t nNodes, const std::vector<TGraphEdge>& edges,
+                        size_t source, size_t target);
+
 /** Yen's algorithm: the k shortest loopless paths from source to target, in
  * increasing length (ties in a deterministic order). Fewer if fewer exist.
- * (Yen 1971; the k-shortest-paths answer Yamashita et al. (M4) ask for, used
- * here for the GVG candidates of Irie et al. (M2).) */
+ * (Yen 1971; the k-shortest-paths answer Yamashita et al. (M4) ask for, also
+ * used for the GVG candidates of Irie et al. (M2).) */
 std::vector<TGraphPath> kShortestPaths(size_t nNodes,
                                        const std::vector<TGraphEdge>& edges,
                                        size_t source, size_t target, size_t k);
 
-}  // namespace risknav::risk
+}  // namespace risknav::geometry
