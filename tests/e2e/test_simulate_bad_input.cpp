@@ -87,7 +87,7 @@ INSTANTIATE_TEST_SUITE_P(
         TCase{"odd_waypoints", "waypoints = 2.0 4.5  28.0 4.5",
               "waypoints = 2.0 4.5  28.0 4.5 3.0", "", "needs a multiple of 2 numbers"},
         TCase{"huge_sigma", "sigma_tread        = 0.001", "sigma_tread        = 0.5", "",
-              "[Odometry] sigma_tread = '0.500000': must be < tread / 3"},
+              "[Odometry] sigma_tread = '0.5': must be < tread / 3"},
         TCase{"bad_choice", "error_model        = systematic",
               "error_model        = random", "",
               "must be one of: systematic, per_step, none"},

@@ -25,17 +25,152 @@ std::vector<TPoint2D> readPath(const mrpt::config::CConfigFileBase& c,
     std::vector<TPoint2D> p;
     for (size_t i = 0; i + 1 < v.size(); i += 2)
         p.emplace_back(v[i], v[i + 1]);
-    for (size_t i = 1; i < p.size(); i++)
-        if (std::hypot(p[i].x - p[i - 1].x, p[i].y - p[i - 1].y) < 1e-6)
-            throwBadKey(c, s, "path", readString(c, s, "path", ""),
-                        "has two equal consecutive points");
     return p;
+}
+
+std::vector<double> flat(const std::vector<TPoint2D>& p) {
+    std::vector<double> v;
+    for (const auto& q : p) {
+        v.push_back(q.x);
+        v.push_back(q.y);
+    }
+    return v;
+}
+
+std::string pathText(const std::vector<TPoint2D>& p) {
+    std::string t;
+    for (double x : flat(p))
+        t += (t.empty() ? "" : " ") + numberText(x);
+    return t;
+}
+
+void checkPath(const std::string& s, const std::vector<TPoint2D>& p) {
+    checkRule(p.size() >= 2, s, "path", pathText(p), "needs at least two points");
+    checkKey(s, "path", flat(p), TRange::closed(-1e6, 1e6, "m"));
+    for (size_t i = 1; i < p.size(); i++)
+        checkRule(std::hypot(p[i].x - p[i - 1].x, p[i].y - p[i - 1].y) >= 1e-6, s, "path",
+                  pathText(p), "has two equal consecutive points");
 }
 }  // namespace
 
 bool CAgentsSim::ownsSection(const std::string& s) {
     return startsWithNumbered(s, "DoorPedestrian") ||
            startsWithNumbered(s, "CorridorWalker") || startsWithNumbered(s, "Clutter");
+}
+
+void CAgentsSim::TDoorPedestrian::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s) {
+    section = s;
+    const auto seg = readNumbers(c, s, "door", {}, TRange::any("m"));
+    if (seg.size() != 4)
+        throw CBadInputError(configWhere(c) + "[" + s +
+                             "] door: needs x1 y1 x2 y2 (the doorway segment)");
+    std::copy(seg.begin(), seg.end(), door);
+    path = readPath(c, s);
+    speed = readDouble(c, s, "speed", speed);
+    radius = readDouble(c, s, "radius", radius);
+    patience = readDouble(c, s, "patience", patience);
+    emergence =
+        readChoice(c, s, "emergence", emergence, {"poisson", "schedule", "trigger"});
+    rate_per_min = readDouble(c, s, "rate_per_min", rate_per_min);
+    schedule = readNumbers(c, s, "schedule", {}, TRange::any("s"));
+    trigger_distance = readDouble(c, s, "trigger_distance", trigger_distance);
+    trigger_probability = readDouble(c, s, "trigger_probability", trigger_probability);
+}
+
+void CAgentsSim::TDoorPedestrian::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                                   const std::string& s) const {
+    writeKey(c, s, "door", std::vector<double>(door, door + 4));
+    writeKey(c, s, "path", flat(path));
+    writeKey(c, s, "speed", speed);
+    writeKey(c, s, "radius", radius);
+    writeKey(c, s, "patience", patience);
+    writeKey(c, s, "emergence", emergence);
+    writeKey(c, s, "rate_per_min", rate_per_min);
+    if (!schedule.empty())
+        writeKey(c, s, "schedule", schedule);
+    writeKey(c, s, "trigger_distance", trigger_distance);
+    writeKey(c, s, "trigger_probability", trigger_probability);
+}
+
+void CAgentsSim::TDoorPedestrian::validate() const {
+    const std::string& s = section;
+    checkKey(s, "door", std::vector<double>(door, door + 4),
+             TRange::closed(-1e6, 1e6, "m"));
+    checkPath(s, path);
+    checkKey(s, "speed", speed, TRange::positive("m/s"));
+    checkKey(s, "radius", radius, TRange::closed(0.05, 2, "m"));
+    checkKey(s, "patience", patience, TRange::positive("s"));
+    checkRule(emergence == "poisson" || emergence == "schedule" || emergence == "trigger",
+              s, "emergence", emergence, "must be one of: poisson, schedule, trigger");
+    checkKey(s, "rate_per_min", rate_per_min, TRange::positive("1/min"));
+    checkKey(s, "schedule", schedule, TRange::nonNegative("s"));
+    std::string sched;
+    for (double x : schedule)
+        sched += (sched.empty() ? "" : " ") + numberText(x);
+    checkRule(std::is_sorted(schedule.begin(), schedule.end()), s, "schedule", sched,
+              "times must be increasing");
+    checkRule(emergence != "schedule" || !schedule.empty(), s, "schedule", sched,
+              "required when emergence = schedule");
+    checkKey(s, "trigger_distance", trigger_distance, TRange::positive("m"));
+    checkKey(s, "trigger_probability", trigger_probability, TRange::closed(0, 1));
+}
+
+void CAgentsSim::TWalker::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                             const std::string& s) {
+    section = s;
+    path = readPath(c, s);
+    speed_min = readDouble(c, s, "speed_min", speed_min);
+    speed_max = readDouble(c, s, "speed_max", speed_max);
+    radius = readDouble(c, s, "radius", radius);
+    period = readDouble(c, s, "period", period);
+    phase = readDouble(c, s, "phase", phase);
+    patience = readDouble(c, s, "patience", patience);
+}
+
+void CAgentsSim::TWalker::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                           const std::string& s) const {
+    writeKey(c, s, "path", flat(path));
+    writeKey(c, s, "speed_min", speed_min);
+    writeKey(c, s, "speed_max", speed_max);
+    writeKey(c, s, "radius", radius);
+    writeKey(c, s, "period", period);
+    writeKey(c, s, "phase", phase);
+    writeKey(c, s, "patience", patience);
+}
+
+void CAgentsSim::TWalker::validate() const {
+    const std::string& s = section;
+    checkPath(s, path);
+    checkKey(s, "speed_min", speed_min, TRange::positive("m/s"));
+    checkKey(s, "speed_max", speed_max, TRange::positive("m/s"));
+    checkRule(speed_max >= speed_min, s, "speed_max", numberText(speed_max),
+              "must be >= speed_min");
+    checkKey(s, "radius", radius, TRange::closed(0.05, 2, "m"));
+    checkKey(s, "period", period, TRange::positive("s"));
+    checkKey(s, "phase", phase, TRange::nonNegative("s"));
+    checkKey(s, "patience", patience, TRange::positive("s"));
+}
+
+void CAgentsSim::TClutter::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                              const std::string& s) {
+    section = s;
+    x = requireDouble(c, s, "x", TRange::any("m"));
+    y = requireDouble(c, s, "y", TRange::any("m"));
+    radius = readDouble(c, s, "radius", radius);
+}
+
+void CAgentsSim::TClutter::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                            const std::string& s) const {
+    writeKey(c, s, "x", x);
+    writeKey(c, s, "y", y);
+    writeKey(c, s, "radius", radius);
+}
+
+void CAgentsSim::TClutter::validate() const {
+    checkKey(section, "x", x, TRange::closed(-1e6, 1e6, "m"));
+    checkKey(section, "y", y, TRange::closed(-1e6, 1e6, "m"));
+    checkKey(section, "radius", radius, TRange::closed(0.02, 5, "m"));
 }
 
 void CAgentsSim::loadFromConfigFile(const mrpt::config::CConfigFileBase& c) {
@@ -46,59 +181,22 @@ void CAgentsSim::loadFromConfigFile(const mrpt::config::CConfigFileBase& c) {
     c.getAllSections(secs);
     std::sort(secs.begin(), secs.end());
     for (const auto& s : secs) {
-        if (startsWithNumbered(s, "DoorPedestrian")) {
-            TDoorPedestrian d;
-            d.section = s;
-            const auto seg = readNumbers(c, s, "door", {}, TRange::any("m"), 4);
-            if (seg.size() != 4)
-                throw CBadInputError(configWhere(c) + "[" + s +
-                                     "] door: needs x1 y1 x2 y2 (the doorway segment)");
-            std::copy(seg.begin(), seg.end(), d.door);
-            d.path = readPath(c, s);
-            d.speed = readDouble(c, s, "speed", d.speed, TRange::positive("m/s"));
-            d.radius = readDouble(c, s, "radius", d.radius, TRange::closed(0.05, 2, "m"));
-            d.patience = readDouble(c, s, "patience", d.patience, TRange::positive("s"));
-            d.emergence = readChoice(c, s, "emergence", d.emergence,
-                                     {"poisson", "schedule", "trigger"});
-            d.rate_per_min = readDouble(c, s, "rate_per_min", d.rate_per_min,
-                                        TRange::positive("1/min"));
-            d.schedule = readNumbers(c, s, "schedule", {}, TRange::nonNegative("s"));
-            if (!std::is_sorted(d.schedule.begin(), d.schedule.end()))
-                throwBadKey(c, s, "schedule", readString(c, s, "schedule", ""),
-                            "times must be increasing");
-            if (d.emergence == "schedule" && d.schedule.empty())
-                throw CBadInputError(configWhere(c) + "[" + s +
-                                     "] schedule: required when emergence = schedule");
-            d.trigger_distance = readDouble(c, s, "trigger_distance", d.trigger_distance,
-                                            TRange::positive("m"));
-            d.trigger_probability = readDouble(
-                c, s, "trigger_probability", d.trigger_probability, TRange::closed(0, 1));
-            doors.push_back(d);
-        } else if (startsWithNumbered(s, "CorridorWalker")) {
-            TWalker w;
-            w.section = s;
-            w.path = readPath(c, s);
-            w.speed_min =
-                readDouble(c, s, "speed_min", w.speed_min, TRange::positive("m/s"));
-            w.speed_max =
-                readDouble(c, s, "speed_max", w.speed_max, TRange::positive("m/s"));
-            if (w.speed_max < w.speed_min)
-                throwBadKey(c, s, "speed_max", std::to_string(w.speed_max),
-                            "must be >= speed_min");
-            w.radius = readDouble(c, s, "radius", w.radius, TRange::closed(0.05, 2, "m"));
-            w.period = readDouble(c, s, "period", w.period, TRange::positive("s"));
-            w.phase = readDouble(c, s, "phase", w.phase, TRange::nonNegative("s"));
-            w.patience = readDouble(c, s, "patience", w.patience, TRange::positive("s"));
-            walkers.push_back(w);
-        } else if (startsWithNumbered(s, "Clutter")) {
-            TClutter k;
-            k.section = s;
-            k.x = requireDouble(c, s, "x", TRange::any("m"));
-            k.y = requireDouble(c, s, "y", TRange::any("m"));
-            k.radius = readDouble(c, s, "radius", k.radius, TRange::closed(0.02, 5, "m"));
-            clutter.push_back(k);
-        }
+        if (startsWithNumbered(s, "DoorPedestrian"))
+            loadOptions(doors.emplace_back(), c, s);
+        else if (startsWithNumbered(s, "CorridorWalker"))
+            loadOptions(walkers.emplace_back(), c, s);
+        else if (startsWithNumbered(s, "Clutter"))
+            loadOptions(clutter.emplace_back(), c, s);
     }
+}
+
+void CAgentsSim::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
+    for (const auto& d : doors)
+        d.saveToConfigFile(c, d.section);
+    for (const auto& w : walkers)
+        w.saveToConfigFile(c, w.section);
+    for (const auto& k : clutter)
+        k.saveToConfigFile(c, k.section);
 }
 
 void CAgentsSim::reset(uint64_t seed) {

@@ -4,31 +4,8 @@
 using namespace risknav::common;
 
 namespace risknav::sim {
-void COdometrySim::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                                const std::string& s) {
-    wheel_radius =
-        readDouble(c, s, "wheel_radius", wheel_radius, TRange::closed(0.005, 2, "m"));
-    tread = readDouble(c, s, "tread", tread, TRange::closed(0.02, 5, "m"));
-    sigma_wheel_radius = readDouble(c, s, "sigma_wheel_radius", sigma_wheel_radius,
-                                    TRange::nonNegative("m"));
-    sigma_tread = readDouble(c, s, "sigma_tread", sigma_tread, TRange::nonNegative("m"));
-    error_model =
-        readChoice(c, s, "error_model", error_model, {"systematic", "per_step", "none"});
-}
-
-void COdometrySim::TOptions::validate() const {
-    // A 3-sigma error must not flip the sign of a radius or of the tread.
-    if (3 * sigma_wheel_radius >= wheel_radius)
-        throw CConfigKeyError("Odometry", "sigma_wheel_radius",
-                              std::to_string(sigma_wheel_radius),
-                              "must be < wheel_radius / 3");
-    if (3 * sigma_tread >= tread)
-        throw CConfigKeyError("Odometry", "sigma_tread", std::to_string(sigma_tread),
-                              "must be < tread / 3");
-}
-
 TWheelGeometry COdometrySim::nominalGeometry() const {
-    return {options.wheel_radius, options.wheel_radius, options.tread};
+    return options.nominal();
 }
 
 TWheelGeometry COdometrySim::drawGeometry() {
@@ -36,8 +13,8 @@ TWheelGeometry COdometrySim::drawGeometry() {
         return nominalGeometry();
     std::normal_distribution<double> n01(0.0, 1.0);
     TWheelGeometry g;
-    g.radiusL = options.wheel_radius + options.sigma_wheel_radius * n01(m_rng);
-    g.radiusR = options.wheel_radius + options.sigma_wheel_radius * n01(m_rng);
+    g.radiusL = options.wheel_radius_l + options.sigma_wheel_radius_l * n01(m_rng);
+    g.radiusR = options.wheel_radius_r + options.sigma_wheel_radius_r * n01(m_rng);
     g.tread = options.tread + options.sigma_tread * n01(m_rng);
     return g;
 }

@@ -11,20 +11,50 @@ using namespace risknav::common;
 namespace risknav::sim {
 void CRangeSensorSim::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                                    const std::string& s) {
+    section = s;
     enabled = readBool(c, s, "enabled", enabled);
     label = readString(c, s, "label", label);
-    fov_deg = readDouble(c, s, "fov_deg", fov_deg, {0, 360, true, false, "deg"});
-    beams = readInt(c, s, "beams", beams, TRange::closed(2, 10000));
-    max_range = readDouble(c, s, "max_range", max_range, TRange::closed(0.1, 200, "m"));
-    noise_std = readDouble(c, s, "noise_std", noise_std, TRange::closed(0, 1, "m"));
-    dropout_probability = readDouble(c, s, "dropout_probability", dropout_probability,
-                                     {0, 1, false, true, ""});
-    frame_decimation =
-        readInt(c, s, "frame_decimation", frame_decimation, TRange::closed(1, 1000));
-    x = readDouble(c, s, "x", x, TRange::closed(-5, 5, "m"));
-    y = readDouble(c, s, "y", y, TRange::closed(-5, 5, "m"));
-    z = readDouble(c, s, "z", z, TRange::closed(-5, 5, "m"));
-    yaw_deg = readDouble(c, s, "yaw_deg", yaw_deg, TRange::closed(-180, 180, "deg"));
+    fov_deg = readDouble(c, s, "fov_deg", fov_deg);
+    beams = readInt(c, s, "beams", beams);
+    max_range = readDouble(c, s, "max_range", max_range);
+    noise_std = readDouble(c, s, "noise_std", noise_std);
+    dropout_probability = readDouble(c, s, "dropout_probability", dropout_probability);
+    frame_decimation = readInt(c, s, "frame_decimation", frame_decimation);
+    x = readDouble(c, s, "x", x);
+    y = readDouble(c, s, "y", y);
+    z = readDouble(c, s, "z", z);
+    yaw_deg = readDouble(c, s, "yaw_deg", yaw_deg);
+}
+
+void CRangeSensorSim::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                                 const std::string& s) const {
+    writeKey(c, s, "enabled", enabled);
+    writeKey(c, s, "label", label);
+    writeKey(c, s, "fov_deg", fov_deg);
+    writeKey(c, s, "beams", beams);
+    writeKey(c, s, "max_range", max_range);
+    writeKey(c, s, "noise_std", noise_std);
+    writeKey(c, s, "dropout_probability", dropout_probability);
+    writeKey(c, s, "frame_decimation", frame_decimation);
+    writeKey(c, s, "x", x);
+    writeKey(c, s, "y", y);
+    writeKey(c, s, "z", z);
+    writeKey(c, s, "yaw_deg", yaw_deg);
+}
+
+void CRangeSensorSim::TOptions::validate() const {
+    const std::string& s = section;
+    checkRule(!label.empty(), s, "label", label, "must not be empty");
+    checkKey(s, "fov_deg", fov_deg, {0, 360, true, false, "deg"});
+    checkKey(s, "beams", beams, TRange::closed(2, 10000));
+    checkKey(s, "max_range", max_range, TRange::closed(0.1, 200, "m"));
+    checkKey(s, "noise_std", noise_std, TRange::closed(0, 1, "m"));
+    checkKey(s, "dropout_probability", dropout_probability, {0, 1, false, true, ""});
+    checkKey(s, "frame_decimation", frame_decimation, TRange::closed(1, 1000));
+    checkKey(s, "x", x, TRange::closed(-5, 5, "m"));
+    checkKey(s, "y", y, TRange::closed(-5, 5, "m"));
+    checkKey(s, "z", z, TRange::closed(-5, 5, "m"));
+    checkKey(s, "yaw_deg", yaw_deg, TRange::closed(-180, 180, "deg"));
 }
 
 mrpt::obs::CObservation2DRangeScan::Ptr CRangeSensorSim::simulate(

@@ -42,7 +42,7 @@ TDrift monteCarlo(const std::string& model, double sigmaR, int runs) {
     for (int r = 0; r < runs; r++) {
         COdometrySim o;
         o.options.error_model = model;
-        o.options.sigma_wheel_radius = sigmaR;
+        o.options.sigma_wheel_radius_l = o.options.sigma_wheel_radius_r = sigmaR;
         o.options.sigma_tread = 0.001;
         o.reset({0, 0, 0}, 1000 + r);
         for (int k = 0; k < 200; k++)

@@ -1,4 +1,5 @@
 #pragma once
+#include <risknav/common/CValidatedOptions.h>
 #include <risknav/sim/range_geometry.h>
 
 #include <mrpt/config/CConfigFileBase.h>
@@ -32,7 +33,7 @@ struct TAgentEvent {
  * next step would touch the robot (give up after `patience` s). */
 class CAgentsSim {
   public:
-    struct TDoorPedestrian {
+    struct TDoorPedestrian : public common::CValidatedOptions {
         std::string section;
         double door[4] = {0, 0, 0, 0};           ///< x1 y1 x2 y2 [m]
         std::vector<mrpt::math::TPoint2D> path;  ///< from the doorway into the corridor
@@ -44,24 +45,42 @@ class CAgentsSim {
         mrpt::math::TPoint2D doorMid() const {
             return {0.5 * (door[0] + door[2]), 0.5 * (door[1] + door[3])};
         }
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                const std::string& s) override;
+        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                              const std::string& s) const override;
+        void validate() const override;
     };
-    struct TWalker {
+    struct TWalker : public common::CValidatedOptions {
         std::string section;
         std::vector<mrpt::math::TPoint2D> path;
         double speed_min = 1.6, speed_max = 2.0, radius = 0.25, period = 30.0,
                phase = 0.0, patience = 10.0;
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                const std::string& s) override;
+        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                              const std::string& s) const override;
+        void validate() const override;
     };
-    struct TClutter {
+    struct TClutter : public common::CValidatedOptions {
         std::string section;
         double x = 0, y = 0, radius = 0.3;
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                const std::string& s) override;
+        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                              const std::string& s) const override;
+        void validate() const override;
     };
 
     std::vector<TDoorPedestrian> doors;
     std::vector<TWalker> walkers;
     std::vector<TClutter> clutter;
 
-    /** Reads every [DoorPedestrianN], [CorridorWalkerN] and [ClutterN] section. */
+    /** Reads (and validates) every [DoorPedestrianN], [CorridorWalkerN] and
+     * [ClutterN] section. */
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& c);
+    /** Writes every person and clutter section back (config_effective.ini). */
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c) const;
     /** Section names this class owns (for unknown-section checks). */
     static bool ownsSection(const std::string& section);
 

@@ -1,4 +1,5 @@
 #pragma once
+#include <risknav/common/TOdometryOptions.h>
 #include <risknav/sim/odometry_model.h>
 
 #include <mrpt/config/CConfigFileBase.h>
@@ -22,17 +23,8 @@ namespace risknav::sim {
  *  - none: perfect odometry. */
 class COdometrySim {
   public:
-    struct TOptions {
-        double wheel_radius = 0.063;             ///< [m] nominal, both wheels
-        double tread = 0.399;                    ///< [m] nominal wheel separation
-        double sigma_wheel_radius = 0.001;       ///< [m] std. dev. of each wheel radius
-        double sigma_tread = 0.001;              ///< [m] std. dev. of the tread
-        std::string error_model = "systematic";  ///< systematic | per_step | none
-
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& s);
-        void validate() const;
-    } options;
+    /** The [Odometry] section: the shared robot schema. */
+    common::TOdometryOptions options;
 
     /** Draws the systematic errors; call after setting options. */
     void reset(const mrpt::math::TPose2D& start, uint64_t seed);

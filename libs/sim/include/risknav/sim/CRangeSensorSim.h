@@ -1,4 +1,5 @@
 #pragma once
+#include <risknav/common/CValidatedOptions.h>
 #include <risknav/sim/range_geometry.h>
 
 #include <mrpt/config/CConfigFileBase.h>
@@ -19,7 +20,8 @@ namespace risknav::sim {
  * (MRPT ray order: -fov/2 .. +fov/2, right to left). */
 class CRangeSensorSim {
   public:
-    struct TOptions {
+    struct TOptions : public common::CValidatedOptions {
+        std::string section = "Laser";  ///< the section loaded from (for messages)
         bool enabled = true;
         std::string label = "LASER";
         double fov_deg = 180;            ///< [deg] (0, 360]
@@ -33,8 +35,10 @@ class CRangeSensorSim {
         double yaw_deg = 0;                ///< [deg] mounting yaw
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& s);
-        void validate() const {}
+                                const std::string& s) override;
+        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                              const std::string& s) const override;
+        void validate() const override;
     } options;
 
     /** One scan from the robot pose at timestamp t. */

@@ -2,31 +2,31 @@
 #include <risknav/common/CAppRunner.h>
 #include <risknav/common/CIniConfig.h>
 #include <risknav/common/COutputDir.h>
-#include <risknav/common/grid_io.h>
-#include <risknav/sim/CAgentsSim.h>
-#include <risknav/sim/COdometrySim.h>
-#include <risknav/sim/CRangeSensorSim.h>
+#include <risknav/common/CValidatedOptions.h>
 #include <risknav/sim/CRouteFollower.h>
-
-#include <mrpt/maps/COccupancyGridMap2D.h>
+#include <risknav/sim/CSafetyMonitor.h>
+#include <risknav/sim/CSimWorld.h>
+#include <risknav/sim/CStoppingRule.h>
 
 #include <nlohmann/json.hpp>
-#include <opencv2/core.hpp>
 
 #include <cstdint>
 #include <optional>
 #include <string>
 
 namespace risknav::sim {
-/** A world (static map + people + clutter) and a differential-drive robot
- * that drives a route through it, logged as an MRPT rawlog.
+/** risknav-simulate's loop: a robot follows a route (CRouteFollower) through a
+ * steppable world (CSimWorld) under the stopping rule (CStoppingRule); every
+ * frame period the world's scans and the odometry increment go to an MRPT
+ * rawlog; a CSafetyMonitor counts collisions and near misses.
  *
- * Config sections: [Simulation] [World] [Robot] [Odometry] [Route] [Laser]
- * [RangeSensor2] [DoorPedestrianN] [CorridorWalkerN] [ClutterN]; every key is
- * documented in config/risknav-simulate.ini. */
+ * Config sections: [Simulation] [Route] [StoppingRule] and the world's ([World]
+ * [Robot] [Odometry] [Laser] [RangeSensor2] [DoorPedestrianN]
+ * [CorridorWalkerN] [ClutterN]); every key is documented in
+ * config/risknav-simulate.ini. */
 class CWorldSimulator {
   public:
-    struct TSimulationOptions {
+    struct TSimulationOptions : public common::CValidatedOptions {
         double sim_dt = 0.05;  ///< [s] physics / control step
         double frame_rate_hz =
             5.0;  ///< [Hz] one rawlog frame (odometry + scans) per period
@@ -34,45 +34,29 @@ class CWorldSimulator {
             3600;  ///< [s] stop (status "timeout") if the route is not done
         uint64_t seed = 1;
         double start_time =
-            1.6e9;  ///< [s] UNIX time of the first frame (fixed: reproducible logs)
-        double obstacle_threshold = 0.5;  ///< cells with P(free) below this are obstacles
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& s);
-        void validate() const;
-    };
-    struct TRobotOptions {
-        double radius = 0.25;         ///< [m] robot disc
-        double max_v = 0.8;           ///< [m/s]
-        double max_w_deg = 90;        ///< [deg/s]
-        double accel = 1.0;           ///< [m/s^2]
-        double decel = 1.0;           ///< [m/s^2] braking
-        double w_accel_deg = 180;     ///< [deg/s^2]
-        bool stop_enabled = true;     ///< stop for obstacles within the stopping distance
-        double stop_t_delay = 0.9;    ///< [s] detection delay of d_stop (PAPER_NOTES M3)
-        double stop_margin = 0.1;     ///< [m] beta: extra distance added to d_stop
-        double lateral_margin = 0.1;  ///< [m] swept corridor half-width = radius + this
+            1.6e9;  ///< [s] UNIX time of the first frame (reproducible logs)
         double near_miss_distance =
             0.2;  ///< [m] gap below which a pass counts as near miss
+
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& s);
-        void validate() const {}
+                                const std::string& s) override;
+        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                              const std::string& s) const override;
+        void validate() const override;
     };
 
     TSimulationOptions simulation;
-    TRobotOptions robot;
-    common::TMapSourceOptions world;
-    COdometrySim odometry;
+    CSimWorld world;
     CRouteFollower route;
-    CRangeSensorSim laser, range2;
-    CAgentsSim agents;
-
-    CWorldSimulator();
+    CStoppingRule stopRule;
 
     /** Loads every section, the map, and checks the route and agents against
      * the map (start inside an obstacle, a route through a wall, paths off
      * the map): throws CBadInputError before any output is written. */
     void loadFromConfigFile(const common::CIniConfig& c,
                             std::optional<uint64_t> seedOverride);
+    /** Every key of every section with the value this run uses. */
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c) const;
 
     /** Runs to the end of the route (or duration_max) and writes
      * simulation.rawlog, groundtruth.txt, odometry.txt, agent_events.csv,
@@ -80,15 +64,16 @@ class CWorldSimulator {
      * the caller commits). Returns the summary (without the app header). */
     nlohmann::json run(common::COutputDir& out, bool quiet);
 
-    const mrpt::maps::COccupancyGridMap2D& grid() const { return m_grid; }
-    /** Distance [m] from (x, y) to the nearest obstacle cell (0 inside one or off the
-     * map). */
-    double clearance(double x, double y) const;
+    const mrpt::maps::COccupancyGridMap2D& grid() const { return world.grid(); }
 
   private:
+    struct TRun;  // the state of one run (files, tracks, counters)
     void checkAgainstMap(const common::CIniConfig& c) const;
-    mrpt::maps::COccupancyGridMap2D m_grid;
-    cv::Mat m_clearance;  // CV_32F, row = cy, metres
+    void recordFrame(TRun& r);
+    void controlStep(TRun& r);
+    void writeEventTables(const TRun& r, common::COutputDir& out) const;
+    void drawWorld(const TRun& r, const std::string& path) const;
+    nlohmann::json summary(const TRun& r, common::COutputDir& out) const;
 };
 
 /** The risknav-simulate app body (apps/ only parse the CLI). */

@@ -1,0 +1,112 @@
+#pragma once
+#include <risknav/common/TRobotOptions.h>
+#include <risknav/common/grid_io.h>
+#include <risknav/mapping/CDistanceField.h>
+#include <risknav/mapping/TObstacleRule.h>
+#include <risknav/sim/CAgentsSim.h>
+#include <risknav/sim/COdometrySim.h>
+#include <risknav/sim/CRangeSensorSim.h>
+
+#include <mrpt/kinematics/CVehicleSimul_DiffDriven.h>
+#include <mrpt/maps/COccupancyGridMap2D.h>
+#include <mrpt/math/TPose2D.h>
+#include <mrpt/math/TTwist2D.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+namespace risknav::sim {
+/** A steppable world: a static occupancy map, the people and clutter the map
+ * does not show, and a differential-drive robot (MRPT's
+ * CVehicleSimul_DiffDriven) with acceleration limits, wheel odometry with the
+ * errors of Irie et al. and range sensors. A controller (route follower,
+ * speed controller, MRPT's reactive navigator through CSimRobotInterface)
+ * commands a velocity, step() advances physics, odometry and people, sense()
+ * returns this instant's scans.
+ *
+ * Sections: [World] (map source + obstacle rule), [Robot], [Odometry],
+ * [Laser], [RangeSensor2], [DoorPedestrianN], [CorridorWalkerN], [ClutterN];
+ * keys documented in config/risknav-simulate.ini. */
+class CSimWorld {
+  public:
+    common::TMapSourceOptions mapSource;  ///< [World]
+    mapping::TObstacleRule
+        obstacleRule;             ///< [World]: collisions, clearance, route checks
+    common::TRobotOptions robot;  ///< [Robot]
+    COdometrySim odometry;        ///< [Odometry]
+    CRangeSensorSim laser;        ///< [Laser]: the main sensor, every sense()
+    CRangeSensorSim range2;       ///< [RangeSensor2]: optional, decimated
+    CAgentsSim agents;
+
+    /** The scans of one instant; range2 is null when it is off or not due. */
+    struct TScans {
+        mrpt::obs::CObservation2DRangeScan::Ptr laser, range2;
+    };
+
+    CSimWorld();
+
+    /** Loads and validates the sections above and the map. Does not check for
+     * unknown sections or keys (the app does, knowing its other sections). */
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c);
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c) const;
+    /** Sets the map directly (from code); validates the options. */
+    void setMap(const mrpt::maps::COccupancyGridMap2D& grid);
+
+    /** Puts the robot at `start` at rest, draws the odometry errors and
+     * restarts people and sensor noise from independent streams of `seed`.
+     * startTime: UNIX time [s] of time() = 0 (scan timestamps). */
+    void reset(const mrpt::math::TPose2D& start, uint64_t seed, double startTime = 0);
+
+    /** The commanded velocity [m/s, rad/s], clamped to max_v / max_w; the
+     * robot follows it within its acceleration limits. */
+    void command(double v, double w);
+    /** Advances the world by dt [s] under the current command. */
+    void step(double dt);
+    void step(double v, double w, double dt) {
+        command(v, w);
+        step(dt);
+    }
+    /** The scans of this instant (laser; range2 every frame_decimation-th call). */
+    TScans sense();
+
+    double time() const { return m_base + m_count * m_dt; }
+    mrpt::Clock::time_point timestamp() const;
+    mrpt::math::TPose2D truePose() const { return m_vehicle.getCurrentGTPose(); }
+    mrpt::math::TPose2D odometricPose() const { return odometry.pose(); }
+    /** Current forward speed and turn rate (after the acceleration limits). */
+    double speed() const { return m_v; }
+    /** The commanded forward speed (after clamping to max_v). */
+    double commandedSpeed() const { return m_vCmd; }
+    double turnRate() const { return m_w; }
+    /** Global-frame velocity of the robot (MRPT convention). */
+    mrpt::math::TTwist2D velocity() const { return m_vehicle.getCurrentGTVel(); }
+
+    const mrpt::maps::COccupancyGridMap2D& grid() const { return m_grid; }
+    const risknav::mapping::CDistanceField& distanceField() const { return m_field; }
+    /** Distance [m] from (x, y) to the nearest map obstacle (0 inside one or off the
+     * map). */
+    double clearance(double x, double y) const { return m_field.clearanceAt(x, y); }
+    /** People events since reset (emerge, spawn, leave, give_up). */
+    const std::vector<TAgentEvent>& agentEvents() const { return m_agentEvents; }
+    size_t range2Scans() const { return m_range2Scans; }
+    mrpt::kinematics::CVehicleSimul_DiffDriven& vehicle() { return m_vehicle; }
+
+  private:
+    void buildField();
+    mrpt::maps::COccupancyGridMap2D m_grid;
+    risknav::mapping::CDistanceField m_field;
+    mrpt::kinematics::CVehicleSimul_DiffDriven m_vehicle;
+    std::mt19937_64 m_rngLaser, m_rngRange2;
+    std::vector<TAgentEvent> m_agentEvents;
+    double m_v = 0, m_w = 0, m_vCmd = 0, m_wCmd = 0;
+    double m_startTime = 0;
+    // time() = m_base + m_count * m_dt: equal to k * dt for k steps of one dt
+    // (bit for bit, as the rawlog timestamps have always been).
+    double m_base = 0, m_dt = 0;
+    long m_count = 0;
+    size_t m_senses = 0, m_range2Scans = 0;
+};
+
+}  // namespace risknav::sim

@@ -1,0 +1,143 @@
+#include <risknav/common/CBadInputError.h>
+#include <risknav/common/config_read.h>
+#include <risknav/sim/CSimWorld.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace risknav::common;
+
+namespace risknav::sim {
+namespace {
+// Independent random streams per source, so that adding a sensor does not
+// change the people's behaviour (and vice versa).
+uint64_t streamSeed(uint64_t seed, uint64_t stream) {
+    uint64_t z = seed + 0x9E3779B97F4A7C15ull * (stream + 1);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+}  // namespace
+
+CSimWorld::CSimWorld() {
+    range2.options.section = "RangeSensor2";
+    range2.options.enabled = false;
+    range2.options.label = "RANGE2";
+    range2.options.fov_deg = 360;
+    range2.options.beams = 72;
+    range2.options.max_range = 5.0;
+    range2.options.noise_std = 0.05;
+    range2.options.dropout_probability = 0.2;
+    range2.options.x = 0.0;
+    range2.options.z = 0.5;
+}
+
+void CSimWorld::loadFromConfigFile(const mrpt::config::CConfigFileBase& c) {
+    loadOptions(mapSource, c, "World");
+    loadOptions(obstacleRule, c, "World");
+    loadOptions(robot, c, "Robot");
+    loadOptions(odometry.options, c, "Odometry");
+    loadOptions(laser.options, c, "Laser");
+    loadOptions(range2.options, c, "RangeSensor2");
+    if (laser.options.frame_decimation != 1)
+        throw CBadInputError(
+            configWhere(c) +
+            "[Laser] frame_decimation must be 1: the main laser defines the frames");
+    if (!laser.options.enabled)
+        throw CBadInputError(configWhere(c) +
+                             "[Laser] enabled = false: the main laser defines the "
+                             "frames and cannot be off");
+    agents.loadFromConfigFile(c);
+    m_grid = loadOccupancyGrid(mapSource);
+    buildField();
+}
+
+void CSimWorld::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
+    mapSource.saveToConfigFile(c, "World");
+    obstacleRule.saveToConfigFile(c, "World");
+    robot.saveToConfigFile(c, "Robot");
+    odometry.options.saveToConfigFile(c, "Odometry");
+    laser.options.saveToConfigFile(c, "Laser");
+    range2.options.saveToConfigFile(c, "RangeSensor2");
+    agents.saveToConfigFile(c);
+}
+
+void CSimWorld::setMap(const mrpt::maps::COccupancyGridMap2D& grid) {
+    obstacleRule.validate();
+    robot.validate();
+    odometry.options.validate();
+    laser.options.validate();
+    range2.options.validate();
+    m_grid = grid;
+    buildField();
+}
+
+void CSimWorld::buildField() {
+    m_field = mapping::CDistanceField(m_grid, obstacleRule);
+    if (m_field.freeCount() == 0)
+        throw CBadInputError(mapSource.map_file + ": the map has no free cell");
+}
+
+void CSimWorld::reset(const mrpt::math::TPose2D& start, uint64_t seed, double startTime) {
+    m_vehicle = mrpt::kinematics::CVehicleSimul_DiffDriven();
+    m_vehicle.setCurrentGTPose(start);
+    odometry.reset(start, streamSeed(seed, 1));
+    agents.reset(streamSeed(seed, 2));
+    m_rngLaser.seed(streamSeed(seed, 3));
+    m_rngRange2.seed(streamSeed(seed, 4));
+    m_agentEvents.clear();
+    m_v = m_w = m_vCmd = m_wCmd = 0;
+    m_startTime = startTime;
+    m_base = m_dt = 0;
+    m_count = 0;
+    m_senses = m_range2Scans = 0;
+}
+
+mrpt::Clock::time_point CSimWorld::timestamp() const {
+    return mrpt::Clock::fromDouble(m_startTime + time());
+}
+
+void CSimWorld::command(double v, double w) {
+    const double maxW = robot.max_w_deg * M_PI / 180.0;
+    m_vCmd = std::clamp(v, -robot.max_v, robot.max_v);
+    m_wCmd = std::clamp(w, -maxW, maxW);
+}
+
+void CSimWorld::step(double dt) {
+    const double t0 = time();
+    const double wAcc = robot.w_accel_deg * M_PI / 180.0;
+    m_v += std::clamp(m_vCmd - m_v, -robot.decel * dt, robot.accel * dt);
+    m_w += std::clamp(m_wCmd - m_w, -wAcc * dt, wAcc * dt);
+    if (std::abs(m_v) < 1e-9)
+        m_v = 0;
+    if (std::abs(m_w) < 1e-9)
+        m_w = 0;
+    m_vehicle.movementCommand(m_v, m_w);
+    m_vehicle.simulateOneTimeStep(dt);
+    const auto tw = m_vehicle.getCurrentGTVelLocal();
+    odometry.step(tw.vx, tw.omega, dt);
+    agents.step(t0 + dt, dt, truePose(), robot.radius, m_agentEvents);
+    if (dt != m_dt) {  // a new step length: restart the count from here
+        m_base = t0;
+        m_dt = dt;
+        m_count = 0;
+    }
+    m_count++;
+}
+
+CSimWorld::TScans CSimWorld::sense() {
+    const auto ts = timestamp();
+    const auto gt = truePose();
+    const auto discs = agents.discs();
+    TScans s;
+    s.laser = laser.simulate(m_grid, gt, discs, ts, m_rngLaser);
+    if (range2.options.enabled &&
+        m_senses % size_t(range2.options.frame_decimation) == 0) {
+        s.range2 = range2.simulate(m_grid, gt, discs, ts, m_rngRange2);
+        m_range2Scans++;
+    }
+    m_senses++;
+    return s;
+}
+
+}  // namespace risknav::sim
