@@ -221,8 +221,12 @@ void CWorldSimulator::controlStep(TRun& r) {
     route.compute(world.truePose(), world.robot.max_w_deg * M_PI / 180.0,
                   world.robot.decel, vDes, wDes);
     world.command(vDes, wDes);
-    const bool blocked =
-        r.lastScan && stopRule.blocked(*r.lastScan, world.commandedSpeed(), world.robot);
+    common::TSpeedLimitInput in;
+    in.robot = &world.robot;
+    in.pose = world.truePose();
+    in.desiredSpeed = std::max(0.0, world.commandedSpeed());
+    in.scan = r.lastScan.get();
+    const bool blocked = stopRule.limit(in).maxSpeed < in.desiredSpeed;
     if (blocked) {
         // Stop, but keep turning in place: a robot stopped askew in a doorway
         // would otherwise stay blocked by the door jamb forever.

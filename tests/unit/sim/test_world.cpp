@@ -1,6 +1,8 @@
+#include <risknav/common/CBadInputError.h>
 #include <risknav/mapping/scan_points.h>
 #include <risknav/sim/CSimRobotInterface.h>
 #include <risknav/sim/CSimWorld.h>
+#include <risknav/sim/CStoppingDistanceLimiter.h>
 
 #include <mrpt/maps/CSimplePointsMap.h>
 
@@ -145,4 +147,53 @@ TEST(SimWorld, RobotInterfaceCommandsTheWorld) {
     ASSERT_TRUE(robot.stop());
     w.step(0.1);
     EXPECT_EQ(w.speed(), 0.0);
+}
+
+TEST(Plugins, StoppingDistanceLimiterIsCreatedByName) {
+    registerAllClasses_sim();
+    auto byShort = risknav::common::CSpeedLimiter::Factory("CStoppingDistanceLimiter");
+    ASSERT_TRUE(byShort);
+    EXPECT_TRUE(std::dynamic_pointer_cast<CStoppingDistanceLimiter>(byShort));
+    auto byFull =
+        risknav::common::CSpeedLimiter::Factory("risknav::sim::CStoppingDistanceLimiter");
+    EXPECT_TRUE(std::dynamic_pointer_cast<CStoppingDistanceLimiter>(byFull));
+    // MRPT's own factory finds it too.
+    EXPECT_TRUE(mrpt::rtti::classFactory("risknav::sim::CStoppingDistanceLimiter"));
+    try {
+        risknav::common::CSpeedLimiter::Factory("CNoSuchLimiter");
+        FAIL() << "no error";
+    } catch (const risknav::common::CBadInputError& e) {
+        EXPECT_NE(std::string(e.what()).find("known: CStoppingDistanceLimiter"),
+                  std::string::npos)
+            << e.what();
+    }
+    // A registered MRPT class that is not a speed limiter is refused as well.
+    EXPECT_THROW(risknav::common::CSpeedLimiter::Factory("CSimplePointsMap"),
+                 risknav::common::CBadInputError);
+}
+
+TEST(Plugins, StoppingDistanceLimiterStopsForAPointAhead) {
+    CStoppingDistanceLimiter lim;
+    risknav::common::TRobotOptions robot;  // r 0.25, t_delay 0.9, decel 1
+    mrpt::obs::CObservation2DRangeScan scan;
+    scan.aperture = float(M_PI);
+    scan.rightToLeft = true;
+    scan.resizeScan(181);
+    for (size_t i = 0; i < 181; i++) {
+        scan.setScanRange(i, 5.0f);
+        scan.setScanRangeValidity(i, true);
+    }
+    scan.setScanRange(90, 1.2f);  // straight ahead
+    risknav::common::TSpeedLimitInput in;
+    in.robot = &robot;
+    in.scan = &scan;
+    // 0.8 m/s: d_stop = 1.04 m + 0.1 margin > 1.2 - 0.25 front: stop.
+    in.desiredSpeed = 0.8;
+    EXPECT_EQ(lim.limit(in).maxSpeed, 0.0);
+    EXPECT_FALSE(lim.limit(in).reason.empty());
+    // 0.5 m/s: d_stop = 0.575 m + 0.1 < 0.95: drive on.
+    in.desiredSpeed = 0.5;
+    EXPECT_EQ(lim.limit(in).maxSpeed, 0.5);
+    in.desiredSpeed = -1;
+    EXPECT_THROW(lim.limit(in), std::invalid_argument);
 }

@@ -6,7 +6,7 @@
 #include <risknav/sim/CRouteFollower.h>
 #include <risknav/sim/CSafetyMonitor.h>
 #include <risknav/sim/CSimWorld.h>
-#include <risknav/sim/CStoppingRule.h>
+#include <risknav/sim/CStoppingDistanceLimiter.h>
 
 #include <nlohmann/json.hpp>
 
@@ -16,7 +16,7 @@
 
 namespace risknav::sim {
 /** risknav-simulate's loop: a robot follows a route (CRouteFollower) through a
- * steppable world (CSimWorld) under the stopping rule (CStoppingRule); every
+ * steppable world (CSimWorld) under the stopping rule (CStoppingDistanceLimiter); every
  * frame period the world's scans and the odometry increment go to an MRPT
  * rawlog; a CSafetyMonitor counts collisions and near misses.
  *
@@ -48,7 +48,7 @@ class CWorldSimulator {
     TSimulationOptions simulation;
     CSimWorld world;
     CRouteFollower route;
-    CStoppingRule stopRule;
+    CStoppingDistanceLimiter stopRule;
 
     /** Loads every section, the map, and checks the route and agents against
      * the map (start inside an obstacle, a route through a wall, paths off

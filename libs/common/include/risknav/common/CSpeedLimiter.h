@@ -1,0 +1,61 @@
+#pragma once
+#include <risknav/common/TRobotOptions.h>
+
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/math/TPose2D.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
+#include <mrpt/rtti/CObject.h>
+
+#include <string>
+
+namespace risknav::common {
+/** What a speed limiter sees in one control cycle. */
+struct TSpeedLimitInput {
+    const TRobotOptions* robot = nullptr;  ///< the robot (radius, decel, t_delay, ...)
+    mrpt::math::TPose2D pose;              ///< where the robot believes it is
+    double desiredSpeed = 0;               ///< [m/s] what the controller wants
+    /** The latest scan (robot frame through its sensor pose); may be null. */
+    const mrpt::obs::CObservation2DRangeScan* scan = nullptr;
+};
+
+/** A limiter's answer: the highest speed it allows and why. */
+struct TSpeedLimit {
+    double maxSpeed = 0;  ///< [m/s], >= 0
+    std::string reason;   ///< "" when it does not limit
+};
+
+/** Base of the speed-limiter plugins (the stopping-distance rule; later the
+ * afraid map and the adaptive speed controller): each cycle every limiter
+ * gives the highest speed it allows, and the smallest one wins. Plugins are
+ * MRPT classes, created by name from a config through MRPT's class registry
+ * (register them with the library's registerAllClasses_<lib>(), which also
+ * works when risknav is linked statically). MRPT's plugin pattern: a public
+ * non-virtual entry that checks its input and calls a protected virtual. */
+class CSpeedLimiter : public mrpt::rtti::CObject {
+    DEFINE_VIRTUAL_MRPT_OBJECT(CSpeedLimiter)
+  public:
+    /** Creates a limiter by class name ("CStoppingDistanceLimiter" or with
+     * its namespace). Throws CBadInputError naming the known limiters when
+     * the name is unknown or not a speed limiter. */
+    static CSpeedLimiter::Ptr Factory(const std::string& className);
+    /** Names of the registered limiters (for messages and --help). */
+    static std::string knownNames();
+
+    /** The limit for this cycle; throws std::invalid_argument on an input
+     * without a robot or with a negative / non-finite desired speed. */
+    TSpeedLimit limit(const TSpeedLimitInput& in) const;
+
+    /** The limiter's own options, in its own section. */
+    virtual void loadConfig(const mrpt::config::CConfigFileBase& c,
+                            const std::string& section) = 0;
+    virtual void saveConfig(mrpt::config::CConfigFileBase& c,
+                            const std::string& section) const = 0;
+
+  protected:
+    virtual TSpeedLimit impl_limit(const TSpeedLimitInput& in) const = 0;
+};
+
+/** Registers libs/common's MRPT classes (the plugin bases). Idempotent. */
+void registerAllClasses_common();
+
+}  // namespace risknav::common

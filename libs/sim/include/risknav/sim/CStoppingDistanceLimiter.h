@@ -1,0 +1,49 @@
+#pragma once
+#include <risknav/common/CSpeedLimiter.h>
+#include <risknav/common/CValidatedOptions.h>
+
+#include <string>
+
+namespace risknav::sim {
+/** Sensed obstacles against the stopping distance: the robot may not drive on
+ * at speed v while a sensed point lies in its swept corridor (half-width
+ * radius + lateral_margin) closer than d_stop(v) + margin ahead of its front,
+ * with d_stop(v) = t_delay v + v^2 / (2 decel) (Choi et al. (002) eqs. 1-3,
+ * PAPER_NOTES M3 erratum). Its limit is 0 (stop) or the desired speed. The
+ * simulator's safety stop; a CSpeedLimiter plugin. Section [StoppingRule] in
+ * risknav-simulate. */
+class CStoppingDistanceLimiter : public common::CSpeedLimiter {
+    DEFINE_MRPT_OBJECT(CStoppingDistanceLimiter, risknav::sim)
+  public:
+    struct TOptions : public common::CValidatedOptions {
+        bool enabled = true;
+        double margin = 0.1;          ///< [m] beta: added to d_stop
+        double lateral_margin = 0.1;  ///< [m] swept corridor half-width = radius + this
+
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                const std::string& s) override;
+        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                              const std::string& s) const override;
+        void validate() const override;
+    } options;
+
+    /** Whether moving at speed v [m/s] is blocked by a point of the scan. */
+    bool blocked(const mrpt::obs::CObservation2DRangeScan& scan, double v,
+                 const common::TRobotOptions& robot) const;
+
+    void loadConfig(const mrpt::config::CConfigFileBase& c,
+                    const std::string& section) override;
+    void saveConfig(mrpt::config::CConfigFileBase& c,
+                    const std::string& section) const override;
+
+  protected:
+    common::TSpeedLimit impl_limit(const common::TSpeedLimitInput& in) const override;
+};
+
+/** Registers libs/sim's MRPT classes (and those of the libraries below it)
+ * with MRPT's class registry, so that they can be created by name. Call it
+ * once before creating plugins by name: MRPT's automatic registration runs
+ * from static initializers that a static link may drop. Idempotent. */
+void registerAllClasses_sim();
+
+}  // namespace risknav::sim
