@@ -9,31 +9,54 @@ using namespace risknav::common;
 namespace risknav::localization {
 void CRawlogMcl::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                               const std::string& s) {
-    particles = readInt(c, s, "particles", particles, TRange::closed(10, 1000000));
+    particles = readInt(c, s, "particles", particles);
     init = readChoice(c, s, "init", init, {"pose", "global"});
-    const auto p =
-        readNumbers(c, s, "init_pose",
-                    {initPose.x, initPose.y, initPose.phi * 180 / M_PI}, TRange::any());
+    const auto p = readNumbers(c, s, "init_pose",
+                               {initPose.x, initPose.y, initPose.phi * 180 / M_PI});
     if (p.size() != 3)
         throwBadKey(c, s, "init_pose", readString(c, s, "init_pose", ""),
                     "needs x y phi_deg");
     initPose = {p[0], p[1], p[2] * M_PI / 180};
-    const auto xy =
-        readNumbers(c, s, "init_xy", {init_xy, init_xy}, TRange::closed(0, 1000, "m"));
+    const auto xy = readNumbers(c, s, "init_xy", {init_xy, init_y});
     if (xy.size() != 1 && xy.size() != 2)
         throwBadKey(c, s, "init_xy", readString(c, s, "init_xy", ""),
                     "needs one half-width, or x and y half-widths");
     init_xy = xy[0];
     init_y = xy.size() == 2 ? xy[1] : xy[0];
-    init_phi_deg =
-        readDouble(c, s, "init_phi_deg", init_phi_deg, TRange::closed(0, 180, "deg"));
-    lf_std_hit =
-        readDouble(c, s, "lf_std_hit", lf_std_hit, TRange::closed(0.001, 10, "m"));
-    lf_decimation =
-        readInt(c, s, "lf_decimation", lf_decimation, TRange::closed(1, 1000));
+    init_phi_deg = readDouble(c, s, "init_phi_deg", init_phi_deg);
+    lf_std_hit = readDouble(c, s, "lf_std_hit", lf_std_hit);
+    lf_decimation = readInt(c, s, "lf_decimation", lf_decimation);
     lf_max_corrs_distance =
-        readDouble(c, s, "lf_max_corrs_distance", lf_max_corrs_distance,
-                   TRange::closed(0.01, 10, "m"));
+        readDouble(c, s, "lf_max_corrs_distance", lf_max_corrs_distance);
+}
+
+void CRawlogMcl::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                            const std::string& s) const {
+    writeKey(c, s, "particles", particles);
+    writeKey(c, s, "init", init);
+    writeKey(c, s, "init_pose",
+             std::vector<double>{initPose.x, initPose.y, initPose.phi * 180 / M_PI});
+    writeKey(c, s, "init_xy", std::vector<double>{init_xy, init_y});
+    writeKey(c, s, "init_phi_deg", init_phi_deg);
+    writeKey(c, s, "lf_std_hit", lf_std_hit);
+    writeKey(c, s, "lf_decimation", lf_decimation);
+    writeKey(c, s, "lf_max_corrs_distance", lf_max_corrs_distance);
+}
+
+void CRawlogMcl::TOptions::validate() const {
+    const std::string s = "Localization";
+    checkKey(s, "particles", particles, TRange::closed(10, 1000000));
+    checkRule(init == "pose" || init == "global", s, "init", init,
+              "must be one of: pose, global");
+    checkKey(s, "init_pose", std::vector<double>{initPose.x, initPose.y},
+             TRange::closed(-1e6, 1e6, "m"));
+    checkKey(s, "init_xy", std::vector<double>{init_xy, init_y},
+             TRange::closed(0, 1000, "m"));
+    checkKey(s, "init_phi_deg", init_phi_deg, TRange::closed(0, 180, "deg"));
+    checkKey(s, "lf_std_hit", lf_std_hit, TRange::closed(0.001, 10, "m"));
+    checkKey(s, "lf_decimation", lf_decimation, TRange::closed(1, 1000));
+    checkKey(s, "lf_max_corrs_distance", lf_max_corrs_distance,
+             TRange::closed(0.01, 10, "m"));
 }
 
 CRawlogMcl::CRawlogMcl() {
@@ -57,6 +80,20 @@ void CRawlogMcl::loadFromConfigFile(const mrpt::config::CConfigFileBase& c) {
         pfOptions.loadFromConfigFile(c, "PF_options");
     if (c.sectionExists("KLD_options"))
         kldOptions.loadFromConfigFile(c, "KLD_options");
+}
+
+void CRawlogMcl::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
+    options.saveToConfigFile(c, "Localization");
+    pfOptions.saveToConfigFile(c, "PF_options");
+    // MRPT 2.5.8's TKLDParams cannot save itself: its keys, as it reads them.
+    const std::string k = "KLD_options";
+    writeKey(c, k, "KLD_binSize_XY", kldOptions.KLD_binSize_XY);
+    writeDegrees(c, k, "KLD_binSize_PHI_deg", kldOptions.KLD_binSize_PHI);
+    writeKey(c, k, "KLD_delta", kldOptions.KLD_delta);
+    writeKey(c, k, "KLD_epsilon", kldOptions.KLD_epsilon);
+    writeKey(c, k, "KLD_minSampleSize", int(kldOptions.KLD_minSampleSize));
+    writeKey(c, k, "KLD_maxSampleSize", int(kldOptions.KLD_maxSampleSize));
+    writeKey(c, k, "KLD_minSamplesPerBin", kldOptions.KLD_minSamplesPerBin);
 }
 
 void CRawlogMcl::initialize(const mrpt::maps::COccupancyGridMap2D& grid, uint64_t seed) {

@@ -64,7 +64,7 @@ std::string readChoice(const mrpt::config::CConfigFileBase& c, const std::string
  * sizeMultiple > 1 demands a count that is a multiple of it (e.g. x y pairs). */
 std::vector<double> readNumbers(const mrpt::config::CConfigFileBase& c,
                                 const std::string& section, const std::string& key,
-                                const std::vector<double>& def, const TRange& range,
+                                const std::vector<double>& def, const TRange& range = {},
                                 size_t minCount = 0, size_t sizeMultiple = 1);
 /** A file path; relative paths resolve against the config file's folder when
  * the config is a CIniConfig. mustExist: throws if the file is not there. */

@@ -7,6 +7,7 @@
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/slam/CMonteCarloLocalization2D.h>
+#include <risknav/common/CValidatedOptions.h>
 
 #include <memory>
 #include <string>
@@ -28,7 +29,7 @@ struct TMclEstimate {
  * pf-localization reads, so one config can drive both). */
 class CRawlogMcl {
   public:
-    struct TOptions {
+    struct TOptions : public common::CValidatedOptions {
         int particles = 5000;          ///< initial particles
         std::string init = "pose";     ///< pose | global
         mrpt::math::TPose2D initPose;  ///< init = pose: centre of a uniform box
@@ -39,8 +40,10 @@ class CRawlogMcl {
         int lf_decimation = 5;               ///< use every N-th ray
         double lf_max_corrs_distance = 0.3;  ///< [m]
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& s);
-        void validate() const {}
+                                const std::string& s) override;
+        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                              const std::string& s) const override;
+        void validate() const override;
     } options;
     mrpt::bayes::CParticleFilter::TParticleFilterOptions pfOptions;
     mrpt::slam::TKLDParams kldOptions;
@@ -48,6 +51,8 @@ class CRawlogMcl {
     CRawlogMcl();
     /** Loads options, [PF_options] and [KLD_options]. */
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& c);
+    /** Writes [Localization], [PF_options] and [KLD_options] back. */
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c) const;
     /** Sets the map and draws the initial particles (seeded). */
     void initialize(const mrpt::maps::COccupancyGridMap2D& grid, uint64_t seed);
     /** One prediction + update step. */
