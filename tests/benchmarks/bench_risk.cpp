@@ -23,10 +23,9 @@ const CObstacleField& randomField() {
             for (unsigned x = 0; x < g.getSizeX(); x++)
                 if (u(rng) < 0.05)
                     g.setCell(x, y, 0.0f);
-        CObstacleField::TOptions o;
-        o.robot_radius =
-            0;  // keep the 5 %: grown by 0.25 m nearly every cell would be an obstacle
-        return CObstacleField(g, o);
+        // Radius 0 keeps the 5 %: grown by 0.25 m nearly every cell would be an
+        // obstacle.
+        return CObstacleField(g, {}, 0.0);
     }();
     return f;
 }
@@ -96,9 +95,7 @@ void BM_Route50m(benchmark::State& st) {
                         g.setPos(float(xx), float(yy), 0.0f);
                 }
         }
-        CObstacleField::TOptions o;
-        o.robot_radius = 0.25;
-        return CObstacleField(g, o);
+        return CObstacleField(g, {}, 0.25);
     }();
     TRiskOptions o;
     o.sigmaP0.diagonal() << 1e-6, 1e-6, 0.01;

@@ -129,6 +129,44 @@ TEST(RiskEvalE2E, EveryKeyInTheDocumentedConfigIsKnown) {
     EXPECT_EQ(s["status"], "ok");
 }
 
+// config_effective.ini holds every key with the value used (written by the
+// options' saveToConfigFile()): the app run on it reproduces the run, --set
+// overrides included, byte for byte.
+TEST(RiskEvalE2E, ItsOwnConfigEffectiveReproducesTheRun) {
+    const std::string a = freshDir("out");
+    const auto sa =
+        evalRun(a,
+                "--set Odometry.error_model=systematic --set Robot.radius=0.3 "
+                "--set RiskEval.eval_step=0.07");
+    ASSERT_EQ(sa["status"], "ok");
+    const std::string b = freshDir("rerun");
+    const auto r = run(binPath("risknav-risk-eval") + " -q -o '" + b + "' '" + a +
+                       "/config_effective.ini'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(readFile(a + "/risk_table.csv"), readFile(b + "/risk_table.csv"));
+    auto strip = [](nlohmann::json s) {
+        for (const char* k : {"timing", "config", "overrides"})
+            s.erase(k);
+        return s.dump(2);
+    };
+    EXPECT_EQ(strip(sa), strip(readJson(b + "/summary.json")));
+    for (const auto& f : listDir(a))
+        if (f.rfind("cov_", 0) == 0) {
+            EXPECT_EQ(readFile(a + "/" + f), readFile(b + "/" + f)) << f;
+        }
+    // ... and writes the same keys again (a fixed point; only the header differs).
+    auto keys = [](const std::string& path) {
+        std::string k;
+        for (const auto& line : readLines(path))
+            if (line.empty() || line[0] != ';')
+                k += line + "\n";
+        return k;
+    };
+    EXPECT_EQ(keys(a + "/config_effective.ini"), keys(b + "/config_effective.ini"));
+    EXPECT_NE(keys(a + "/config_effective.ini").find("radius = 0.3\n"),
+              std::string::npos);
+}
+
 TEST(RiskEvalE2E, ExclusionThreshold) {
     // Section 5.3: with u_threshold = 3 every route through the corridor (max u
     // ~ 27) is excluded, and so is SP1's detour past the pillar (max u ~ 24).

@@ -4,8 +4,22 @@
 
 #include <algorithm>
 #include <limits>
+#include <unordered_map>
 
 namespace risknav::mapping {
+namespace {
+// 255 = free, 0 = obstacle, with one cell of padding holding the outside ring
+// (an obstacle or not by the rule): what OpenCV's transforms take.
+cv::Mat paddedFreeMask(const std::vector<uint8_t>& obst, int w, int h,
+                       bool outsideIsObstacle) {
+    cv::Mat m(h + 2, w + 2, CV_8UC1, cv::Scalar(outsideIsObstacle ? 0 : 255));
+    for (int cy = 0; cy < h; cy++)
+        for (int cx = 0; cx < w; cx++)
+            m.at<uint8_t>(cy + 1, cx + 1) = obst[size_t(cy) * w + cx] ? 0 : 255;
+    return m;
+}
+}  // namespace
+
 CDistanceField::CDistanceField(const mrpt::maps::COccupancyGridMap2D& g,
                                const TObstacleRule& rule)
     : m_rule(rule),
@@ -16,25 +30,51 @@ CDistanceField::CDistanceField(const mrpt::maps::COccupancyGridMap2D& g,
       m_res(g.getResolution()) {
     m_obst.assign(size_t(m_w) * m_h, 0);
     m_dist.assign(m_obst.size(), std::numeric_limits<float>::infinity());
-    // One cell of padding holds the outside ring (an obstacle or not).
-    const int pad = 1;
-    cv::Mat freeMask(m_h + 2 * pad, m_w + 2 * pad, CV_8UC1,
-                     cv::Scalar(rule.outside_is_obstacle ? 0 : 255));
     for (int cy = 0; cy < m_h; cy++)
         for (int cx = 0; cx < m_w; cx++) {
             const bool o = rule.isObstacle(g.getCell(cx, cy));
             m_obst[size_t(cy) * m_w + cx] = o;
             m_nObst += o;
-            freeMask.at<uint8_t>(cy + pad, cx + pad) = o ? 0 : 255;
         }
     if (m_nObst == 0 && !rule.outside_is_obstacle)
         return;  // nothing to measure against: +inf everywhere
     cv::Mat dist;
-    cv::distanceTransform(freeMask, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+    cv::distanceTransform(paddedFreeMask(m_obst, m_w, m_h, rule.outside_is_obstacle),
+                          dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
     for (int cy = 0; cy < m_h; cy++)
         for (int cx = 0; cx < m_w; cx++)
-            m_dist[size_t(cy) * m_w + cx] =
-                dist.at<float>(cy + pad, cx + pad) * float(m_res);
+            m_dist[size_t(cy) * m_w + cx] = dist.at<float>(cy + 1, cx + 1) * float(m_res);
+}
+
+TNearestObstacles CDistanceField::nearestObstacles() const {
+    TNearestObstacles n;
+    n.sizeX = m_w;
+    n.sizeY = m_h;
+    n.any = m_nObst > 0 || m_rule.outside_is_obstacle;
+    if (!n.any || m_w == 0 || m_h == 0)
+        return n;
+    const cv::Mat freeMask = paddedFreeMask(m_obst, m_w, m_h, m_rule.outside_is_obstacle);
+    cv::Mat dist, labels;
+    cv::distanceTransform(freeMask, dist, labels, cv::DIST_L2, cv::DIST_MASK_5,
+                          cv::DIST_LABEL_PIXEL);
+    // Label -> the obstacle cell it names (padded coordinates - 1 = cell indices).
+    std::unordered_map<int, std::pair<int32_t, int32_t>> where;
+    for (int py = 0; py < freeMask.rows; py++)
+        for (int px = 0; px < freeMask.cols; px++)
+            if (!freeMask.at<uint8_t>(py, px))
+                where[labels.at<int>(py, px)] = {px - 1, py - 1};
+    const size_t cells = size_t(m_w) * m_h;
+    n.obstX.resize(cells);
+    n.obstY.resize(cells);
+    n.distCells.resize(cells);
+    for (int cy = 0; cy < m_h; cy++)
+        for (int cx = 0; cx < m_w; cx++) {
+            const auto& [ox, oy] = where.at(labels.at<int>(cy + 1, cx + 1));
+            n.obstX[n.index(cx, cy)] = ox;
+            n.obstY[n.index(cx, cy)] = oy;
+            n.distCells[n.index(cx, cy)] = dist.at<float>(cy + 1, cx + 1);
+        }
+    return n;
 }
 
 double CDistanceField::clearance(int cx, int cy) const {

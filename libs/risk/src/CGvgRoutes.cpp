@@ -1,9 +1,8 @@
+#include <risknav/common/config_read.h>
 #include <risknav/geometry/graph.h>
 #include <risknav/geometry/homotopy.h>
 #include <risknav/geometry/polyline.h>
 #include <risknav/risk/CGvgRoutes.h>
-
-#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -59,60 +58,69 @@ void thin(std::vector<uint8_t>& m, int w, int h) {
 }
 }  // namespace
 
+void CGvgRoutes::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                              const std::string& s) {
+    section = s;
+    separation_ratio = common::readDouble(c, s, "gvg_separation_ratio", separation_ratio);
+    simplify_tolerance =
+        common::readDouble(c, s, "gvg_simplify_tolerance", simplify_tolerance);
+}
+
+void CGvgRoutes::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                            const std::string& s) const {
+    common::writeKey(c, s, "gvg_separation_ratio", separation_ratio);
+    common::writeKey(c, s, "gvg_simplify_tolerance", simplify_tolerance);
+}
+
+void CGvgRoutes::TOptions::validate() const {
+    common::checkKey(section, "gvg_separation_ratio", separation_ratio,
+                     common::TRange::closed(0.1, 2));
+    common::checkKey(section, "gvg_simplify_tolerance", simplify_tolerance,
+                     common::TRange::closed(0, 2, "m"));
+}
+
 CGvgRoutes::CGvgRoutes(const CObstacleField& f, const TOptions& o)
     : m_field(f), m_opts(o) {
+    o.validate();
     const int w = f.sizeX(), h = f.sizeY();
     const double res = f.resolution();
-    const double minClear =
-        o.min_clearance >= 0 ? o.min_clearance : f.options().robot_radius;
-    cv::Mat freeMask(h, w, CV_8UC1);
-    const auto& raw = f.rawObstacles();
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++)
-            freeMask.at<uint8_t>(y, x) = raw[size_t(y) * w + x] ? 0 : 255;
-    cv::Mat dist, labels;
-    cv::distanceTransform(freeMask, dist, labels, cv::DIST_L2, cv::DIST_MASK_5,
-                          cv::DIST_LABEL_PIXEL);
-    // Label -> the obstacle pixel it names.
-    std::map<int, std::pair<int, int>> where;
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++)
-            if (!freeMask.at<uint8_t>(y, x))
-                where[labels.at<int>(y, x)] = {x, y};
+    const double minClear = f.robotRadius();
+    const auto& raw = f.distanceField().obstacles();
+    auto isFree = [&](int x, int y) { return !raw[size_t(y) * w + x]; };
+    const mapping::TNearestObstacles near = f.distanceField().nearestObstacles();
     m_skel.assign(size_t(w) * h, 0);
-    if (where.empty())
+    if (!near.any)
         return;  // no obstacle at all: no GVG
-    auto nearest = [&](int x, int y) { return where[labels.at<int>(y, x)]; };
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
-            if (!freeMask.at<uint8_t>(y, x))
+            if (!isFree(x, y))
                 continue;
-            const float d = dist.at<float>(y, x);
+            const size_t p = near.index(x, y);
+            const float d = near.distCells[p];
             if (d * res < minClear)
                 continue;
-            const auto np = nearest(x, y);
             const double need = std::max(2.0, o.separation_ratio * d);
             const int nb[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
             for (const auto& n : nb) {
                 const int qx = x + n[0], qy = y + n[1];
-                if (qx < 0 || qy < 0 || qx >= w || qy >= h ||
-                    !freeMask.at<uint8_t>(qy, qx))
+                if (qx < 0 || qy < 0 || qx >= w || qy >= h || !isFree(qx, qy))
                     continue;
-                const auto nq = nearest(qx, qy);
-                if (std::hypot(np.first - nq.first, np.second - nq.second) >= need) {
+                const size_t q = near.index(qx, qy);
+                if (std::hypot(near.obstX[p] - near.obstX[q],
+                               near.obstY[p] - near.obstY[q]) >= need) {
                     m_skel[size_t(y) * w + x] = 1;
                     break;
                 }
             }
         }
     thin(m_skel, w, h);
-    bridgeGaps(dist);
+    bridgeGaps(near);
     for (size_t i = 0; i < m_skel.size(); i++)
         if (m_skel[i])
             m_pixels.push_back(uint32_t(i));
 }
 
-void CGvgRoutes::bridgeGaps(const cv::Mat& dist) {
+void CGvgRoutes::bridgeGaps(const mapping::TNearestObstacles& near) {
     // Where a corridor opens into a room the separation test leaves the
     // medial lines a little apart. Join every skeleton end to the nearest
     // skeleton pixel within 2.5 x its clearance that is far from it ALONG the
@@ -136,7 +144,7 @@ void CGvgRoutes::bridgeGaps(const cv::Mat& dist) {
                 ends.emplace_back(x, y);
         }
     for (const auto& [ex, ey] : ends) {
-        const double reach = std::max(3.0, 2.5 * dist.at<float>(ey, ex));
+        const double reach = std::max(3.0, 2.5 * near.distCells[near.index(ex, ey)]);
         const int r = int(std::ceil(reach));
         // Geodesic distances (in 8-connected steps) from the end, bounded.
         std::map<size_t, int> geo;
@@ -344,7 +352,7 @@ bool CGvgRoutes::sameWay(const std::vector<TPoint2D>& a,
     r.xMin = m_field.xMin();
     r.yMin = m_field.yMin();
     r.resolution = m_field.resolution();
-    const auto& raw = m_field.rawObstacles();
+    const auto& raw = m_field.distanceField().obstacles();
     r.isObstacle = [&raw, w = r.sizeX](int cx, int cy) {
         return raw[size_t(cy) * w + cx] != 0;
     };

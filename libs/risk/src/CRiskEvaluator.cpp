@@ -3,6 +3,7 @@
 #include <risknav/risk/CRiskEvaluator.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <set>
 
@@ -17,9 +18,10 @@ bool numbered(const std::string& s, const std::string& prefix) {
                        [](unsigned char ch) { return std::isdigit(ch); });
 }
 
+// x y [m]: a format (count) error is a parse error.
 TPoint2D readPoint(const mrpt::config::CConfigFileBase& c, const std::string& s,
                    const std::string& k) {
-    const auto v = readNumbers(c, s, k, {}, TRange::any("m"));
+    const auto v = readNumbers(c, s, k, {}, {});
     if (v.size() != 2)
         throw CBadInputError(configWhere(c) + "[" + s + "] " + k +
                              ": required, as x y [m]");
@@ -33,148 +35,181 @@ std::string fmtPoint(const TPoint2D& p) {
 }
 }  // namespace
 
+void CRiskEvaluator::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                                  const std::string& s) {
+    section = s;
+    map.loadFromConfigFile(c, s);
+    obstacles.loadFromConfigFile(c, s);
+    start = readPoint(c, s, "start");
+    goal = readPoint(c, s, "goal");
+    u_threshold = readDouble(c, s, "u_threshold", u_threshold);
+    max_sensing_subset = readInt(c, s, "max_sensing_subset", max_sensing_subset);
+    gvg_routes = readInt(c, s, "gvg_routes", gvg_routes);
+    gvg.loadFromConfigFile(c, s);
+    ellipse_interval = readDouble(c, s, "ellipse_interval", ellipse_interval);
+    eval_step = readDouble(c, s, "eval_step", eval_step);
+}
+
+void CRiskEvaluator::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                                const std::string& s) const {
+    map.saveToConfigFile(c, s);
+    obstacles.saveToConfigFile(c, s);
+    writeKey(c, s, "start", std::vector<double>{start.x, start.y});
+    writeKey(c, s, "goal", std::vector<double>{goal.x, goal.y});
+    writeKey(c, s, "u_threshold", u_threshold);
+    writeKey(c, s, "max_sensing_subset", max_sensing_subset);
+    writeKey(c, s, "gvg_routes", gvg_routes);
+    gvg.saveToConfigFile(c, s);
+    writeKey(c, s, "ellipse_interval", ellipse_interval);
+    writeKey(c, s, "eval_step", eval_step);
+}
+
+void CRiskEvaluator::TOptions::validate() const {
+    map.validate();
+    obstacles.validate();
+    gvg.validate();
+    for (const auto& [key, p] :
+         {std::make_pair("start", start), std::make_pair("goal", goal)})
+        checkRule(std::isfinite(p.x) && std::isfinite(p.y), section, key, fmtPoint(p),
+                  "required, as x y [m]");
+    checkKey(section, "u_threshold", u_threshold,
+             TRange::nonNegative("(u = 1/D_max^2 is dimensionless)"));
+    checkKey(section, "max_sensing_subset", max_sensing_subset, TRange::closed(0, 6));
+    checkKey(section, "gvg_routes", gvg_routes, TRange::closed(0, 50));
+    checkKey(section, "ellipse_interval", ellipse_interval,
+             TRange::closed(0.1, 100, "m"));
+    checkKey(section, "eval_step", eval_step, TRange::closed(0.005, 5, "m"));
+}
+
 void CRiskEvaluator::loadFromConfigFile(const CIniConfig& c) {
     for (const auto& s : c.sections())
-        if (s != "RiskEval" && s != "Odometry" && !numbered(s, "Route") &&
+        if (s != "RiskEval" && s != "Robot" && s != "Odometry" && !numbered(s, "Route") &&
             !numbered(s, "SensingPoint"))
-            throw CBadInputError(c.path() + ": unknown section [" + s +
-                                 "] (known: RiskEval, Odometry, RouteN, SensingPointN)");
+            throw CBadInputError(
+                c.path() + ": unknown section [" + s +
+                "] (known: RiskEval, Robot, Odometry, RouteN, SensingPointN)");
     if (!c.sectionExists("RiskEval"))
         throw CBadInputError(c.path() + ": missing section [RiskEval]");
-    const std::string R = "RiskEval", O = "Odometry";
-    loadOptions(mapSource, c, R);
-    fieldOptions.occupied_threshold =
-        readDouble(c, R, "occupied_threshold", 0.65, TRange::closed(0.01, 1));
-    fieldOptions.free_threshold =
-        readDouble(c, R, "free_threshold", 0.35, TRange::closed(0, 0.99));
-    if (fieldOptions.free_threshold >= fieldOptions.occupied_threshold)
-        throwBadKey(c, R, "free_threshold", std::to_string(fieldOptions.free_threshold),
-                    "must be < occupied_threshold");
-    fieldOptions.unknown_is_obstacle = readBool(c, R, "unknown_is_obstacle", true);
-    fieldOptions.robot_radius =
-        readDouble(c, R, "robot_radius", 0.25, TRange::closed(0, 5, "m"));
-    start = readPoint(c, R, "start");
-    goal = readPoint(c, R, "goal");
-    uThreshold = readDouble(c, R, "u_threshold", 0.0,
-                            TRange::nonNegative("(u = 1/D_max^2 is dimensionless)"));
-    maxSensingSubset = readInt(c, R, "max_sensing_subset", 2, TRange::closed(0, 6));
-    gvgRoutes = readInt(c, R, "gvg_routes", 3, TRange::closed(0, 50));
-    gvgOptions.separation_ratio =
-        readDouble(c, R, "gvg_separation_ratio", 1.0, TRange::closed(0.1, 2));
-    gvgOptions.simplify_tolerance =
-        readDouble(c, R, "gvg_simplify_tolerance", 0.1, TRange::closed(0, 2, "m"));
-    ellipseInterval =
-        readDouble(c, R, "ellipse_interval", 2.0, TRange::closed(0.1, 100, "m"));
-    riskOptions.evalStep =
-        readDouble(c, R, "eval_step", 0.05, TRange::closed(0.005, 5, "m"));
-
-    auto& m = riskOptions.odometry;
-    m.radiusL = readDouble(c, O, "wheel_radius_l", 0.063, TRange::closed(0.005, 2, "m"));
-    m.radiusR = readDouble(c, O, "wheel_radius_r", 0.063, TRange::closed(0.005, 2, "m"));
-    m.tread = readDouble(c, O, "tread", 0.399, TRange::closed(0.02, 5, "m"));
-    m.sigmaRL = readDouble(c, O, "sigma_wheel_radius_l", 0.001, TRange::nonNegative("m"));
-    m.sigmaRR = readDouble(c, O, "sigma_wheel_radius_r", 0.001, TRange::nonNegative("m"));
-    m.sigmaT = readDouble(c, O, "sigma_tread", 0.001, TRange::nonNegative("m"));
-    const double nx = readDouble(c, O, "noise_sigma_x", 0, TRange::nonNegative("m/s"));
-    const double ny = readDouble(c, O, "noise_sigma_y", 0, TRange::nonNegative("m/s"));
-    const double nt =
-        readDegrees(c, O, "noise_sigma_theta_deg", 0, TRange::nonNegative("deg/s"));
-    m.sigmaN = Eigen::Vector3d(nx * nx, ny * ny, nt * nt).asDiagonal();
-    riskOptions.model = readChoice(c, O, "error_model", "systematic",
-                                   {"systematic", "per_step"}) == "per_step"
-                            ? TErrorModel::PerStep
-                            : TErrorModel::Systematic;
-    riskOptions.tau = readDouble(c, O, "tau", 0.05, TRange::closed(0.001, 1, "s"));
-    riskOptions.speed = readDouble(c, O, "speed", 0.3, {0, 5, true, false, "m/s"});
-    riskOptions.turnRate = readDegrees(c, O, "turn_rate_deg", 30 * M_PI / 180,
-                                       {0, 720, true, false, "deg/s"});
-    const double sx = readDouble(c, O, "init_sigma_x", 0.001, TRange::nonNegative("m"));
-    const double sy = readDouble(c, O, "init_sigma_y", 0.001, TRange::nonNegative("m"));
-    const double st =
-        readDegrees(c, O, "init_sigma_theta_deg", 0.1, TRange::closed(0, 180, "deg"));
-    riskOptions.sigmaP0 = Eigen::Vector3d(sx * sx, sy * sy, st * st).asDiagonal();
-
+    options.loadFromConfigFile(c, "RiskEval");
+    robot.loadFromConfigFile(c, "Robot");
+    odometry.loadFromConfigFile(c, "Odometry");
+    propagation.loadFromConfigFile(c, "Odometry");
     std::vector<std::string> secs = c.sections();
     std::sort(secs.begin(), secs.end());
-    std::set<std::string> names;
-    for (const auto& s : secs) {
+    configRoutes.clear();
+    sensingPoints.clear();
+    for (const auto& s : secs)
         if (numbered(s, "SensingPoint")) {
-            TSensingPoint p;
-            p.name = readString(c, s, "name", s);
-            p.x = requireDouble(c, s, "x", TRange::any("m"));
-            p.y = requireDouble(c, s, "y", TRange::any("m"));
-            p.radius = readDouble(c, s, "radius", 0.1, TRange::closed(0.01, 10, "m"));
-            const double a = readDouble(c, s, "sigma_x", 0.001, TRange::nonNegative("m"));
-            const double b = readDouble(c, s, "sigma_y", 0.001, TRange::nonNegative("m"));
-            const double t =
-                readDegrees(c, s, "sigma_theta_deg", 0.1, TRange::closed(0, 180, "deg"));
-            p.resetCov = Eigen::Vector3d(a * a, b * b, t * t).asDiagonal();
-            if (!names.insert(p.name).second)
-                throwBadKey(c, s, "name", p.name, "another sensing point has this name");
-            sensingPoints.push_back(p);
+            sensingPoints.emplace_back();
+            sensingPoints.back().loadFromConfigFile(c, s);
         } else if (numbered(s, "Route")) {
-            TRoute r;
-            r.name = readString(c, s, "name", s);
-            const auto v = readNumbers(c, s, "waypoints", {}, TRange::any("m"), 0, 2);
-            for (size_t i = 0; i + 1 < v.size(); i += 2)
-                r.waypoints.emplace_back(v[i], v[i + 1]);
-            // The route runs from start to goal: add them unless already there.
-            if (r.waypoints.empty() || std::hypot(r.waypoints.front().x - start.x,
-                                                  r.waypoints.front().y - start.y) > 1e-6)
-                r.waypoints.insert(r.waypoints.begin(), start);
-            if (std::hypot(r.waypoints.back().x - goal.x, r.waypoints.back().y - goal.y) >
-                1e-6)
-                r.waypoints.push_back(goal);
-            configRoutes.push_back(r);
+            configRoutes.emplace_back();
+            configRoutes.back().loadFromConfigFile(c, s);
         }
-    }
-    if (configRoutes.empty() && gvgRoutes == 0)
-        throw CBadInputError(c.path() +
-                             ": no candidate routes: add [RouteN] sections or set "
-                             "[RiskEval] gvg_routes > 0");
     c.throwOnUnreadKeys();
+    try {
+        prepare();
+    } catch (const CConfigKeyError& e) {
+        throw CBadInputError(configWhere(c) + e.what());
+    }
+}
 
-    // Against the map.
-    m_grid = loadOccupancyGrid(mapSource);
-    m_field = std::make_unique<CObstacleField>(m_grid, fieldOptions);
+void CRiskEvaluator::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
+    options.saveToConfigFile(c, "RiskEval");
+    robot.saveToConfigFile(c, "Robot");
+    odometry.saveToConfigFile(c, "Odometry");
+    propagation.saveToConfigFile(c, "Odometry");
+    for (const auto& r : configRoutes)
+        r.saveToConfigFile(c, r.section);
+    for (const auto& p : sensingPoints)
+        p.saveToConfigFile(c, p.section);
+}
+
+void CRiskEvaluator::validate() const {
+    options.validate();
+    robot.validate();
+    odometry.validate();
+    propagation.validate();
+    for (const auto& r : configRoutes)
+        r.validate();
+    std::set<std::string> names;
+    for (const auto& p : sensingPoints) {
+        p.validate();
+        checkRule(names.insert(p.name).second, p.section, "name", p.name,
+                  "another sensing point has this name");
+    }
+    checkRule(!configRoutes.empty() || options.gvg_routes > 0, options.section,
+              "gvg_routes", std::to_string(options.gvg_routes),
+              "no candidate routes: add [RouteN] sections or set [RiskEval] gvg_routes "
+              "> 0");
+}
+
+void CRiskEvaluator::prepare() {
+    m_field.reset();  // kept only when every check below passes
+    validate();
+    m_gvg.reset();
+    m_routes.clear();
+    m_rows.clear();
+    m_best = -1;
+    m_grid = loadOccupancyGrid(options.map);
+    auto field =
+        std::make_unique<CObstacleField>(m_grid, options.obstacles, robot.radius);
     auto onMap = [&](const TPoint2D& p) {
         return p.x >= m_grid.getXMin() && p.x <= m_grid.getXMax() &&
                p.y >= m_grid.getYMin() && p.y <= m_grid.getYMax();
     };
-    for (const auto& [key, p] : {std::make_pair(std::string("start"), start),
-                                 std::make_pair(std::string("goal"), goal)}) {
-        if (!onMap(p))
-            throwBadKey(c, R, key, fmtPoint(p), "outside the map");
-        if (m_field->isObstacleAt(p.x, p.y))
-            throwBadKey(c, R, key, fmtPoint(p),
-                        "inside an obstacle (grown by robot_radius " +
-                            std::to_string(fieldOptions.robot_radius) + " m)");
+    const std::string grown =
+        "grown by robot_radius: [Robot] radius = " + numberText(robot.radius) + " m";
+    const std::string& R = options.section;
+    for (const auto& [key, p] :
+         {std::make_pair("start", options.start), std::make_pair("goal", options.goal)}) {
+        checkRule(onMap(p), R, key, fmtPoint(p), "outside the map");
+        checkRule(!field->isObstacleAt(p.x, p.y), R, key, fmtPoint(p),
+                  "inside an obstacle (" + grown + ")");
     }
-    for (size_t i = 0; i < sensingPoints.size(); i++) {
-        const auto& p = sensingPoints[i];
-        std::string sec;
-        for (const auto& s : secs)
-            if (numbered(s, "SensingPoint") && readString(c, s, "name", s) == p.name)
-                sec = s;
-        if (!onMap({p.x, p.y}))
-            throwBadKey(c, sec, "x", fmtPoint({p.x, p.y}),
-                        "sensing point outside the map");
-        if (m_field->isObstacleAt(p.x, p.y))
-            throwBadKey(c, sec, "x", fmtPoint({p.x, p.y}),
-                        "sensing point inside an obstacle (grown by robot_radius)");
+    for (const auto& sp : sensingPoints) {
+        const TPoint2D p(sp.x, sp.y);
+        checkRule(onMap(p), sp.section, "x", fmtPoint(p),
+                  "sensing point outside the map");
+        checkRule(!field->isObstacleAt(p.x, p.y), sp.section, "x", fmtPoint(p),
+                  "sensing point inside an obstacle (" + grown + ")");
     }
     for (const auto& r : configRoutes)
-        for (const auto& p : r.waypoints)
-            if (!onMap(p))
-                throw CBadInputError(c.path() + ": route " + r.name + ": point " +
-                                     fmtPoint(p) + " is outside the map");
+        for (size_t i = 0; i + 1 < r.waypoints.size(); i += 2) {
+            const TPoint2D p(r.waypoints[i], r.waypoints[i + 1]);
+            checkRule(
+                onMap(p), r.section, "waypoints", fmtPoint(p),
+                "route " + r.name + ": point " + fmtPoint(p) + " is outside the map");
+        }
+    m_field = std::move(field);
+}
+
+TRiskOptions CRiskEvaluator::riskOptions() const {
+    return makeRiskOptions(odometry, propagation, options.eval_step);
 }
 
 void CRiskEvaluator::evaluate() {
-    m_routes = configRoutes;
-    if (gvgRoutes > 0) {
-        m_gvg = std::make_unique<CGvgRoutes>(*m_field, gvgOptions);
-        const auto g = m_gvg->routes(start, goal, size_t(gvgRoutes));
+    if (!m_field)
+        prepare();
+    const TRiskOptions risk = riskOptions();
+    const TPoint2D &start = options.start, &goal = options.goal;
+    // The configured routes run from start to goal: add them unless already there.
+    m_routes.clear();
+    for (const auto& r : configRoutes) {
+        TRoute route{r.name, {}, false};
+        for (size_t i = 0; i + 1 < r.waypoints.size(); i += 2)
+            route.waypoints.emplace_back(r.waypoints[i], r.waypoints[i + 1]);
+        auto& w = route.waypoints;
+        if (w.empty() || std::hypot(w.front().x - start.x, w.front().y - start.y) > 1e-6)
+            w.insert(w.begin(), start);
+        if (std::hypot(w.back().x - goal.x, w.back().y - goal.y) > 1e-6)
+            w.push_back(goal);
+        m_routes.push_back(route);
+    }
+    m_gvg.reset();
+    if (options.gvg_routes > 0) {
+        m_gvg = std::make_unique<CGvgRoutes>(*m_field, options.gvg);
+        const auto g = m_gvg->routes(start, goal, size_t(options.gvg_routes));
         for (size_t i = 0; i < g.size(); i++)
             m_routes.push_back({"G" + std::to_string(i + 1), g[i], true});
     }
@@ -186,7 +221,7 @@ void CRiskEvaluator::evaluate() {
         for (size_t i = 0; i < n; i++)
             if (mask & (size_t(1) << i))
                 s.push_back(i);
-        if (int(s.size()) <= maxSensingSubset)
+        if (int(s.size()) <= options.max_sensing_subset)
             subsets.push_back(s);
     }
     std::stable_sort(subsets.begin(), subsets.end(),
@@ -200,7 +235,7 @@ void CRiskEvaluator::evaluate() {
             row.sensing = sub;
             std::vector<TSensingPoint> visit;
             for (size_t i : sub)
-                visit.push_back(sensingPoints[i]);
+                visit.push_back(sensingPoints[i].point());
             row.feasible =
                 routeWithSensingDetours(m_routes[r].waypoints, visit, *m_field, row.path);
             if (!row.feasible) {
@@ -208,11 +243,12 @@ void CRiskEvaluator::evaluate() {
                 row.reason =
                     "a sensing point cannot be reached in a straight line from the route";
             } else {
-                row.result = evaluatePathRisk(row.path, visit, *m_field, riskOptions);
+                row.result = evaluatePathRisk(row.path, visit, *m_field, risk);
                 if (row.result.blocked) {
                     row.excluded = true;
                     row.reason = "collides with an obstacle";
-                } else if (uThreshold > 0 && row.result.uMax > uThreshold) {
+                } else if (options.u_threshold > 0 &&
+                           row.result.uMax > options.u_threshold) {
                     row.excluded = true;
                     row.reason = "max u above u_threshold";
                 }

@@ -1,6 +1,7 @@
 #include <risknav/common/CCsvWriter.h>
 #include <risknav/common/CMapImage.h>
 #include <risknav/common/CPlotImage.h>
+#include <risknav/common/config_read.h>
 #include <risknav/common/summary_json.h>
 #include <risknav/geometry/polyline.h>
 #include <risknav/risk/risk_report.h>
@@ -53,10 +54,10 @@ mrpt::math::CMatrixFixed<double, 2, 2> cov2(const Eigen::Matrix3d& c) {
 }
 
 void drawCommon(CMapImage& img, const CRiskEvaluator& ev) {
-    img.marker(ev.start, CMapImage::TMarker::Square, {0, 160, 0}, 14, 2);
-    img.text({ev.start.x + 0.2, ev.start.y + 0.2}, "start", {0, 120, 0});
-    img.marker(ev.goal, CMapImage::TMarker::Star, {0, 0, 0}, 16, 2);
-    img.text({ev.goal.x + 0.2, ev.goal.y + 0.2}, "goal", {0, 0, 0});
+    img.marker(ev.options.start, CMapImage::TMarker::Square, {0, 160, 0}, 14, 2);
+    img.text({ev.options.start.x + 0.2, ev.options.start.y + 0.2}, "start", {0, 120, 0});
+    img.marker(ev.options.goal, CMapImage::TMarker::Star, {0, 0, 0}, 16, 2);
+    img.text({ev.options.goal.x + 0.2, ev.options.goal.y + 0.2}, "goal", {0, 0, 0});
     for (const auto& sp : ev.sensingPoints) {
         img.marker({sp.x, sp.y}, CMapImage::TMarker::Triangle, {200, 0, 200}, 14, 2);
         img.text({sp.x + 0.15, sp.y + 0.15}, sp.name, {150, 0, 150});
@@ -73,7 +74,7 @@ void ellipsesImage(const CRiskEvaluator& ev, const CRiskEvaluator::TRow& row,
     for (const auto& k : row.result.samples) {
         if (k.s + 1e-9 < next && !k.sensedHere)
             continue;
-        next = k.s + ev.ellipseInterval;
+        next = k.s + ev.options.ellipse_interval;
         const auto c = cov2(k.cov);
         img.ellipse({k.x, k.y}, c, 1.0, {0, 90, 220}, 1);
         if (std::isfinite(k.dmax.d) && k.dmax.d < 1e4) {
@@ -275,8 +276,9 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
         plot.save(out.stage("risk_profile.png"));
     }
 
-    const auto& o = ev.riskOptions;
-    j["error_model"] = o.model == TErrorModel::Systematic ? "systematic" : "per_step";
+    const TRiskOptions o = ev.riskOptions();
+    const auto& rule = ev.options.obstacles;
+    j["error_model"] = ev.odometry.error_model;
     j["parameters"] = {{"wheel_radius_l", o.odometry.radiusL},
                        {"wheel_radius_r", o.odometry.radiusR},
                        {"tread", o.odometry.tread},
@@ -290,12 +292,13 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
                         {std::sqrt(o.sigmaP0(0, 0)), std::sqrt(o.sigmaP0(1, 1)),
                          std::sqrt(o.sigmaP0(2, 2))}},
                        {"eval_step", o.evalStep},
-                       {"robot_radius", ev.fieldOptions.robot_radius},
-                       {"occupied_threshold", ev.fieldOptions.occupied_threshold},
-                       {"free_threshold", ev.fieldOptions.free_threshold},
-                       {"unknown_is_obstacle", ev.fieldOptions.unknown_is_obstacle},
-                       {"u_threshold", ev.uThreshold}};
-    j["map"] = {{"file", ev.mapSource.map_file},
+                       {"robot_radius", ev.robot.radius},
+                       {"occupied_threshold", rule.occupied_threshold},
+                       {"free_threshold", rule.free_threshold},
+                       {"unknown_is_obstacle", rule.unknown_is_obstacle},
+                       {"outside_is_obstacle", rule.outside_is_obstacle},
+                       {"u_threshold", ev.options.u_threshold}};
+    j["map"] = {{"file", ev.options.map.map_file},
                 {"size_x", ev.grid().getSizeX()},
                 {"size_y", ev.grid().getSizeY()},
                 {"resolution", ev.grid().getResolution()},
@@ -312,7 +315,9 @@ void runRiskEvalApp(const TAppContext& ctx) {
     COutputDir out(ctx.args.outDir);
     json summary = summaryHeader(ctx, ctx.args.seed.value_or(0));
     summary.update(writeRiskReport(ev, out));
-    out.writeText("config_effective.ini", ctx.cfg.effectiveConfigText());
+    mrpt::config::CConfigFileMemory effective;
+    ev.saveToConfigFile(effective);
+    out.writeText("config_effective.ini", effectiveConfigText(ctx.cfg.path(), effective));
     summary["outputs"] = out.stagedNames();
     summary["outputs"].push_back("summary.json");
     summary["timing"] = {

@@ -1,3 +1,4 @@
+#include <risknav/common/CBadInputError.h>
 #include <risknav/risk/CObstacleField.h>
 #include <risknav/risk/path_risk.h>
 
@@ -37,9 +38,11 @@ TEST(DMax, EqualsBruteForceOnRandomGridsAndCovariances) {
     for (int g = 0; g < 20; g++) {
         const auto grid =
             randomGrid(60 + g * 7, 50 + g * 3, 0.05, 0.002 + 0.01 * u(rng), rng);
-        CObstacleField::TOptions o;
-        o.robot_radius = 0.3 * u(rng);
-        const CObstacleField f(grid, o);
+        // The outside of the map is an obstacle (the default) on 3 grids of 4:
+        // the random grids have no border wall, so the ring often holds D_max.
+        risknav::mapping::TObstacleRule rule;
+        rule.outside_is_obstacle = g % 4 != 3;
+        const CObstacleField f(grid, rule, 0.3 * u(rng));
         for (int k = 0; k < 50; k++, cases++) {
             // Poses anywhere, also off the map and inside obstacles.
             const double x = -0.5 + u(rng) * (grid.getXMax() + 1),
@@ -61,9 +64,8 @@ TEST(DMax, SimpleCasesByHand) {
     g.fill(1.0f);
     for (int cy = 0; cy < 100; cy++)
         g.setCell(60, cy, 0.0f);  // a wall: the cells x in [6.0, 6.1]
-    CObstacleField::TOptions o;
-    o.robot_radius = 0.0;
-    const CObstacleField f(g, o);
+    risknav::mapping::TObstacleRule rule;
+    const CObstacleField f(g, rule, 0.0);
     Eigen::Matrix2d c = Eigen::Matrix2d::Identity() * 0.25;  // sigma 0.5 m
     EXPECT_NEAR(f.dMax(5.0, 5.03, c).d, 1.0 / 0.5,
                 1e-5);  // the wall face is 1 m away = 2 sigma
@@ -74,8 +76,7 @@ TEST(DMax, SimpleCasesByHand) {
                 1e-5);  // straight across, not at a cell centre
     // Growing by the robot radius brings the wall closer (cells whose centre is
     // within 0.5 m of a wall cell centre: x in [5.5, 6.6]).
-    o.robot_radius = 0.5;
-    const CObstacleField f2(g, o);
+    const CObstacleField f2(g, rule, 0.5);
     EXPECT_NEAR(f2.dMax(5.0, 5.03, c).d, 0.5, 1e-5);
     EXPECT_TRUE(f2.isObstacleAt(5.56, 5.0));
     EXPECT_FALSE(f2.isObstacleAt(5.44, 5.0));
@@ -84,10 +85,11 @@ TEST(DMax, SimpleCasesByHand) {
     const double dz = f2.dMax(5.05, 5.05, Eigen::Matrix2d::Zero()).d;
     EXPECT_TRUE(std::isfinite(dz));
     EXPECT_GT(dz, 1e5);
-    // No obstacle at all: infinite distance, zero risk.
+    // No obstacle at all (the outside not one either): infinite distance, zero risk.
     mrpt::maps::COccupancyGridMap2D empty(0, 2, 0, 2, 0.1f);
     empty.fill(1.0f);
-    const CObstacleField fe(empty, o);
+    rule.outside_is_obstacle = false;
+    const CObstacleField fe(empty, rule, 0.5);
     EXPECT_TRUE(std::isinf(fe.dMax(1, 1, c).d));
     EXPECT_EQ(riskDensity(fe.dMax(1, 1, c).d), 0.0);
 }
@@ -96,14 +98,60 @@ TEST(DMax, UnknownCellsAreConfigurable) {
     mrpt::maps::COccupancyGridMap2D g(0, 5, 0, 5, 0.1f);
     g.fill(1.0f);
     g.setCell(30, 25, 0.5f);  // unknown
-    CObstacleField::TOptions o;
-    o.robot_radius = 0;
+    risknav::mapping::TObstacleRule o;
+    o.outside_is_obstacle = false;  // only the cell counts
     o.unknown_is_obstacle = true;
-    EXPECT_NEAR(CObstacleField(g, o).dMax(2.55, 2.55, Eigen::Matrix2d::Identity()).d,
+    EXPECT_NEAR(CObstacleField(g, o, 0).dMax(2.55, 2.55, Eigen::Matrix2d::Identity()).d,
                 0.45, 1e-5);
     o.unknown_is_obstacle = false;
-    EXPECT_TRUE(
-        std::isinf(CObstacleField(g, o).dMax(2.55, 2.55, Eigen::Matrix2d::Identity()).d));
+    EXPECT_TRUE(std::isinf(
+        CObstacleField(g, o, 0).dMax(2.55, 2.55, Eigen::Matrix2d::Identity()).d));
+}
+
+// A map without a border wall: the ring of cells just outside it is an
+// obstacle (grown by the robot radius like the rest), so D_max is finite and
+// bounded by the map's edge; with outside_is_obstacle = false it is infinite.
+TEST(DMax, OpenMapIsBoundedByItsEdge) {
+    mrpt::maps::COccupancyGridMap2D g(0, 10, 0, 6, 0.1f);
+    g.fill(1.0f);  // no obstacle, no wall
+    risknav::mapping::TObstacleRule rule;
+    ASSERT_TRUE(rule.outside_is_obstacle);  // the default
+    const CObstacleField f(g, rule, 0.3);
+    const Eigen::Matrix2d c = Eigen::Matrix2d::Identity() * 0.25;  // sigma 0.5 m
+    // The ring at x in [-0.1, 0] grown by 0.3 m covers the cells up to x = 0.3.
+    const TDmax d = f.dMax(2.05, 3.05, c);
+    ASSERT_TRUE(std::isfinite(d.d));
+    EXPECT_NEAR(d.d, (2.05 - 0.3) / 0.5, 1e-6);
+    EXPECT_LE(d.d, 2.05 / 0.5);  // never beyond the map's edge
+    EXPECT_NEAR(d.touchX, 0.3, 1e-6);
+    EXPECT_NEAR(d.touchY, 3.05, 1e-6);
+    EXPECT_NEAR(f.dMaxBruteForce(2.05, 3.05, c).d, d.d, 1e-9);
+    EXPECT_TRUE(f.isObstacleAt(0.25, 3.0));
+    EXPECT_FALSE(f.isObstacleAt(0.35, 3.0));
+    // Long in y: the bottom edge holds it.
+    Eigen::Matrix2d tall = c;
+    tall(1, 1) = 100;
+    EXPECT_NEAR(f.dMax(5.05, 2.05, tall).d, (2.05 - 0.3) / 10, 1e-6);
+    // Radius 0: the edge itself.
+    EXPECT_NEAR(CObstacleField(g, rule, 0).dMax(2.05, 3.05, c).d, 2.05 / 0.5, 1e-6);
+    // Off the map: inside the outside obstacle.
+    EXPECT_EQ(f.dMax(-1, 3, c).d, 0.0);
+    EXPECT_EQ(f.dMaxBruteForce(-1, 3, c).d, 0.0);
+
+    rule.outside_is_obstacle = false;
+    const CObstacleField open(g, rule, 0.3);
+    EXPECT_TRUE(std::isinf(open.dMax(2.05, 3.05, c).d));
+    EXPECT_TRUE(std::isinf(open.dMaxBruteForce(2.05, 3.05, c).d));
+    EXPECT_FALSE(open.isObstacleAt(-1, 3));
+    EXPECT_EQ(open.obstacleCount(), 0u);
+}
+
+TEST(DMax, FieldOptionsAreValidated) {
+    mrpt::maps::COccupancyGridMap2D g(0, 2, 0, 2, 0.1f);
+    risknav::mapping::TObstacleRule rule;
+    EXPECT_THROW(CObstacleField(g, rule, -0.1), risknav::common::CConfigKeyError);
+    rule.free_threshold = 0.9;  // above occupied_threshold
+    EXPECT_THROW(CObstacleField(g, rule, 0.25), risknav::common::CConfigKeyError);
 }
 
 // The error ellipse at Mahalanobis distance D holds 1 - exp(-D^2/2) of the

@@ -1,7 +1,13 @@
+#include <risknav/common/CBadInputError.h>
 #include <risknav/geometry/polyline.h>
+#include <risknav/risk/CRiskEvaluator.h>
 #include <risknav/risk/path_risk.h>
 
+#include <mrpt/config/CConfigFileMemory.h>
+
 #include <gtest/gtest.h>
+
+#include "test_support.h"
 
 #include <cmath>
 
@@ -37,9 +43,7 @@ TEST(PathRisk, TrapezoidIntegral) {
 }
 
 TEST(PathRisk, UGrowsAlongACorridorAndDropsAtASensingPoint) {
-    CObstacleField::TOptions fo;
-    fo.robot_radius = 0.25;
-    const CObstacleField f(corridor(), fo);
+    const CObstacleField f(corridor(), {}, 0.25);
     const std::vector<TPoint2D> path = {{1, 1}, {29, 1}};
     for (TErrorModel model : {TErrorModel::PerStep, TErrorModel::Systematic}) {
         TRiskOptions o = paperOptions();
@@ -74,9 +78,7 @@ TEST(PathRisk, UGrowsAlongACorridorAndDropsAtASensingPoint) {
 }
 
 TEST(PathRisk, NarrowerMeansRiskier) {
-    CObstacleField::TOptions fo;
-    fo.robot_radius = 0.25;
-    const CObstacleField f(corridor(), fo);
+    const CObstacleField f(corridor(), {}, 0.25);
     const auto centre = evaluatePathRisk({{1, 1}, {20, 1}}, {}, f, paperOptions());
     const auto offCentre = evaluatePathRisk({{1, 0.6}, {20, 0.6}}, {}, f, paperOptions());
     EXPECT_GT(offCentre.U, centre.U);
@@ -88,9 +90,7 @@ TEST(PathRisk, NarrowerMeansRiskier) {
 }
 
 TEST(PathRisk, SensingDetours) {
-    CObstacleField::TOptions fo;
-    fo.robot_radius = 0.25;
-    const CObstacleField f(corridor(), fo);
+    const CObstacleField f(corridor(), {}, 0.25);
     const std::vector<TPoint2D> route = {{1, 1}, {29, 1}};
     TSensingPoint a, b;
     a.name = "A";
@@ -110,4 +110,50 @@ TEST(PathRisk, SensingDetours) {
     c.x = 10;
     c.y = 2.3;
     EXPECT_FALSE(routeWithSensingDetours(route, {c}, f, out));
+}
+
+// Options set from code run the same validate() as options read from a file;
+// saveToConfigFile() writes what loadFromConfigFile() reads back exactly.
+TEST(RiskOptions, SetFromCodeAreValidatedAndRoundTrip) {
+    using risknav::common::CConfigKeyError;
+    CRiskEvaluator ev;  // no map, no start, no goal
+    EXPECT_THROW(ev.evaluate(), CConfigKeyError);
+    TPropagationOptions p;
+    p.speed = 0;
+    EXPECT_THROW(p.validate(), CConfigKeyError);
+    TSensingPointOptions sp;  // x, y required
+    sp.name = "S";
+    EXPECT_THROW(sp.validate(), CConfigKeyError);
+
+    CRiskEvaluator::TOptions o;
+    o.map.map_file = risknav::test::sourcePath("datasets/risk-two-routes/two_routes.png");
+    o.start = {2.0, 7.0};
+    o.goal = {22.0, 7.0};
+    o.obstacles.outside_is_obstacle = false;
+    o.eval_step = 0.1 / 3;
+    o.gvg.separation_ratio = 0.7;
+    EXPECT_NO_THROW(o.validate());
+    mrpt::config::CConfigFileMemory m;
+    o.saveToConfigFile(m, "RiskEval");
+    CRiskEvaluator::TOptions r;
+    r.loadFromConfigFile(m, "RiskEval");
+    mrpt::config::CConfigFileMemory m2;
+    r.saveToConfigFile(m2, "RiskEval");
+    EXPECT_EQ(m.getContent(), m2.getContent());
+    EXPECT_EQ(r.eval_step, o.eval_step);
+    EXPECT_FALSE(r.obstacles.outside_is_obstacle);
+    EXPECT_EQ(r.gvg.separation_ratio, 0.7);
+}
+
+// error_model none: exact wheels, only the initial error and the noise count.
+TEST(RiskOptions, ErrorModelNoneMeansExactWheels) {
+    risknav::common::TOdometryOptions odo;
+    odo.error_model = "none";
+    const TRiskOptions o = makeRiskOptions(odo, TPropagationOptions{}, 0.05);
+    EXPECT_EQ(o.odometry.sigmaM(), Eigen::Matrix3d::Zero());
+    EXPECT_EQ(o.odometry.radiusL, odo.wheel_radius_l);
+    EXPECT_NEAR(o.sigmaP0(2, 2), 0.01, 1e-15);  // (0.1 rad)^2
+    odo.error_model = "systematic";
+    EXPECT_EQ(makeRiskOptions(odo, {}, 0.05).model, TErrorModel::Systematic);
+    EXPECT_NEAR(makeRiskOptions(odo, {}, 0.05).odometry.sigmaT, 0.001, 1e-15);
 }

@@ -8,14 +8,14 @@ using mrpt::math::TPoint2D;
 using risknav::geometry::polylineLength;
 
 namespace {
-mrpt::maps::COccupancyGridMap2D room(bool island) {
+mrpt::maps::COccupancyGridMap2D room(bool island, bool walls = true) {
     // 12 x 8 m room with walls; optionally a 4 x 2 m block in the middle.
     mrpt::maps::COccupancyGridMap2D g(0, 12, 0, 8, 0.05f);
     g.fill(1.0f);
     for (unsigned cy = 0; cy < g.getSizeY(); cy++)
         for (unsigned cx = 0; cx < g.getSizeX(); cx++) {
             const double x = g.idx2x(cx), y = g.idx2y(cy);
-            const bool wall = x < 0.3 || x > 11.7 || y < 0.3 || y > 7.7;
+            const bool wall = walls && (x < 0.3 || x > 11.7 || y < 0.3 || y > 7.7);
             const bool block = island && x > 4 && x < 8 && y > 3 && y < 5;
             if (wall || block)
                 g.setCell(cx, cy, 0.0f);
@@ -25,9 +25,7 @@ mrpt::maps::COccupancyGridMap2D room(bool island) {
 }  // namespace
 
 TEST(CGvgRoutes, TwoWaysAroundAnIsland) {
-    CObstacleField::TOptions fo;
-    fo.robot_radius = 0.25;
-    const CObstacleField f(room(true), fo);
+    const CObstacleField f(room(true), {}, 0.25);
     const CGvgRoutes gvg(f, {});
     EXPECT_GT(gvg.skeletonCells(), 100u);
     const auto r = gvg.routes({1.5, 4}, {10.5, 4}, 5);
@@ -67,8 +65,22 @@ TEST(CGvgRoutes, NoRouteWhenWalledOff) {
     for (unsigned cy = 0; cy < g.getSizeY(); cy++)
         for (unsigned cx = 118; cx < 122; cx++)
             g.setCell(cx, cy, 0.0f);  // a wall at x = 6
-    CObstacleField::TOptions fo;
-    fo.robot_radius = 0.25;
-    const CObstacleField f(g, fo);
+    const CObstacleField f(g, {}, 0.25);
     EXPECT_TRUE(CGvgRoutes(f, {}).routes({1.5, 4}, {10.5, 4}, 3).empty());
+}
+
+// Without a border wall the outside of the map is the wall (the obstacle
+// rule's default): the GVG runs between the block and the map's edges.
+TEST(CGvgRoutes, OpenMapHasItsEdgesAsWalls) {
+    const CObstacleField f(room(true, false), {}, 0.25);
+    const auto r = CGvgRoutes(f, {}).routes({1.5, 4}, {10.5, 4}, 5);
+    ASSERT_GE(r.size(), 2u);
+    double lo = 1e9, hi = -1e9;
+    for (const auto& route : r)
+        for (const auto& q : route) {
+            lo = std::min(lo, q.y);
+            hi = std::max(hi, q.y);
+        }
+    EXPECT_NEAR(hi, 6.5, 0.3);  // midway between the block (y = 5) and the edge (8)
+    EXPECT_NEAR(lo, 1.5, 0.3);
 }

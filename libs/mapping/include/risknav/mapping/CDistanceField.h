@@ -8,6 +8,25 @@
 #include <vector>
 
 namespace risknav::mapping {
+/** For every cell of a CDistanceField, its nearest obstacle cell: a discrete
+ * Voronoi partition of the cells by their obstacle cells (the ring outside the
+ * map included when the rule makes it an obstacle). What a Generalized Voronoi
+ * Graph is read from (Irie et al. (001) section 6.1, eq. 31: points whose two
+ * closest obstacles lie apart). */
+struct TNearestObstacles {
+    int sizeX = 0, sizeY = 0;
+    /** Row-major, sizeX * sizeY: the nearest obstacle cell's indices (-1 or
+     * sizeX / sizeY for a ring cell); an obstacle cell names itself. */
+    std::vector<int32_t> obstX, obstY;
+    /** Row-major: the distance to it [cells], OpenCV's 5x5 chamfer distance
+     * (within 2 % of Euclidean): OpenCV labels nearest pixels only with the
+     * 3x3 and 5x5 masks, not with the exact transform. */
+    std::vector<float> distCells;
+    bool any = false;  ///< false: no obstacle at all (every entry meaningless)
+
+    size_t index(int cx, int cy) const { return size_t(cy) * sizeX + cx; }
+};
+
 /** The obstacles of an occupancy grid under one TObstacleRule, and the
  * clearance of every cell: the Euclidean distance [m] from its centre to the
  * nearest obstacle cell centre (OpenCV's exact distance transform), with the
@@ -58,6 +77,10 @@ class CDistanceField {
     const std::vector<float>& clearances() const { return m_dist; }
     size_t obstacleCount() const { return m_nObst; }
     size_t freeCount() const { return m_obst.size() - m_nObst; }
+
+    /** Every cell's nearest obstacle cell (computed on each call: a labelled
+     * distance transform of the same obstacles, ring included by the rule). */
+    TNearestObstacles nearestObstacles() const;
 
   private:
     TObstacleRule m_rule;

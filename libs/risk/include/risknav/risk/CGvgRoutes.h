@@ -1,11 +1,11 @@
 #pragma once
+#include <risknav/common/CValidatedOptions.h>
 #include <risknav/risk/CObstacleField.h>
 
 #include <mrpt/math/TPoint2D.h>
 
-#include <opencv2/core.hpp>
-
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace risknav::risk {
@@ -14,12 +14,15 @@ namespace risknav::risk {
  * closest obstacles), own implementation: MRPT 2.5.8's buildVoronoiDiagram
  * fails on non-square grids and at borders (MRPT_NOTES section 3).
  *
- * 1. Distance transform of the raw obstacles with the nearest obstacle pixel
- *    of every free pixel (OpenCV, DIST_LABEL_PIXEL).
+ * 1. The nearest obstacle cell of every free cell
+ *    (mapping::CDistanceField::nearestObstacles(): the raw obstacles under the
+ *    shared obstacle rule, the ring outside the map included by default, so
+ *    that a map without a border wall has a GVG along its edges too).
  * 2. A free pixel is on the GVG when a 4-neighbour's nearest obstacle point
  *    lies far from its own: |N(p) - N(q)| >= max(2 cells, separation_ratio d(p))
  *    (the two sides of a corridor; the ratio prunes the spurs a medial axis
- *    grows towards corners), and the robot fits there (d(p) >= min_clearance).
+ *    grows towards corners), and the robot fits there (d(p) >= the field's
+ *    robot radius).
  * 3. Zhang-Suen thinning to a one-pixel skeleton; each skeleton end is joined
  *    to the nearest pixel of another skeleton component within 2.5 x its
  *    clearance (where a corridor opens into a room the medial lines stop
@@ -33,12 +36,21 @@ namespace risknav::risk {
  *    inside one room makes a variant, not a distinct route. */
 class CGvgRoutes {
   public:
-    struct TOptions {
-        double separation_ratio = 1.0;
-        double min_clearance = -1;        ///< [m] default (< 0): the field's robot radius
-        double simplify_tolerance = 0.1;  ///< [m]
+    /** Keys gvg_separation_ratio and gvg_simplify_tolerance of the host
+     * section ([RiskEval]). */
+    struct TOptions : public common::CValidatedOptions {
+        double separation_ratio = 1.0;     ///< of the clearance, step 2 above
+        double simplify_tolerance = 0.1;   ///< [m] Douglas-Peucker, step 4
+        std::string section = "RiskEval";  ///< the host section (for messages)
+
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                const std::string& section) override;
+        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                              const std::string& section) const override;
+        void validate() const override;
     };
 
+    /** Throws common::CConfigKeyError when the options are out of range. */
     CGvgRoutes(const CObstacleField& field, const TOptions& o);
 
     /** Up to k distinct routes start -> goal, shortest first (each starts at
@@ -59,7 +71,7 @@ class CGvgRoutes {
                  const std::vector<mrpt::math::TPoint2D>& b) const;
 
   private:
-    void bridgeGaps(const cv::Mat& dist);
+    void bridgeGaps(const mapping::TNearestObstacles& near);
     long attach(const mrpt::math::TPoint2D& p) const;  // skeleton pixel index or -1
     // Douglas-Peucker at simplify_tolerance, never across a grown obstacle.
     std::vector<mrpt::math::TPoint2D> simplify(

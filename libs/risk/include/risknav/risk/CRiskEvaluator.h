@@ -1,13 +1,21 @@
 #pragma once
 #include <risknav/common/CIniConfig.h>
+#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/TOdometryOptions.h>
+#include <risknav/common/TRobotOptions.h>
 #include <risknav/common/grid_io.h>
+#include <risknav/mapping/TObstacleRule.h>
 #include <risknav/risk/CGvgRoutes.h>
 #include <risknav/risk/CObstacleField.h>
+#include <risknav/risk/TPropagationOptions.h>
+#include <risknav/risk/TRouteOptions.h>
+#include <risknav/risk/TSensingPointOptions.h>
 #include <risknav/risk/path_risk.h>
 
 #include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/math/TPoint2D.h>
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,10 +25,36 @@ namespace risknav::risk {
  * collision under odometry drift (Irie, Nagatani, Gofuku (001); PAPER_NOTES
  * M2), for every subset of sensing points a route may visit (like the paper's
  * Table 1). Candidates: [RouteN] sections of the config and/or the k
- * shortest GVG routes. Config sections: [RiskEval] [Odometry] [RouteN]
- * [SensingPointN], documented in config/risknav-risk-eval.ini. */
+ * shortest GVG routes. Config sections: [RiskEval] (options), [Robot]
+ * (robot: its radius grows the obstacles), [Odometry] (odometry + propagation),
+ * [RouteN] (configRoutes), [SensingPointN] (sensingPoints), documented in
+ * config/risknav-risk-eval.ini. */
 class CRiskEvaluator {
   public:
+    /** The [RiskEval] keys: the map, which of its cells are obstacles, start
+     * and goal, the candidates and the evaluation. */
+    struct TOptions : public common::CValidatedOptions {
+        common::TMapSourceOptions map;     ///< map_* keys
+        mapping::TObstacleRule obstacles;  ///< occupied_threshold ... outside_is_obstacle
+        CGvgRoutes::TOptions gvg;  ///< gvg_separation_ratio, gvg_simplify_tolerance
+        mrpt::math::TPoint2D start{std::nan(""), std::nan("")};  ///< [m] required
+        mrpt::math::TPoint2D goal{std::nan(""), std::nan("")};   ///< [m] required
+        double u_threshold =
+            0;  ///< exclude rows whose max u exceeds this (section 5.3); 0: off
+        int max_sensing_subset = 2;        ///< subsets of sensing points up to this size
+        int gvg_routes = 3;                ///< k shortest GVG routes (0: only [RouteN])
+        double ellipse_interval = 2;       ///< [m] between drawn ellipses
+        double eval_step = 0.05;           ///< [m] D_max / u sampling along the path
+        std::string section = "RiskEval";  ///< the host section (for messages)
+
+        TOptions() { map.section = obstacles.section = gvg.section = section; }
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                const std::string& section) override;
+        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                              const std::string& section) const override;
+        void validate() const override;
+    };
+
     struct TRoute {
         std::string name;
         std::vector<mrpt::math::TPoint2D> waypoints;  ///< from start to goal
@@ -37,28 +71,34 @@ class CRiskEvaluator {
         std::string reason;  ///< why excluded ("" if not)
     };
 
-    // ---- options (loaded by loadFromConfigFile)
-    common::TMapSourceOptions mapSource;
-    CObstacleField::TOptions fieldOptions;
-    TRiskOptions riskOptions;
-    CGvgRoutes::TOptions gvgOptions;
-    mrpt::math::TPoint2D start, goal;
-    double uThreshold =
-        0;  ///< exclude rows whose max u exceeds this (section 5.3); 0: off
-    int maxSensingSubset = 2;    ///< subsets of sensing points up to this size
-    int gvgRoutes = 3;           ///< k shortest GVG routes (0: only [RouteN])
-    double ellipseInterval = 2;  ///< [m] between drawn ellipses
-    std::vector<TRoute> configRoutes;
-    std::vector<TSensingPoint> sensingPoints;
+    // ---- options: every section of the config
+    TOptions options;                         ///< [RiskEval]
+    common::TRobotOptions robot;              ///< [Robot] (radius)
+    common::TOdometryOptions odometry;        ///< [Odometry] wheels, sigmas, model
+    TPropagationOptions propagation;          ///< [Odometry] tau, speed, sigmas
+    std::vector<TRouteOptions> configRoutes;  ///< [Route1], [Route2], ...
+    std::vector<TSensingPointOptions> sensingPoints;  ///< [SensingPoint1], ...
 
-    /** Loads and validates every section and the map: start/goal off the map
-     * or inside an obstacle, sensing points inside obstacles, bad numbers,
-     * no candidates at all: CBadInputError before any output. */
+    /** Reads every section (MRPT style: each options struct loads its own
+     * keys, then validate()), rejects unknown sections and keys, then
+     * prepare(). Any problem: CBadInputError naming the file, before any output. */
     void loadFromConfigFile(const common::CIniConfig& c);
+    /** Writes every key of every section (config_effective.ini). */
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c) const;
+    /** Every options struct's validate(), and the rules between them (at least
+     * one candidate, unique sensing point names). Throws CConfigKeyError. */
+    void validate() const;
+    /** validate(), loads the map and grows its obstacles, and checks start,
+     * goal, sensing points and route points against it (off the map, inside a
+     * grown obstacle: CConfigKeyError). Run again after changing options. */
+    void prepare();
 
-    /** Builds the candidates and evaluates every route x sensing subset. */
+    /** Builds the candidates and evaluates every route x sensing subset
+     * (prepare() first if it has not run). */
     void evaluate();
 
+    /** What evaluatePathRisk() is given (makeRiskOptions). */
+    TRiskOptions riskOptions() const;
     const mrpt::maps::COccupancyGridMap2D& grid() const { return m_grid; }
     const CObstacleField& field() const { return *m_field; }
     const CGvgRoutes* gvg() const { return m_gvg.get(); }

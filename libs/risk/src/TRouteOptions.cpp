@@ -1,0 +1,30 @@
+#include <risknav/common/config_read.h>
+#include <risknav/risk/TRouteOptions.h>
+
+using namespace risknav::common;
+
+namespace risknav::risk {
+void TRouteOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                       const std::string& s) {
+    section = s;
+    name = readString(c, s, "name", s);
+    waypoints = readNumbers(c, s, "waypoints", waypoints, {}, 0, 2);
+}
+
+void TRouteOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                     const std::string& s) const {
+    writeKey(c, s, "name", name);
+    writeKey(c, s, "waypoints", waypoints);
+}
+
+void TRouteOptions::validate() const {
+    checkRule(!name.empty(), section, "name", name, "must not be empty");
+    std::string text;
+    for (double v : waypoints)
+        text += (text.empty() ? "" : " ") + numberText(v);
+    checkRule(waypoints.size() % 2 == 0, section, "waypoints", text,
+              "needs x y pairs [m]");
+    checkKey(section, "waypoints", waypoints, TRange::any("m"));
+}
+
+}  // namespace risknav::risk
