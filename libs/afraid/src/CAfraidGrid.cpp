@@ -1,54 +1,156 @@
 #include <risknav/afraid/CAfraidGrid.h>
+#include <risknav/common/CBadInputError.h>
 
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 
 namespace risknav::afraid {
+using common::CBadInputError;
+
 namespace {
 const char kMagic[8] = {'R', 'N', 'A', 'F', 'R', 'A', 'I', 'D'};
+constexpr size_t kHeaderBytes = 56;  // magic .. frames (see CAfraidGrid.h)
+static_assert(std::numeric_limits<double>::is_iec559, "IEEE-754 doubles required");
 
-template <class T>
-void put(mrpt::io::CFileGZOutputStream& f, const T& v) {
-    if (f.Write(&v, sizeof(T)) != sizeof(T))
-        throw std::runtime_error("write failed");
+// Little-endian encoding, byte by byte (independent of the host's order).
+void putU32(std::string& b, uint32_t v) {
+    for (int k = 0; k < 4; k++)
+        b.push_back(char(uint8_t(v >> (8 * k))));
 }
-template <class T>
-T get(mrpt::io::CFileGZInputStream& f, const std::string& path) {
-    T v{};
-    if (f.Read(&v, sizeof(T)) != sizeof(T))
-        throw std::runtime_error(path + ": truncated .afraid file");
-    return v;
+void putU64(std::string& b, uint64_t v) {
+    for (int k = 0; k < 8; k++)
+        b.push_back(char(uint8_t(v >> (8 * k))));
 }
-void putSparse(mrpt::io::CFileGZOutputStream& f, const std::vector<uint32_t>& v) {
+void putF64(std::string& b, double v) {
+    uint64_t u;
+    std::memcpy(&u, &v, 8);
+    putU64(b, u);
+}
+void putSparse(std::string& b, const std::vector<uint32_t>& v) {
     uint32_t n = 0;
     for (uint32_t x : v)
         n += x != 0;
-    put(f, n);
+    putU32(b, n);
     for (uint32_t i = 0; i < v.size(); i++)
         if (v[i]) {
-            put(f, i);
-            put(f, v[i]);
+            putU32(b, i);
+            putU32(b, v[i]);
         }
 }
-void getSparse(mrpt::io::CFileGZInputStream& f, std::vector<uint32_t>& v,
-               const std::string& path) {
-    const uint32_t n = get<uint32_t>(f, path);
-    if (n > v.size())
-        throw std::runtime_error(path + ": corrupt .afraid file (cell count)");
-    for (uint32_t k = 0; k < n; k++) {
-        const uint32_t i = get<uint32_t>(f, path), x = get<uint32_t>(f, path);
-        if (i >= v.size())
-            throw std::runtime_error(path + ": corrupt .afraid file (cell index)");
-        v[i] = x;
+
+// Little-endian decoding from a byte buffer; every error names the file.
+class CLeReader {
+  public:
+    CLeReader(const std::string& bytes, const std::string& name)
+        : m_b(bytes), m_name(name) {}
+    size_t remaining() const { return m_b.size() - m_pos; }
+    [[noreturn]] void fail(const std::string& what) const {
+        throw CBadInputError(m_name + ": " + what);
     }
+    uint64_t uint(int n) {
+        if (remaining() < size_t(n))
+            fail("truncated .afraid file");
+        uint64_t v = 0;
+        for (int k = 0; k < n; k++)
+            v |= uint64_t(uint8_t(m_b[m_pos + size_t(k)])) << (8 * k);
+        m_pos += size_t(n);
+        return v;
+    }
+    uint32_t u32() { return uint32_t(uint(4)); }
+    int32_t i32() {
+        const uint32_t u = u32();
+        int32_t v;
+        std::memcpy(&v, &u, 4);
+        return v;
+    }
+    uint64_t u64() { return uint(8); }
+    double f64() {
+        const uint64_t u = u64();
+        double v;
+        std::memcpy(&v, &u, 8);
+        return v;
+    }
+
+  private:
+    const std::string& m_b;
+    const std::string& m_name;
+    size_t m_pos = 0;
+};
+
+// One sparse layer as (cell index, count) pairs; n is checked against the
+// bytes left before anything is reserved.
+std::vector<std::pair<uint32_t, uint32_t>> getSparse(CLeReader& r, uint64_t cells,
+                                                     uint32_t version) {
+    const uint32_t n = r.u32();
+    if (n > cells)
+        r.fail("corrupt .afraid file (cell count " + std::to_string(n) + " > " +
+               std::to_string(cells) + " cells)");
+    if (uint64_t(n) * 8 > r.remaining())
+        r.fail("truncated .afraid file (" + std::to_string(n) + " cells announced, " +
+               std::to_string(r.remaining()) + " bytes left)");
+    std::vector<std::pair<uint32_t, uint32_t>> v;
+    v.reserve(n);
+    for (uint32_t k = 0; k < n; k++) {
+        const uint32_t i = r.u32(), x = r.u32();
+        if (i >= cells)
+            r.fail("corrupt .afraid file (cell index)");
+        if (version >= 2 && ((!v.empty() && i <= v.back().first) || x == 0))
+            r.fail("corrupt .afraid file (cell order)");
+        v.emplace_back(i, x);
+    }
+    return v;
+}
+
+std::string geometryError(int sx, int sy) {
+    return "map of " + std::to_string(sx) + " x " + std::to_string(sy) +
+           " cells, more than an afraid grid holds (" +
+           std::to_string(CAfraidGrid::kMaxCells) + " cells)";
+}
+
+// The fixed-size header, read and checked: magic, version, geometry.
+struct THeader {
+    uint32_t version = 0;
+    double xmin = 0, ymin = 0, res = 0;
+    int32_t sx = 0, sy = 0;
+    uint32_t runs = 0;
+    uint64_t frames = 0;
+    uint64_t cells() const { return uint64_t(sx) * uint64_t(sy); }
+    // The decompressed size a file with this header can legitimately have.
+    uint64_t maxBytes() const { return kHeaderBytes + 3 * (4 + 8 * cells()); }
+};
+THeader getHeader(CLeReader& r, const std::string& bytes) {
+    if (bytes.size() < 8 || std::memcmp(bytes.data(), kMagic, 8) != 0)
+        r.fail("not a risknav .afraid file");
+    r.u64();  // the magic
+    THeader h;
+    h.version = r.u32();
+    if (h.version < CAfraidGrid::kOldestVersion || h.version > CAfraidGrid::kVersion)
+        r.fail(".afraid file version " + std::to_string(h.version) +
+               " (this build reads " + std::to_string(CAfraidGrid::kOldestVersion) +
+               " to " + std::to_string(CAfraidGrid::kVersion) + ")");
+    h.xmin = r.f64();
+    h.ymin = r.f64();
+    h.res = r.f64();
+    h.sx = r.i32();
+    h.sy = r.i32();
+    if (h.sx <= 0 || h.sy <= 0 || !std::isfinite(h.xmin) || !std::isfinite(h.ymin) ||
+        !std::isfinite(h.res) || !(h.res > 0))
+        r.fail("corrupt .afraid file (geometry)");
+    if (h.cells() > CAfraidGrid::kMaxCells)
+        r.fail(geometryError(h.sx, h.sy));
+    h.runs = r.u32();
+    h.frames = r.u64();
+    return h;
 }
 }  // namespace
 
@@ -57,10 +159,13 @@ CAfraidGrid::CAfraidGrid(const mrpt::maps::COccupancyGridMap2D& map)
       m_ymin(map.getYMin()),
       m_res(map.getResolution()),
       m_sx(int(map.getSizeX())),
-      m_sy(int(map.getSizeY())),
-      m_exposure(size_t(m_sx) * m_sy, 0),
-      m_robotEvents(size_t(m_sx) * m_sy, 0),
-      m_obstacleEvents(size_t(m_sx) * m_sy, 0) {}
+      m_sy(int(map.getSizeY())) {
+    if (uint64_t(m_sx) * uint64_t(m_sy) > kMaxCells)
+        throw CBadInputError(geometryError(m_sx, m_sy));
+    m_exposure.assign(size_t(m_sx) * m_sy, 0);
+    m_robotEvents.assign(size_t(m_sx) * m_sy, 0);
+    m_obstacleEvents.assign(size_t(m_sx) * m_sy, 0);
+}
 
 bool CAfraidGrid::sameGeometry(const CAfraidGrid& o) const {
     return m_sx == o.m_sx && m_sy == o.m_sy && std::abs(m_res - o.m_res) < 1e-6 &&
@@ -127,32 +232,68 @@ void CAfraidGrid::merge(const CAfraidGrid& o) {
     frames += o.frames;
 }
 
+std::string CAfraidGrid::encode() const {
+    std::string b(kMagic, 8);
+    putU32(b, kVersion);
+    putF64(b, m_xmin);
+    putF64(b, m_ymin);
+    putF64(b, m_res);
+    putU32(b, uint32_t(m_sx));
+    putU32(b, uint32_t(m_sy));
+    putU32(b, runs);
+    putU64(b, frames);
+    putSparse(b, m_exposure);
+    putSparse(b, m_robotEvents);
+    putSparse(b, m_obstacleEvents);
+    return b;
+}
+
+CAfraidGrid CAfraidGrid::decode(const std::string& bytes, const std::string& name) {
+    CLeReader r(bytes, name);
+    const THeader h = getHeader(r, bytes);
+    CAfraidGrid g;
+    g.m_xmin = h.xmin;
+    g.m_ymin = h.ymin;
+    g.m_res = h.res;
+    g.m_sx = h.sx;
+    g.m_sy = h.sy;
+    g.runs = h.runs;
+    g.frames = h.frames;
+    const uint64_t cells = h.cells();
+    const uint32_t version = h.version;
+    const auto exposure = getSparse(r, cells, version),
+               robotEvents = getSparse(r, cells, version),
+               obstacleEvents = getSparse(r, cells, version);
+    if (version >= 2 && r.remaining() != 0)
+        r.fail("corrupt .afraid file (" + std::to_string(r.remaining()) +
+               " bytes after the data)");
+    // Only now, with the whole file valid, the dense layers.
+    for (auto [layer, sparse] :
+         {std::pair{&g.m_exposure, &exposure}, std::pair{&g.m_robotEvents, &robotEvents},
+          std::pair{&g.m_obstacleEvents, &obstacleEvents}}) {
+        layer->assign(size_t(cells), 0);
+        for (const auto& [i, x] : *sparse)
+            (*layer)[i] = x;
+    }
+    return g;
+}
+
 void CAfraidGrid::save(const std::string& path) const {
     const std::filesystem::path p(path);
     const std::string tmp = (p.parent_path() / (".tmp-" + std::to_string(::getpid()) +
                                                 "-" + p.filename().string()))
                                 .string();
+    const std::string bytes = encode();
+    bool ok;
     {
         mrpt::io::CFileGZOutputStream f;
-        if (!f.open(tmp, 6))
-            throw std::runtime_error("cannot write " + path);
-        f.Write(kMagic, 8);
-        put(f, kVersion);
-        put(f, m_xmin);
-        put(f, m_ymin);
-        put(f, m_res);
-        put(f, int32_t(m_sx));
-        put(f, int32_t(m_sy));
-        put(f, runs);
-        put(f, frames);
-        putSparse(f, m_exposure);
-        putSparse(f, m_robotEvents);
-        putSparse(f, m_obstacleEvents);
+        ok = f.open(tmp, 6) && f.Write(bytes.data(), bytes.size()) == bytes.size();
         f.close();
     }
     std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
+    if (ok)
+        std::filesystem::rename(tmp, path, ec);
+    if (!ok || ec) {
         std::filesystem::remove(tmp, ec);
         throw std::runtime_error("cannot write " + path);
     }
@@ -161,37 +302,35 @@ void CAfraidGrid::save(const std::string& path) const {
 CAfraidGrid CAfraidGrid::load(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
-        throw std::runtime_error(path + ": .afraid file not found");
+        throw CBadInputError(path + ": .afraid file not found");
     mrpt::io::CFileGZInputStream f;
     if (!f.open(path))
-        throw std::runtime_error(path + ": cannot read the .afraid file");
-    char magic[8] = {};
-    if (f.Read(magic, 8) != 8 || std::memcmp(magic, kMagic, 8) != 0)
-        throw std::runtime_error(path + ": not a risknav .afraid file");
-    const uint32_t version = get<uint32_t>(f, path);
-    if (version != kVersion)
-        throw std::runtime_error(path + ": .afraid file version " +
-                                 std::to_string(version) + " (this build reads " +
-                                 std::to_string(kVersion) + ")");
-    CAfraidGrid g;
-    g.m_xmin = get<double>(f, path);
-    g.m_ymin = get<double>(f, path);
-    g.m_res = get<double>(f, path);
-    g.m_sx = get<int32_t>(f, path);
-    g.m_sy = get<int32_t>(f, path);
-    if (g.m_sx <= 0 || g.m_sy <= 0 || g.m_sx > 100000 || g.m_sy > 100000 ||
-        !(g.m_res > 0))
-        throw std::runtime_error(path + ": corrupt .afraid file (geometry)");
-    g.runs = get<uint32_t>(f, path);
-    g.frames = get<uint64_t>(f, path);
-    const size_t n = size_t(g.m_sx) * g.m_sy;
-    g.m_exposure.assign(n, 0);
-    g.m_robotEvents.assign(n, 0);
-    g.m_obstacleEvents.assign(n, 0);
-    getSparse(f, g.m_exposure, path);
-    getSparse(f, g.m_robotEvents, path);
-    getSparse(f, g.m_obstacleEvents, path);
-    return g;
+        throw CBadInputError(path + ": cannot read the .afraid file");
+    // The decompressed content, the header first: it bounds the rest.
+    std::string bytes;
+    uint64_t limit = kHeaderBytes;
+    std::vector<char> buf(1 << 16);
+    while (true) {
+        const size_t want =
+            size_t(std::min<uint64_t>(buf.size(), limit + 1 - bytes.size()));
+        size_t got = 0;
+        try {
+            got = f.Read(buf.data(), want);
+        } catch (const std::exception&) {
+            throw CBadInputError(path + ": corrupt .afraid file (gz stream)");
+        }
+        if (got == 0)
+            break;
+        bytes.append(buf.data(), got);
+        if (limit == kHeaderBytes && bytes.size() >= kHeaderBytes) {
+            CLeReader r(bytes, path);
+            limit = getHeader(r, bytes).maxBytes();
+        }
+        if (bytes.size() > limit)
+            throw CBadInputError(path + ": corrupt .afraid file (longer than its " +
+                                 "header allows)");
+    }
+    return decode(bytes, path);
 }
 
 }  // namespace risknav::afraid

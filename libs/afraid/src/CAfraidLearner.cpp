@@ -1,4 +1,5 @@
 #include <risknav/afraid/CAfraidLearner.h>
+#include <risknav/afraid/afraid_level.h>
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/CProgress.h>
 #include <risknav/common/config_read.h>
@@ -301,34 +302,7 @@ void CAfraidLearner::generalize() {
     m_grid = m_new;
     if (!afraidIn.empty())
         m_grid.merge(m_old);
-    // Pool exposure and events in sampleBin x sampleBin squares first: the
-    // robot's cells along a path are nearly one-dimensional and jitter
-    // sideways with the localization; regressing on single cells would fit that
-    // jitter. Each bin is a sample at its exposure-weighted mean position with
-    // target events / exposure = events per pass through the bin.
-    const int sx = m_grid.sizeX(), sy = m_grid.sizeY();
-    const int per = std::max(1, int(std::lround(sampleBin / m_grid.resolution())));
-    const int bx = (sx + per - 1) / per, by = (sy + per - 1) / per;
-    std::vector<double> ex(size_t(bx) * by, 0), ev(size_t(bx) * by, 0),
-        mxs(size_t(bx) * by, 0), mys(size_t(bx) * by, 0);
-    for (int cy = 0; cy < sy; cy++)
-        for (int cx = 0; cx < sx; cx++) {
-            const size_t k = size_t(cy) * sx + cx, b = size_t(cy / per) * bx + cx / per;
-            const double e = m_grid.exposure()[k];
-            ex[b] += e;
-            ev[b] += m_grid.robotEvents()[k];
-            mxs[b] += e * m_grid.colToX(cx);
-            mys[b] += e * m_grid.rowToY(cy);
-        }
-    // A bin's exposure counts frames; a pass spends about per cells' worth of
-    // frames in it, so events / (exposure / cells crossed) = events per pass.
-    std::vector<TKrrSample> samples;
-    for (size_t b = 0; b < ex.size(); b++)
-        if (ex[b] > 0)
-            samples.push_back({mxs[b] / ex[b], mys[b] / ex[b], ev[b] * per / ex[b]});
-    const auto alpha = krrFit(samples, krr);
-    m_level = krrPredictGrid(samples, alpha, krr, m_grid.xMin(), m_grid.yMin(),
-                             m_grid.resolution(), sx, sy);
+    m_level = afraidLevel(m_grid, krr, sampleBin);
     m_zones = findZones(m_level, m_grid, zoneThreshold);
 }
 

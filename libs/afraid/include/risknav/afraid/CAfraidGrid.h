@@ -11,13 +11,50 @@ namespace risknav::afraid {
  * how many unexpected obstacles were seen there, and how often the robot was
  * there at all (exposure, in frames), so that rates and not raw counts are
  * compared. Saved as a versioned gz file (.afraid) that later runs load and
- * add to. */
+ * add to.
+ *
+ * The .afraid format (gzip-compressed; every number LITTLE-ENDIAN, written and
+ * read byte by byte whatever the host's byte order; doubles are IEEE-754
+ * binary64 with their 64 bits in little-endian order; no padding):
+ *
+ *   offset  size  field
+ *        0     8  magic "RNAFRAID"
+ *        8     4  u32 version (kVersion = 2; version 1 is still read)
+ *       12    24  f64 x_min, f64 y_min [m], f64 resolution [m] (finite, > 0)
+ *       36     8  i32 size_x, i32 size_y [cells] (> 0, product <= kMaxCells)
+ *       44     4  u32 runs
+ *       48     8  u64 frames
+ *       56        three sparse layers, in this order: exposure, robot events,
+ *                 obstacle events; each one u32 n (<= cells) followed by n
+ *                 pairs (u32 cell index = cy * size_x + cx, u32 count)
+ *
+ * Version 2 (this build writes it): the layout above, explicitly
+ * little-endian; cell indices strictly increasing, counts > 0, nothing after
+ * the third layer. Version 1 (risknav before the explicit byte order): the
+ * same layout, each field's memory written as is, i.e. in the writer's HOST
+ * byte order; it is read as little-endian, the order of the hosts risknav
+ * runs on (x86-64, arm64); a version 1 file from a big-endian host would be
+ * refused (geometry) or misread. Version 1's leniency stays: any index order,
+ * trailing bytes ignored.
+ *
+ * Bounds, checked before anything is allocated: a grid holds at most
+ * kMaxCells cells (the dense layers of a grid that large take 12 bytes per
+ * cell, 300 MB); a layer's n must fit in the bytes that are left of the
+ * decompressed file; the decompressed file may not be longer than its header
+ * allows (a gz bomb is not inflated past that). */
 class CAfraidGrid {
   public:
-    static constexpr uint32_t kVersion = 1;
+    static constexpr uint32_t kVersion = 2;
+    /** Oldest version load() still reads. */
+    static constexpr uint32_t kOldestVersion = 1;
+    /** The largest grid, in cells (e.g. 5000 x 5000 cells: 250 m x 250 m at
+     * 5 cm); a .afraid header claiming more is refused, and so is a map larger
+     * than this. */
+    static constexpr uint64_t kMaxCells = 25'000'000;
 
     CAfraidGrid() = default;
-    /** An empty grid on the geometry of the map. */
+    /** An empty grid on the geometry of the map; throws
+     * common::CBadInputError if the map has more than kMaxCells cells. */
     explicit CAfraidGrid(const mrpt::maps::COccupancyGridMap2D& map);
 
     bool sameGeometry(const CAfraidGrid& o) const;
@@ -30,11 +67,18 @@ class CAfraidGrid {
      * std::runtime_error if the geometry differs. */
     void merge(const CAfraidGrid& other);
 
-    /** Atomic write: temporary file + rename. */
+    /** Atomic write (temporary file + rename) of encode(), gz-compressed. */
     void save(const std::string& path) const;
-    /** Throws std::runtime_error (naming the file and what is wrong) on a
-     * missing, unreadable, truncated, foreign or newer-version file. */
+    /** Throws common::CBadInputError (one line, naming the file and what is
+     * wrong) on a missing, unreadable, truncated, foreign, corrupt, too large
+     * or newer-version file. Reads versions kOldestVersion..kVersion. */
     static CAfraidGrid load(const std::string& path);
+
+    /** The uncompressed .afraid content (current version, little-endian). */
+    std::string encode() const;
+    /** Parses uncompressed .afraid content (any readable version); `name`
+     * (the file) starts every error message. Throws common::CBadInputError. */
+    static CAfraidGrid decode(const std::string& bytes, const std::string& name);
 
     int sizeX() const { return m_sx; }
     int sizeY() const { return m_sy; }
