@@ -113,7 +113,69 @@ def risk_two_routes():
     return b
 
 
+def narrow_doors():
+    """24 x 6 m: a 1.2 m corridor (y 2.4..3.6) whose walls lie inside the
+    afraid detector's collision circle, with two crossings: rooms above and
+    below the corridor at x 5.5-9.5 (doors x 7.0-7.9) and at x 13.5-17.5
+    (doors x 15.0-15.9), people crossing from one room to the other. For the
+    multi-world validation of the afraid learner (issue 8)."""
+    b = Bitmap(24, 6)
+    b.free(0.5, 2.4, 23.5, 3.6)                  # corridor
+    for x0 in (5.5, 13.5):
+        b.free(x0, 3.75, x0 + 4.0, 5.5)          # upper room
+        b.free(x0, 0.5, x0 + 4.0, 2.25)          # lower room
+    for x0 in (7.0, 15.0):
+        b.free(x0, 3.5, x0 + 0.9, 3.8)           # upper door
+        b.free(x0, 2.2, x0 + 0.9, 2.5)           # lower door
+    for x0 in (3.0, 11.0, 19.5):
+        b.free(x0, 3.6, x0 + 0.4, 3.75)          # shallow niches (features along the axis)
+    return b
+
+
+def t_junction():
+    """24 x 16 m: a 2.5 m main corridor (y 6..8.5) ending blind at x = 1, a
+    branch up at x 10.75..13.25 ending blind at y = 15, a door on the main
+    corridor's lower wall (x 5.5-6.5) and one on the branch's right wall
+    (y 11.0-12.0), with rooms behind them."""
+    b = Bitmap(24, 16)
+    b.free(1.0, 6.0, 23.0, 8.5)                  # main corridor
+    b.free(10.75, 8.5, 13.25, 15.0)              # branch, dead end at the top
+    b.free(3.5, 1.0, 9.0, 5.85)                  # room below the main corridor
+    b.free(5.5, 5.8, 6.5, 6.05)                  # its door
+    b.free(13.4, 9.5, 18.0, 14.0)                # room right of the branch
+    b.free(13.2, 11.0, 13.45, 12.0)              # its door
+    b.wall(17.0, 6.0, 17.4, 6.3)                 # a pillar (feature)
+    b.wall(3.0, 8.2, 3.6, 8.5)                   # a cabinet (feature)
+    return b
+
+
+def furnished_room(stale):
+    """14 x 10 m: a room with mapped furniture around which the robot loops,
+    two doors on its upper wall to a second room. stale=True draws the map the
+    robot was given, which still holds a cabinet (x 9.0-10.0, y 0.5-0.95) that
+    is gone from the world; the world also holds an unmapped box (a [Clutter]
+    disc in the world file)."""
+    b = Bitmap(14, 10)
+    b.free(0.5, 0.5, 13.5, 6.5)                  # main room
+    b.free(0.5, 6.65, 13.5, 9.5)                 # upper room
+    b.free(3.0, 6.45, 4.0, 6.7)                  # door 1
+    b.free(9.5, 6.45, 10.5, 6.7)                 # door 2
+    b.wall(5.0, 2.6, 9.0, 4.2)                   # central table
+    b.wall(0.5, 0.5, 1.5, 2.0)                   # shelves
+    b.wall(12.5, 3.0, 13.5, 5.0)                 # cabinet on the right wall
+    b.wall(5.5, 8.3, 8.5, 9.5)                   # upper room desk
+    if stale:
+        b.wall(9.0, 0.5, 10.0, 0.95)             # removed since the map was made
+    return b
+
+
 if __name__ == "__main__":
     corridor_doors().save(os.path.join(DATASETS, "corridor-doors", "corridor.png"))
     office().save(os.path.join(DATASETS, "office", "office.png"))
     risk_two_routes().save(os.path.join(DATASETS, "risk-two-routes", "two_routes.png"))
+    worlds = os.path.join(DATASETS, "validation")
+    os.makedirs(worlds, exist_ok=True)
+    narrow_doors().save(os.path.join(worlds, "narrow_doors.png"))
+    t_junction().save(os.path.join(worlds, "t_junction.png"))
+    furnished_room(False).save(os.path.join(worlds, "furnished_room.png"))
+    furnished_room(True).save(os.path.join(worlds, "furnished_room_stale.png"))

@@ -37,4 +37,29 @@ void CSafetyMonitor::update(double t, const mrpt::math::TPose2D& now, double rob
     m_staticState = gapStatic < 0;
 }
 
+void CSafetyMonitor::updateCorridor(double t, const mrpt::math::TPose2D& pose,
+                                    double speed, double robotRadius, double reach,
+                                    double halfWidth, const CAgentsSim& agents,
+                                    double minSpeed) {
+    if (speed <= minSpeed)
+        return;
+    const double c = std::cos(pose.phi), s = std::sin(pose.phi);
+    for (const auto& d : agents.discs()) {
+        if (d.objectId < 0 || m_entered.count(d.objectId))
+            continue;
+        const std::string& name = agents.agentName(d.objectId);
+        if (name.rfind("DoorPedestrian", 0) != 0)
+            continue;
+        // The person's centre in the robot frame.
+        const double dx = d.x - pose.x, dy = d.y - pose.y;
+        const double xr = c * dx + s * dy, yr = -s * dx + c * dy;
+        if (xr + d.r > 0 && xr - d.r < robotRadius + reach &&
+            std::abs(yr) - d.r <= halfWidth) {
+            m_entered.insert(d.objectId);
+            m_entries.push_back(
+                {t, "enter_corridor", name.substr(0, name.find('#')), name, d.x, d.y});
+        }
+    }
+}
+
 }  // namespace risknav::sim

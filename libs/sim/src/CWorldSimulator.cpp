@@ -3,6 +3,7 @@
 #include <risknav/common/CMapImage.h>
 #include <risknav/common/CProgress.h>
 #include <risknav/common/config_read.h>
+#include <risknav/common/stopping.h>
 #include <risknav/common/summary_json.h>
 #include <risknav/sim/CRawlogWriter.h>
 #include <risknav/sim/CWorldSimulator.h>
@@ -11,6 +12,7 @@
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/poses/CPose2D.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -276,6 +278,12 @@ json CWorldSimulator::run(COutputDir& out, bool quiet) {
         r.distance += std::hypot(now.x - before.x, now.y - before.y);
         r.safety.update(t + dt, now, world.robot.radius, world.agents,
                         world.clearance(now.x, now.y));
+        const auto& rb = world.robot;
+        r.safety.updateCorridor(t + dt, now, world.speed(), rb.radius,
+                                stoppingDistance(world.speed(), rb.t_delay, rb.decel) +
+                                    stopRule.options.margin,
+                                rb.radius + stopRule.options.lateral_margin,
+                                world.agents);
     }
     r.rawlog.close();
     r.gtFile.close();
@@ -300,7 +308,14 @@ void CWorldSimulator::writeEventTables(const TRun& r, COutputDir& out) const {
     {
         CCsvWriter csv(out.stage("agent_events.csv"),
                        {"t", "kind", "source", "agent", "x", "y"});
-        for (const auto& e : world.agentEvents())
+        // People's own events and their entries into the stopping corridor, by time.
+        std::vector<TAgentEvent> all = world.agentEvents();
+        const auto& entries = r.safety.corridorEntries();
+        all.insert(all.end(), entries.begin(), entries.end());
+        std::stable_sort(
+            all.begin(), all.end(),
+            [](const TAgentEvent& a, const TAgentEvent& b) { return a.t < b.t; });
+        for (const auto& e : all)
             csv.row({CCsvWriter::fixed(simulation.start_time + e.t, 3), e.kind, e.source,
                      e.agent, num(e.x), num(e.y)});
         csv.close();
@@ -395,6 +410,7 @@ json CWorldSimulator::summary(const TRun& r, COutputDir& out) const {
     j["min_clearance_agents_m"] = finiteOrNull(r.safety.minGapAgents());
     j["min_clearance_static_m"] = finiteOrNull(r.safety.minGapStatic());
     j["emergences"] = countEvents(ev, "emerge");
+    j["relevant_emergences"] = r.safety.corridorEntries().size();
     j["walkers_spawned"] = countEvents(ev, "spawn");
     j["agents_gave_up"] = countEvents(ev, "give_up");
     j["stops"] = r.stops;

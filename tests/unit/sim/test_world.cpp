@@ -1,5 +1,6 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/mapping/scan_points.h>
+#include <risknav/sim/CSafetyMonitor.h>
 #include <risknav/sim/CSimRobotInterface.h>
 #include <risknav/sim/CSimWorld.h>
 #include <risknav/sim/CStoppingDistanceLimiter.h>
@@ -196,4 +197,39 @@ TEST(Plugins, StoppingDistanceLimiterStopsForAPointAhead) {
     EXPECT_EQ(lim.limit(in).maxSpeed, 0.5);
     in.desiredSpeed = -1;
     EXPECT_THROW(lim.limit(in), std::invalid_argument);
+}
+
+TEST(SafetyMonitor, DoorPedestrianEnteringTheStoppingCorridorIsLoggedOnce) {
+    CAgentsSim agents;
+    CAgentsSim::TDoorPedestrian d;
+    d.section = "DoorPedestrian1";
+    d.door[0] = 1.5;
+    d.door[1] = 1.0;
+    d.door[2] = 2.5;
+    d.door[3] = 1.0;
+    d.path = {{2.0, 1.0}, {2.0, -1.0}};  // crosses the robot's line 2 m ahead
+    d.emergence = "schedule";
+    d.schedule = {0.0};
+    d.speed = 0.5;
+    agents.doors.push_back(d);
+    agents.reset(1);
+    std::vector<TAgentEvent> ev;
+    agents.step(0.05, 0.05, TPose2D(0, 0, 0), 0.25, ev);
+    ASSERT_EQ(agents.discs().size(), 1u);
+    CSafetyMonitor m;
+    // Robot at the origin heading +x, reach 1.0 m beyond its front (1.25 m).
+    const double reach = 1.0, halfW = 0.35;
+    m.updateCorridor(0.1, TPose2D(0, 0, 0), 0.5, 0.25, reach, halfW, agents);
+    EXPECT_TRUE(m.corridorEntries().empty());  // at y = 1: beside, not in, the corridor
+    for (int i = 0; i < 30; i++)
+        agents.step(0.1 + 0.05 * i, 0.05, TPose2D(0, 0, 0), 0.25, ev);
+    m.updateCorridor(1.6, TPose2D(0, 0, 0), 0.0, 0.25, reach, halfW, agents);
+    EXPECT_TRUE(m.corridorEntries().empty());  // the robot stands: not relevant
+    m.updateCorridor(1.6, TPose2D(0, 0, M_PI), 0.5, 0.25, reach, halfW, agents);
+    EXPECT_TRUE(m.corridorEntries().empty());  // behind the robot
+    m.updateCorridor(1.7, TPose2D(0.9, 0, 0), 0.5, 0.25, reach, halfW, agents);
+    ASSERT_EQ(m.corridorEntries().size(), 1u);  // 1.1 m ahead, on the line
+    EXPECT_EQ(m.corridorEntries()[0].source, "DoorPedestrian1");
+    m.updateCorridor(1.8, TPose2D(0.9, 0, 0), 0.5, 0.25, reach, halfW, agents);
+    EXPECT_EQ(m.corridorEntries().size(), 1u);  // once per person
 }

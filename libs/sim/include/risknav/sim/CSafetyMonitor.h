@@ -5,6 +5,7 @@
 
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -32,7 +33,17 @@ class CSafetyMonitor {
     void update(double t, const mrpt::math::TPose2D& pose, double robotRadius,
                 const CAgentsSim& agents, double mapClearance);
 
+    /** Door pedestrians entering the robot's stopping corridor while it moves:
+     * part of a person's disc inside the rectangle ahead of the robot that is
+     * halfWidth to each side and reaches `reach` beyond the robot's front,
+     * with the robot faster than minSpeed. One `enter_corridor` event per
+     * person (the emergences an afraid detector should catch: "relevant"). */
+    void updateCorridor(double t, const mrpt::math::TPose2D& pose, double speed,
+                        double robotRadius, double reach, double halfWidth,
+                        const CAgentsSim& agents, double minSpeed = 0.05);
+
     const std::vector<TSafetyEvent>& events() const { return m_events; }
+    const std::vector<TAgentEvent>& corridorEntries() const { return m_entries; }
     int collisions() const { return m_collisions; }  ///< with people and clutter
     int collisionsStatic() const { return m_collisionsStatic; }  ///< with the map
     int nearMisses() const { return m_nearMisses; }
@@ -42,6 +53,8 @@ class CSafetyMonitor {
 
   private:
     std::vector<TSafetyEvent> m_events;
+    std::vector<TAgentEvent> m_entries;
+    std::set<int> m_entered;       // agent ids already in m_entries
     std::map<int, int> m_contact;  // object id -> 0 clear, 1 near, 2 collision
     int m_staticState = 0;
     int m_collisions = 0, m_collisionsStatic = 0, m_nearMisses = 0;
