@@ -18,6 +18,21 @@ std::string tempName(const fs::path& finalPath) {
         .string();
 }
 
+// A temporary ".tmp-<pid>-<name>" of a process that no longer exists.
+bool staleTemporary(const fs::path& p) {
+    const std::string n = p.filename().string();
+    if (n.rfind(".tmp-", 0) != 0)
+        return false;
+    const auto dash = n.find('-', 5);
+    if (dash == std::string::npos || dash == 5)
+        return false;
+    const std::string pid = n.substr(5, dash - 5);
+    if (pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9)
+        return false;
+    const long id = std::stol(pid);
+    return id != long(::getpid()) && !fs::exists("/proc/" + pid);
+}
+
 void writeWhole(const std::string& path, const std::string& content) {
     std::ofstream f(path, std::ios::binary | std::ios::trunc);
     f << content;
@@ -39,6 +54,9 @@ COutputDir::COutputDir(const std::string& dir) : m_dir(dir) {
         throw CBadInputError(dir + ": output folder is not writable");
     f.close();
     fs::remove(probe, ec);
+    for (const auto& e : fs::directory_iterator(dir, ec))
+        if (e.is_regular_file(ec) && staleTemporary(e.path()))
+            fs::remove(e.path(), ec);
 }
 
 COutputDir::~COutputDir() {
@@ -66,9 +84,24 @@ void COutputDir::writeText(const std::string& name, const std::string& content) 
     writeWhole(stage(name), content);
 }
 
+void COutputDir::commitInto(const std::string& sub) {
+    m_sub = sub;
+}
+
 void COutputDir::commit() {
-    for (const auto& [tmp, fin] : m_staged) {
-        std::error_code ec;
+    std::error_code ec;
+    if (!m_sub.empty()) {
+        const fs::path folder = fs::path(m_dir) / m_sub;
+        fs::remove_all(folder, ec);
+        fs::create_directories(folder, ec);
+        if (!fs::is_directory(folder))
+            throw std::runtime_error("cannot create " + folder.string());
+    }
+    for (const auto& [tmp, finName] : m_staged) {
+        const std::string fin =
+            m_sub.empty()
+                ? finName
+                : (fs::path(m_dir) / m_sub / fs::path(finName).filename()).string();
         fs::rename(tmp, fin, ec);
         if (ec)
             throw std::runtime_error("cannot rename " + tmp + " to " + fin + ": " +

@@ -94,3 +94,33 @@ TEST(CProgress, NonTerminalPrintsOneLine) {
     ASSERT_EQ(lines.size(), 1u);
     EXPECT_EQ(lines[0].rfind("work: 8/8 items in ", 0), 0u) << lines[0];
 }
+
+TEST(COutputDir, RemovesTemporariesOfDeadRunsOnly) {
+    const std::string d = freshDir("out");
+    writeFile(d + "/.tmp-999999999-summary.json", "dead run");  // no such process
+    writeFile(d + "/.tmp-1-summary.json", "init is alive");
+    writeFile(d + "/.tmp-x-notes.txt", "not ours");
+    writeFile(d + "/summary.json", "earlier result");
+    COutputDir out(d);
+    EXPECT_FALSE(std::filesystem::exists(d + "/.tmp-999999999-summary.json"));
+    EXPECT_TRUE(std::filesystem::exists(d + "/.tmp-1-summary.json"));
+    EXPECT_TRUE(std::filesystem::exists(d + "/.tmp-x-notes.txt"));
+    EXPECT_EQ(readFile(d + "/summary.json"), "earlier result");
+}
+
+TEST(COutputDir, CommitIntoASubfolderLeavesTheFolderAlone) {
+    const std::string d = freshDir("out");
+    writeFile(d + "/zones.csv", "complete run");
+    std::filesystem::create_directories(d + "/partial");
+    writeFile(d + "/partial/old.csv", "an older partial run");
+    {
+        COutputDir out(d);
+        out.writeText("zones.csv", "partial run");
+        out.commitInto("partial");
+        out.commit();
+    }
+    EXPECT_EQ(readFile(d + "/zones.csv"), "complete run");
+    EXPECT_EQ(readFile(d + "/partial/zones.csv"), "partial run");
+    EXPECT_FALSE(std::filesystem::exists(d + "/partial/old.csv"));
+    EXPECT_EQ(listDir(d), (std::vector<std::string>{"partial", "zones.csv"}));
+}

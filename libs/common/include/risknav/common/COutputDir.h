@@ -13,7 +13,8 @@ namespace risknav::common {
 class COutputDir {
   public:
     /** Creates the folder (and parents). Throws CBadInputError if it cannot
-     * (e.g. the path is a file or not writable). */
+     * (e.g. the path is a file or not writable). Removes the temporaries that
+     * runs which died before their commit (killed, crashed) left behind. */
     explicit COutputDir(const std::string& dir);
     ~COutputDir();
     COutputDir(const COutputDir&) = delete;
@@ -28,12 +29,17 @@ class COutputDir {
     void writeText(const std::string& name, const std::string& content);
     /** Renames every staged file to its final name. */
     void commit();
+    /** Makes commit() put the files into the subfolder `sub` (emptied first)
+     * instead of the folder itself: a partial run's results then never
+     * replace a complete earlier run's files. */
+    void commitInto(const std::string& sub);
     /** Final names staged so far, in order. */
     std::vector<std::string> stagedNames() const;
 
   private:
     std::string m_dir;
-    std::vector<std::pair<std::string, std::string>> m_staged;  // (temp, final)
+    std::vector<std::pair<std::string, std::string>> m_staged;  // (temp, final name)
+    std::string m_sub;  // commit into this subfolder ("" = the folder itself)
     bool m_committed = false;
 };
 
