@@ -88,7 +88,7 @@ void CRawlogMcl::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
     // MRPT 2.5.8's TKLDParams cannot save itself: its keys, as it reads them.
     const std::string k = "KLD_options";
     writeKey(c, k, "KLD_binSize_XY", kldOptions.KLD_binSize_XY);
-    writeDegrees(c, k, "KLD_binSize_PHI_deg", kldOptions.KLD_binSize_PHI);
+    writeDegrees(c, k, "KLD_binSize_PHI", kldOptions.KLD_binSize_PHI);  // read in degrees
     writeKey(c, k, "KLD_delta", kldOptions.KLD_delta);
     writeKey(c, k, "KLD_epsilon", kldOptions.KLD_epsilon);
     writeKey(c, k, "KLD_minSampleSize", int(kldOptions.KLD_minSampleSize));

@@ -1,10 +1,12 @@
 #include <risknav/localization/CRawlogReader.h>
 
 #include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 
@@ -75,6 +77,7 @@ std::optional<TRawlogFrame> CRawlogReader::next() {
             f.entry = m_entry - 1;
             f.timestamp =
                 sf->size() ? (*sf->begin())->timestamp : mrpt::Clock::time_point();
+            checkFrame(f);
             return f;
         }
         if (std::dynamic_pointer_cast<CSensoryFrame>(o))
@@ -96,8 +99,10 @@ std::optional<TRawlogFrame> CRawlogReader::next() {
             m_curOdoTime = odo->timestamp;
             m_pending = CSensoryFrame::Create();
             m_pendingEntry = m_entry - 1;
-            if (out)
+            if (out) {
+                checkFrame(*out);
                 return out;
+            }
             continue;
         }
         if (!m_pending)
@@ -107,9 +112,65 @@ std::optional<TRawlogFrame> CRawlogReader::next() {
     // The last frame of an observations-only log.
     if (auto out = pendingFrame()) {
         m_pending.reset();
+        checkFrame(*out);
         return out;
     }
     return std::nullopt;
+}
+
+void CRawlogReader::checkFrame(const TRawlogFrame& f) {
+    using namespace mrpt::obs;
+    auto bad = [&](const std::string& what) {
+        throw std::runtime_error(m_path + ": corrupt rawlog at entry " +
+                                 std::to_string(f.entry) + ": " + what);
+    };
+    auto num = [](double v) {
+        char b[32];
+        std::snprintf(b, sizeof(b), "%g", v);
+        return std::string(b);
+    };
+    for (const auto& o : *f.sf) {
+        const auto scan = std::dynamic_pointer_cast<CObservation2DRangeScan>(o);
+        if (!scan)
+            continue;
+        const std::string who = "scan '" + scan->sensorLabel + "'";
+        const auto& sp = scan->sensorPose;
+        if (!std::isfinite(sp.x()) || !std::isfinite(sp.y()) || !std::isfinite(sp.z()) ||
+            !std::isfinite(sp.yaw()))
+            bad(who + " has a non-finite sensor pose");
+        if (!std::isfinite(scan->aperture) || !(scan->aperture > 0) ||
+            scan->aperture > 2 * M_PI + 1e-3)
+            bad(who + " has aperture " + num(scan->aperture) + " rad (not in (0, 2 pi])");
+        if (!std::isfinite(scan->maxRange) || !(scan->maxRange > 0))
+            bad(who + " has maxRange " + num(scan->maxRange));
+        for (size_t i = 0; i < scan->getScanSize(); i++) {
+            if (!scan->getScanRangeValidity(i))
+                continue;
+            const float r = scan->getScanRange(i);
+            if (!std::isfinite(r) || r < 0 || r > scan->maxRange * 1.0001f)
+                bad(who + " ray " + std::to_string(i) + " has range " + num(r) +
+                    " (valid rays lie in [0, maxRange = " + num(scan->maxRange) + "])");
+        }
+    }
+    for (const auto& a : *f.actions) {
+        const auto mv = std::dynamic_pointer_cast<CActionRobotMovement2D>(a.get_ptr());
+        if (!mv)
+            continue;
+        const auto d = mv->rawOdometryIncrementReading;
+        if (!std::isfinite(d.x()) || !std::isfinite(d.y()) || !std::isfinite(d.phi()))
+            bad("the odometry increment is not finite");
+        if (std::hypot(d.x(), d.y()) > 100)
+            bad("the odometry jumps " + num(std::hypot(d.x(), d.y())) +
+                " m in one frame (more than 100 m)");
+    }
+    const bool timed =
+        f.timestamp != mrpt::Clock::time_point() && f.timestamp != INVALID_TIMESTAMP;
+    if (timed && m_lastTime != mrpt::Clock::time_point() && f.timestamp < m_lastTime)
+        bad("its timestamp " + std::to_string(mrpt::Clock::toDouble(f.timestamp)) +
+            " s is before the previous frame's " +
+            std::to_string(mrpt::Clock::toDouble(m_lastTime)) + " s");
+    if (timed)
+        m_lastTime = f.timestamp;
 }
 
 std::optional<TRawlogFrame> CRawlogReader::pendingFrame() {

@@ -122,3 +122,51 @@ TEST(CRawlogReader, TruncationIsAnErrorWithTheEntryIndex) {
     EXPECT_LT(frames, 200u);
     EXPECT_THROW(CRawlogReader(d + "/missing.rawlog"), std::runtime_error);
 }
+
+TEST(CRawlogReader, FramesThatCannotBeRealAreErrorsWhereTheyAppear) {
+    enum class TBad { NegativeRange, BeyondMaxRange, NanOdometry, TimeBackwards };
+    for (const auto bad : {TBad::NegativeRange, TBad::BeyondMaxRange, TBad::NanOdometry,
+                           TBad::TimeBackwards}) {
+        auto log = makeLog(12);
+        const size_t k = 7;  // the damaged frame
+        CPose2D inc(0.05, 0.0, 0.02);
+        if (bad == TBad::NegativeRange)
+            log.scans[k]->setScanRange(2, -3.0f);
+        if (bad == TBad::BeyondMaxRange)
+            log.scans[k]->setScanRange(2, 1000.0f);
+        if (bad == TBad::NanOdometry)
+            inc = CPose2D(std::nan(""), 0.0, 0.0);
+        if (bad == TBad::TimeBackwards)
+            log.scans[k]->timestamp = mrpt::Clock::fromDouble(900.0);
+        const std::string f = risknav::test::freshDir("bad") + "/bad.rawlog";
+        {
+            mrpt::io::CFileGZOutputStream out(f);
+            auto a = mrpt::serialization::archiveFrom(out);
+            for (size_t i = 0; i < log.odo.size(); i++) {
+                mrpt::obs::CActionCollection acts;
+                mrpt::obs::CActionRobotMovement2D mv;
+                mv.computeFromOdometry(i == k ? inc : CPose2D(0.05, 0.0, 0.02), {});
+                acts.insert(mv);
+                mrpt::obs::CSensoryFrame sf;
+                sf.insert(log.scans[i]);
+                a << acts << sf;
+            }
+        }
+        CRawlogReader r(f);
+        size_t good = 0;
+        std::string err;
+        try {
+            while (r.next())
+                good++;
+        } catch (const std::runtime_error& e) {
+            err = e.what();
+        }
+        EXPECT_EQ(good, k) << int(bad);
+        EXPECT_NE(err.find("corrupt rawlog at entry " + std::to_string(2 * k + 1)),
+                  std::string::npos)
+            << err;
+        const char* why[] = {"has range -3", "has range 1000", "not finite",
+                             "before the previous frame"};
+        EXPECT_NE(err.find(why[int(bad)]), std::string::npos) << err;
+    }
+}

@@ -25,7 +25,12 @@ struct TRawlogFrame {
  *    the first; MRPT's Gaussian motion model, with minimum sigmas as
  *    pf-localization's [DummyOdometryParams]).
  * Errors (unreadable file, corrupt or truncated data) throw
- * std::runtime_error naming the entry index; frames read before stay valid. */
+ * std::runtime_error naming the entry index; frames read before stay valid.
+ * Frames that cannot be real are errors where they appear (a flipped byte in
+ * a gz stream may still decode): a valid range outside [0, maxRange] or not
+ * finite, a non-finite sensor pose, aperture or odometry increment, an
+ * odometry jump beyond 100 m in one frame, a timestamp before the previous
+ * frame's. */
 class CRawlogReader {
   public:
     explicit CRawlogReader(const std::string& path, double minStdXY = 0.01,
@@ -41,6 +46,9 @@ class CRawlogReader {
     double m_minStdXY, m_minStdPhi;
     // observations-only state
     std::optional<TRawlogFrame> pendingFrame();
+    /** Throws when the frame cannot be real (see the class comment). */
+    void checkFrame(const TRawlogFrame& f);
+    mrpt::Clock::time_point m_lastTime;
     std::optional<mrpt::poses::CPose2D> m_prevOdo, m_curOdo;
     mrpt::Clock::time_point m_curOdoTime;
     mrpt::obs::CSensoryFrame::Ptr m_pending;
