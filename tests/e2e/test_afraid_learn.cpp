@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -148,6 +149,52 @@ TEST(AfraidLearnE2E, ResumingFromAnAfraidFileEqualsLearningOnBoth) {
     // The merged file is byte-identical to learning on both rawlogs in one run.
     EXPECT_TRUE(readFile(outB + "/corridor.afraid") ==
                 readFile(outAB + "/corridor.afraid"));
+}
+
+// config_effective.ini holds every key with the value used (written by the
+// options' saveToConfigFile()): the app run on it reproduces the run byte for
+// byte, --set, --seed and command-line rawlogs included.
+TEST(AfraidLearnE2E, ItsOwnConfigEffectiveReproducesTheRun) {
+    const std::string sim = simulateCorridor(freshDir("w"), 1, true, 23);
+    const std::string a = freshDir("a");
+    // The rawlog on the command line (after the config), not in the file.
+    const auto ra = run(binPath(kLearn) + " -q -o '" + a +
+                        "' --seed 5 --set AfraidLearn.rawlogs= --set "
+                        "AfraidLearn.groundtruth_file=" +
+                        sim +
+                        "/groundtruth.txt --set Robot.radius=0.3 --set "
+                        "AfraidDetector.lateral_margin=0.05 '" +
+                        sourcePath("datasets/corridor-doors/afraid.ini") + "' '" + sim +
+                        "/simulation.rawlog'");
+    ASSERT_EQ(ra.exitCode, 0) << ra.err;
+    const auto sa = readJson(a + "/summary.json");
+    ASSERT_EQ(sa["status"], "ok");
+    const auto lines = readLines(a + "/config_effective.ini");
+    const auto has = [&](const std::string& l) {
+        return std::find(lines.begin(), lines.end(), l) != lines.end();
+    };
+    EXPECT_TRUE(has("seed = 5"));                                 // from --seed
+    EXPECT_TRUE(has("rawlogs = " + sim + "/simulation.rawlog"));  // from the command line
+    EXPECT_TRUE(has("radius = 0.3"));                             // from --set
+    EXPECT_TRUE(has("max_w_deg = 90"));  // a default the file does not mention
+    const std::string b = freshDir("b");
+    const auto r =
+        run(binPath(kLearn) + " -q -o '" + b + "' '" + a + "/config_effective.ini'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* f : {"events.csv", "zones.csv", "corridor.afraid", "trajectory.csv",
+                          "speed_mask.pgm"})
+        EXPECT_TRUE(readFile(a + "/" + f) == readFile(b + "/" + f)) << f;
+    auto strip = [](nlohmann::json s) {
+        for (const char* k : {"timing", "config", "overrides"})
+            s.erase(k);
+        return s.dump(2);
+    };
+    EXPECT_EQ(strip(sa), strip(readJson(b + "/summary.json")));
+    // ... and writes the same keys again (a fixed point; only the header, which
+    // names the source, differs).
+    const std::string ea = readFile(a + "/config_effective.ini"),
+                      eb = readFile(b + "/config_effective.ini");
+    EXPECT_EQ(ea.substr(ea.find("\n[")), eb.substr(eb.find("\n[")));
 }
 
 TEST(AfraidLearnE2E, MrptLocalizationDemoMatchesPfLocalization) {

@@ -4,12 +4,11 @@
 #include <risknav/common/CProgress.h>
 #include <risknav/common/config_read.h>
 #include <risknav/localization/CRawlogReader.h>
+#include <risknav/mapping/scan_points.h>
 
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/poses/CPose2D.h>
-
-#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -23,111 +22,187 @@ using namespace risknav::common;
 namespace fs = std::filesystem;
 
 namespace risknav::afraid {
+namespace {
+// Whitespace-separated paths; "double quotes" keep a path with spaces together.
+std::vector<std::string> splitPathList(const mrpt::config::CConfigFileBase& c,
+                                       const std::string& s, const std::string& k,
+                                       const std::string& v) {
+    std::vector<std::string> out;
+    std::string cur;
+    bool quoted = false, have = false;
+    for (char ch : v) {
+        if (ch == '"') {
+            quoted = !quoted;
+            have = true;
+        } else if (std::isspace(static_cast<unsigned char>(ch)) && !quoted) {
+            if (have)
+                out.push_back(cur);
+            cur.clear();
+            have = false;
+        } else {
+            cur += ch;
+            have = true;
+        }
+    }
+    if (quoted)
+        throwBadKey(c, s, k, v, "unbalanced double quote");
+    if (have)
+        out.push_back(cur);
+    return out;
+}
+
+// The inverse of splitPathList().
+std::string joinPathList(const std::vector<std::string>& paths) {
+    std::string t;
+    for (const auto& p : paths) {
+        const bool space = std::any_of(
+            p.begin(), p.end(), [](unsigned char ch) { return std::isspace(ch) != 0; });
+        t += (t.empty() ? "" : " ") + (space ? "\"" + p + "\"" : p);
+    }
+    return t;
+}
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+}  // namespace
+
+void CAfraidLearner::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                                  const std::string& s) {
+    section = map.section = obstacles.section = krr.section = s;
+    map.loadFromConfigFile(c, s);
+    obstacles.loadFromConfigFile(c, s);
+    // From the config, relative to it (the command line's are added by the learner).
+    rawlogs.clear();
+    for (const auto& r : splitPathList(c, s, "rawlogs", readString(c, s, "rawlogs", "")))
+        rawlogs.push_back(configRelativePath(c, r));
+    afraid_in = readPath(c, s, "afraid_in", afraid_in, false);
+    afraid_name = readString(c, s, "afraid_name", afraid_name);
+    groundtruth_file = readPath(c, s, "groundtruth_file", groundtruth_file, false);
+    scan_label = readString(c, s, "scan_label", scan_label);
+    match_distance = readDouble(c, s, "match_distance", match_distance);
+    min_match = readDouble(c, s, "min_match", min_match);
+    diverged_fraction = readDouble(c, s, "diverged_fraction", diverged_fraction);
+    krr.loadFromConfigFile(c, s);
+    sample_bin = readDouble(c, s, "sample_bin", sample_bin);
+    zone_threshold = readDouble(c, s, "zone_threshold", zone_threshold);
+    v_max = readDouble(c, s, "v_max", v_max);
+    v_safe = readDouble(c, s, "v_safe", v_safe);
+    // The seed is an integer type: its range is a parsing rule.
+    seed = static_cast<uint64_t>(
+        readDouble(c, s, "seed", double(seed), TRange::closed(0, 9007199254740992.0)));
+}
+
+void CAfraidLearner::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                                const std::string& s) const {
+    map.saveToConfigFile(c, s);
+    obstacles.saveToConfigFile(c, s);
+    writeKey(c, s, "rawlogs", joinPathList(rawlogs));
+    writeKey(c, s, "afraid_in", afraid_in);
+    writeKey(c, s, "afraid_name", afraid_name);
+    writeKey(c, s, "groundtruth_file", groundtruth_file);
+    writeKey(c, s, "scan_label", scan_label);
+    writeKey(c, s, "match_distance", match_distance);
+    writeKey(c, s, "min_match", min_match);
+    writeKey(c, s, "diverged_fraction", diverged_fraction);
+    krr.saveToConfigFile(c, s);
+    writeKey(c, s, "sample_bin", sample_bin);
+    writeKey(c, s, "zone_threshold", zone_threshold);
+    writeKey(c, s, "v_max", v_max);
+    writeKey(c, s, "v_safe", v_safe);
+    writeKey(c, s, "seed", std::to_string(seed));
+}
+
+void CAfraidLearner::TOptions::validate() const {
+    const std::string& s = section;
+    map.validate();
+    obstacles.validate();
+    krr.validate();
+    checkRule(!rawlogs.empty(), s, "rawlogs", "",
+              "no rawlog: give [" + s + "] rawlogs or RAWLOG arguments");
+    std::error_code ec;
+    for (const auto& r : rawlogs)
+        checkRule(fs::is_regular_file(r, ec), s, "rawlogs", r, "rawlog not found");
+    checkRule(afraid_in.empty() || fs::is_regular_file(afraid_in, ec), s, "afraid_in",
+              afraid_in, "file not found");
+    checkRule(afraid_name.find('/') == std::string::npos && afraid_name.size() >= 8 &&
+                  endsWith(afraid_name, ".afraid"),
+              s, "afraid_name", afraid_name, "must be a file name ending in .afraid");
+    checkRule(groundtruth_file.empty() || fs::is_regular_file(groundtruth_file, ec), s,
+              "groundtruth_file", groundtruth_file, "file not found");
+    checkKey(s, "match_distance", match_distance, TRange::closed(0.01, 5, "m"));
+    checkKey(s, "min_match", min_match, TRange::closed(0, 1));
+    checkKey(s, "diverged_fraction", diverged_fraction, TRange::closed(0, 1));
+    checkKey(s, "sample_bin", sample_bin, TRange::closed(0.01, 10, "m"));
+    checkKey(s, "zone_threshold", zone_threshold,
+             {0, 1e6, true, false, "events per pass"});
+    checkKey(s, "v_max", v_max, {0, 10, true, false, "m/s"});
+    checkKey(s, "v_safe", v_safe, {0, 10, true, false, "m/s"});
+    checkRule(v_safe <= v_max, s, "v_safe", numberText(v_safe), "must be <= v_max");
+}
+
 void CAfraidLearner::loadFromConfigFile(const CIniConfig& c,
                                         const std::vector<std::string>& extra,
                                         std::optional<uint64_t> seedOverride) {
     for (const auto& s : c.sections())
-        if (s != "AfraidLearn" && s != "Localization" && s != "PF_options" &&
-            s != "KLD_options" && s != "AfraidDetector")
+        if (s != "AfraidLearn" && s != "Robot" && s != "AfraidDetector" &&
+            s != "Localization" && s != "PF_options" && s != "KLD_options")
             throw CBadInputError(c.path() + ": unknown section [" + s +
-                                 "] (known: AfraidLearn, Localization, PF_options, "
-                                 "KLD_options, AfraidDetector)");
-    const std::string A = "AfraidLearn";
-    loadOptions(mapSource, c, A);
-    // Rawlogs: from the config (relative to it) and the command line (relative to the
-    // CWD).
-    // Whitespace-separated; "double quotes" keep a path with spaces together.
-    std::vector<std::string> listed;
-    {
-        const std::string v = readString(c, A, "rawlogs", "");
-        std::string cur;
-        bool quoted = false, have = false;
-        for (char ch : v) {
-            if (ch == '"') {
-                quoted = !quoted;
-                have = true;
-            } else if (std::isspace(static_cast<unsigned char>(ch)) && !quoted) {
-                if (have)
-                    listed.push_back(cur);
-                cur.clear();
-                have = false;
-            } else {
-                cur += ch;
-                have = true;
-            }
-        }
-        if (quoted)
-            throwBadKey(c, A, "rawlogs", v, "unbalanced double quote");
-        if (have)
-            listed.push_back(cur);
+                                 "] (known: AfraidLearn, Robot, AfraidDetector, "
+                                 "Localization, PF_options, KLD_options)");
+    try {
+        options.loadFromConfigFile(c, "AfraidLearn");
+        // Command-line rawlogs are relative to the working directory: made
+        // absolute, so that config_effective.ini names them from anywhere.
+        for (const auto& r : extra)
+            options.rawlogs.push_back(fs::absolute(r).lexically_normal().string());
+        if (seedOverride)
+            options.seed = *seedOverride;
+        options.validate();
+        detector.loadFromConfigFile(c);
+        mcl.loadFromConfigFile(c);
+        c.throwOnUnreadKeys();
+        prepare();
+    } catch (const CConfigKeyError& e) {
+        throw CBadInputError(configWhere(c) + e.what());
     }
-    for (const auto& r : listed) {
-        fs::path p(r);
-        if (p.is_relative())
-            p = fs::path(c.folder()) / p;
-        rawlogs.push_back(p.lexically_normal().string());
-    }
-    rawlogs.insert(rawlogs.end(), extra.begin(), extra.end());
-    if (rawlogs.empty())
-        throw CBadInputError(
-            c.path() + ": no rawlog: give [AfraidLearn] rawlogs or RAWLOG arguments");
-    for (const auto& r : rawlogs)
-        if (!fs::is_regular_file(r))
-            throw CBadInputError(r + ": rawlog not found");
-    afraidIn = readPath(c, A, "afraid_in", "", false);
-    if (!afraidIn.empty() && !fs::is_regular_file(afraidIn))
-        throwBadKey(c, A, "afraid_in", afraidIn, "file not found");
-    afraidName = readString(c, A, "afraid_name", afraidName);
-    if (afraidName.find('/') != std::string::npos || afraidName.size() < 8 ||
-        afraidName.substr(afraidName.size() - 7) != ".afraid")
-        throwBadKey(c, A, "afraid_name", afraidName,
-                    "must be a file name ending in .afraid");
-    groundTruth = readPath(c, A, "groundtruth_file", "", false);
-    if (!groundTruth.empty() && !fs::is_regular_file(groundTruth))
-        throwBadKey(c, A, "groundtruth_file", groundTruth, "file not found");
-    scanLabel = readString(c, A, "scan_label", "");
-    matchDistance =
-        readDouble(c, A, "match_distance", matchDistance, TRange::closed(0.01, 5, "m"));
-    minMatch = readDouble(c, A, "min_match", minMatch, TRange::closed(0, 1));
-    divergedFraction =
-        readDouble(c, A, "diverged_fraction", divergedFraction, TRange::closed(0, 1));
-    krr.bandwidth = readDouble(c, A, "kernel_bandwidth", krr.bandwidth,
-                               TRange::closed(0.01, 100, "m"));
-    krr.lambda = readDouble(c, A, "kernel_lambda", krr.lambda, {0, 1e6, true, false, ""});
-    krr.cutoff = readDouble(c, A, "kernel_cutoff", krr.cutoff,
-                            TRange::closed(1, 10, "bandwidths"));
-    sampleBin = readDouble(c, A, "sample_bin", sampleBin, TRange::closed(0.01, 10, "m"));
-    zoneThreshold = readDouble(c, A, "zone_threshold", zoneThreshold,
-                               {0, 1e6, true, false, "events per pass"});
-    vMax = readDouble(c, A, "v_max", vMax, {0, 10, true, false, "m/s"});
-    vSafe = readDouble(c, A, "v_safe", vSafe, {0, 10, true, false, "m/s"});
-    if (vSafe > vMax)
-        throwBadKey(c, A, "v_safe", std::to_string(vSafe), "must be <= v_max");
-    seed = static_cast<uint64_t>(
-        readDouble(c, A, "seed", double(seed), TRange::closed(0, 9007199254740992.0)));
-    if (seedOverride) {
-        seed = *seedOverride;
-        c.recordEffective(A, "seed", std::to_string(seed));
-    }
-    loadOptions(detector.options, c, "AfraidDetector");
-    mcl.loadFromConfigFile(c);
-    c.throwOnUnreadKeys();
+}
 
-    m_map = loadOccupancyGrid(mapSource);
+void CAfraidLearner::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
+    options.saveToConfigFile(c, options.section);
+    detector.saveToConfigFile(c);
+    mcl.saveToConfigFile(c);
+}
+
+void CAfraidLearner::validate() const {
+    options.validate();
+    detector.validate();
+    mcl.options.validate();
+}
+
+void CAfraidLearner::prepare() {
+    validate();
+    m_map = loadOccupancyGrid(options.map);
+    // Which cells are obstacles, and every cell's distance to the nearest one:
+    // the map side of the scan-to-map agreement.
+    m_field = mapping::CDistanceField(m_map, options.obstacles);
     m_new = CAfraidGrid(m_map);
-    if (!afraidIn.empty()) {
+    m_old = CAfraidGrid();
+    if (!options.afraid_in.empty()) {
         try {
-            m_old = CAfraidGrid::load(afraidIn);
+            m_old = CAfraidGrid::load(options.afraid_in);
         } catch (const std::exception& e) {
             throw CBadInputError(e.what());
         }
         if (!m_old.sameGeometry(m_new))
-            throw CBadInputError(afraidIn + ": learned on another map (" +
+            throw CBadInputError(options.afraid_in + ": learned on another map (" +
                                  m_old.geometryText() +
                                  "; this map: " + m_new.geometryText() + ")");
     }
-    if (!groundTruth.empty()) {
-        std::ifstream f(groundTruth);
+    m_gt.clear();
+    if (!options.groundtruth_file.empty()) {
+        std::ifstream f(options.groundtruth_file);
         for (std::string line; std::getline(f, line);) {
             if (line.empty() || line[0] == '%' || line[0] == '#')
                 continue;
@@ -136,33 +211,39 @@ void CAfraidLearner::loadFromConfigFile(const CIniConfig& c,
             if (ls >> v[0] >> v[1] >> v[2] >> v[3])
                 m_gt.push_back(v);
         }
-        if (m_gt.empty())
-            throwBadKey(c, A, "groundtruth_file", groundTruth, "no 't x y phi' lines");
+        checkRule(!m_gt.empty(), options.section, "groundtruth_file",
+                  options.groundtruth_file, "no 't x y phi' lines");
     }
-    // Distance to the nearest map obstacle, for the scan-to-map agreement.
-    const int sx = int(m_map.getSizeX()), sy = int(m_map.getSizeY());
-    cv::Mat freeMask(sy, sx, CV_8UC1), dist;
-    for (int y = 0; y < sy; y++)
-        for (int x = 0; x < sx; x++)
-            freeMask.at<uint8_t>(y, x) = m_map.getCell(x, y) < 0.5f ? 0 : 255;
-    cv::distanceTransform(freeMask, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
-    m_obstDist.assign(size_t(sx) * sy, 0.f);
-    for (int y = 0; y < sy; y++)
-        for (int x = 0; x < sx; x++)
-            m_obstDist[size_t(y) * sx + x] = dist.at<float>(y, x) * m_map.getResolution();
+}
+
+double CAfraidLearner::scanMapAgreement(const mrpt::obs::CObservation2DRangeScan& scan,
+                                        const mrpt::math::TPose2D& pose) const {
+    const auto pts = mapping::scanToRobotFrame(scan);
+    const mrpt::poses::CPose2D robot(pose);
+    size_t agree = 0;
+    for (const auto& p : pts) {
+        const auto w = robot + mrpt::poses::CPose2D(p.x, p.y, 0);
+        // A point off the map is no evidence either way, whatever the rule
+        // says of the outside (else a scan into the void would agree).
+        const int cx = m_field.x2idx(w.x()), cy = m_field.y2idx(w.y());
+        if (m_field.inside(cx, cy) && m_field.clearance(cx, cy) <= options.match_distance)
+            agree++;
+    }
+    return pts.empty() ? 0.0 : double(agree) / pts.size();
 }
 
 void CAfraidLearner::run(bool quiet) {
+    const auto& o = options;
     const auto t0 = std::chrono::steady_clock::now();
-    for (size_t i = 0; i < rawlogs.size() && m_error.empty(); i++)
-        replay(rawlogs[i], quiet);
+    for (size_t i = 0; i < o.rawlogs.size() && m_error.empty(); i++)
+        replay(o.rawlogs[i], quiet);
     m_replaySeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!m_sawScan && m_error.empty())
         throw CBadInputError(
-            rawlogs.front() + (rawlogs.size() > 1 ? " (and the others)" : "") +
+            o.rawlogs.front() + (o.rawlogs.size() > 1 ? " (and the others)" : "") +
             ": no 2D laser scan (CObservation2DRangeScan" +
-            (scanLabel.empty() ? std::string() : " labelled '" + scanLabel + "'") +
+            (o.scan_label.empty() ? std::string() : " labelled '" + o.scan_label + "'") +
             ") in the rawlog");
     m_new.frames = m_frames;
 }
@@ -186,13 +267,12 @@ void CAfraidLearner::replay(const std::string& path, bool quiet) {
     // wherever it is stored.
     std::error_code ec;
     const uint64_t size = fs::file_size(path, ec);
-    mcl.initialize(
-        m_map, seed ^ std::hash<std::string>{}(fs::path(path).filename().string() + "#" +
-                                               std::to_string(size)));
+    mcl.initialize(m_map, options.seed ^ std::hash<std::string>{}(
+                                             fs::path(path).filename().string() + "#" +
+                                             std::to_string(size)));
     detector.reset();
     std::optional<mrpt::Clock::time_point> lastT;
     size_t done = 0;
-    const int sx = int(m_map.getSizeX());
     while (true) {
         std::optional<localization::TRawlogFrame> frame;
         try {
@@ -209,7 +289,8 @@ void CAfraidLearner::replay(const std::string& path, bool quiet) {
         mrpt::obs::CObservation2DRangeScan::Ptr scan;
         for (const auto& o : *frame->sf) {
             auto s = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(o);
-            if (s && (scanLabel.empty() || s->sensorLabel == scanLabel)) {
+            if (s &&
+                (options.scan_label.empty() || s->sensorLabel == options.scan_label)) {
                 scan = s;
                 break;
             }
@@ -231,18 +312,8 @@ void CAfraidLearner::replay(const std::string& path, bool quiet) {
         }
         lastT = t;
         // Does the scan agree with the map at the estimated pose?
-        const auto pts = CAfraidDetector::robotFramePoints(*scan);
-        const mrpt::poses::CPose2D pose(est.mean);
-        size_t agree = 0;
-        for (const auto& p : pts) {
-            const auto w = pose + mrpt::poses::CPose2D(p.x, p.y, 0);
-            const int cx = m_map.x2idx(w.x()), cy = m_map.y2idx(w.y());
-            if (cx >= 0 && cy >= 0 && cx < sx && cy < int(m_map.getSizeY()) &&
-                m_obstDist[size_t(cy) * sx + cx] <= matchDistance)
-                agree++;
-        }
-        const double match = pts.empty() ? 0.0 : double(agree) / pts.size();
-        const bool localized = match >= minMatch;
+        const double match = scanMapAgreement(*scan, est.mean);
+        const bool localized = match >= options.min_match;
         m_matchSum += match;
         m_frames++;
         const auto step = detector.step(*scan, est.mean, speed, m_map);
@@ -295,15 +366,15 @@ void CAfraidLearner::replay(const std::string& path, bool quiet) {
 
 bool CAfraidLearner::diverged() const {
     return m_frames > 0 &&
-           1.0 - double(m_localized) / double(m_frames) > divergedFraction;
+           1.0 - double(m_localized) / double(m_frames) > options.diverged_fraction;
 }
 
 void CAfraidLearner::generalize() {
     m_grid = m_new;
-    if (!afraidIn.empty())
+    if (!options.afraid_in.empty())
         m_grid.merge(m_old);
-    m_level = afraidLevel(m_grid, krr, sampleBin);
-    m_zones = findZones(m_level, m_grid, zoneThreshold);
+    m_level = afraidLevel(m_grid, options.krr, options.sample_bin);
+    m_zones = findZones(m_level, m_grid, options.zone_threshold);
 }
 
 double CAfraidLearner::levelAt(double x, double y) const {

@@ -4,7 +4,8 @@
 #include <cmath>
 
 namespace risknav::afraid {
-int obsCur(const std::vector<TPoint>& pts, double dStop, double beta, double halfWidth) {
+int obsCur(const std::vector<mrpt::math::TPoint2D>& pts, double dStop, double beta,
+           double halfWidth) {
     for (const auto& p : pts)
         if (p.x > 0 && std::abs(p.y) <= halfWidth && p.x < dStop + beta)
             return 0;
@@ -19,8 +20,8 @@ int obsPredict(const std::deque<int>& history, size_t footStep) {
     return prod;
 }
 
-double nonBlockedArea(const std::vector<TPoint>& pts, double dStop, double beta, double r,
-                      int nDirections) {
+double nonBlockedArea(const std::vector<mrpt::math::TPoint2D>& pts, double dStop,
+                      double beta, double r, int nDirections) {
     // Obstacles the robot could meet: within dist_stop + beta.
     std::vector<std::pair<double, double>> near;  // (d, bearing)
     for (const auto& p : pts) {

@@ -4,6 +4,7 @@
 #include <risknav/common/CCsvWriter.h>
 #include <risknav/common/CMapImage.h>
 #include <risknav/common/CPlotImage.h>
+#include <risknav/common/config_read.h>
 #include <risknav/common/summary_json.h>
 
 #include <opencv2/imgproc.hpp>
@@ -30,7 +31,7 @@ json finite(double v) {
 // another name, so that a complete earlier file of the same name is never
 // replaced by it.
 std::string writeAfraidFile(const CAfraidLearner& l, COutputDir& out) {
-    std::string afraidFile = l.afraidName;
+    std::string afraidFile = l.options.afraid_name;
     if (l.partial())
         afraidFile = afraidFile.substr(0, afraidFile.size() - 7) + ".partial.afraid";
     l.grid().save(out.stage(afraidFile));
@@ -91,7 +92,7 @@ json writeZonesCsv(const CAfraidLearner& l, COutputDir& out) {
 void writeSpeedMask(const CAfraidLearner& l, COutputDir& out) {
     const auto& g = l.grid();
     const int sx = g.sizeX(), sy = g.sizeY();
-    const int pct = int(std::lround(100.0 * l.vSafe / l.vMax));
+    const int pct = int(std::lround(100.0 * l.options.v_safe / l.options.v_max));
     std::vector<uint8_t> pix(size_t(sx) * sy, 255);
     for (const auto& z : l.zones())
         for (int k : z.mask) {
@@ -120,9 +121,10 @@ void writeSpeedMask(const CAfraidLearner& l, COutputDir& out) {
 
 // afraid.png: level as a heat overlay, raw events as dots, zones outlined.
 void drawAfraidImage(const CAfraidLearner& l, double peak, COutputDir& out) {
+    const double threshold = l.options.zone_threshold;
     CMapImage img(l.map());
-    img.heatOverlay(l.level(), 0.f, float(std::max(peak, l.zoneThreshold * 2)),
-                    "afraid level", 0.65, float(0.25 * l.zoneThreshold));
+    img.heatOverlay(l.level(), 0.f, float(std::max(peak, threshold * 2)), "afraid level",
+                    0.65, float(0.25 * threshold));
     img.polyline(l.trajectory(), {150, 150, 150}, 1);
     for (const auto& e : l.events()) {
         img.circle({e.robotX, e.robotY}, 0.04, {0, 0, 0}, 1, true);
@@ -141,8 +143,8 @@ void drawAfraidImage(const CAfraidLearner& l, double peak, COutputDir& out) {
     img.legendLine("robot path (MCL)", {150, 150, 150}, 1);
     img.legendMarker("robot at an event", CMapImage::TMarker::Circle, {0, 0, 0});
     img.legendMarker("unexpected obstacle", CMapImage::TMarker::Circle, {220, 0, 0});
-    img.legendLine("zone (level > " + CCsvWriter::num(l.zoneThreshold, 3) + ")",
-                   {200, 0, 200}, 2);
+    img.legendLine("zone (level > " + CCsvWriter::num(threshold, 3) + ")", {200, 0, 200},
+                   2);
     char title[200];
     std::snprintf(title, sizeof(title),
                   "risknav-afraid-learn: %zu new events (%llu in all), %zu zones%s",
@@ -207,7 +209,7 @@ void drawSpeedPlot(const CAfraidLearner& l, const TRouteSpeedProfile& r,
     sp.setYLabel("speed [m/s]");
     sp.addSeries("v = min(v_behaviour, v_afraid), driving towards +axis", pos, r.speed,
                  {0, 90, 200}, 2);
-    std::vector<double> safe(pos.size(), l.vSafe);
+    std::vector<double> safe(pos.size(), l.options.v_safe);
     sp.addSeries("before learning: v_safe everywhere", pos, safe, {120, 120, 120}, 1,
                  true);
     zoneLines(sp, l, r.axis);
@@ -245,7 +247,7 @@ json summaryJson(const CAfraidLearner& l, const std::string& afraidFile,
     j["status"] = l.partial() ? "partial" : (l.diverged() ? "diverged" : "ok");
     j["partial"] = l.partial();
     j["error"] = l.error();
-    j["rawlogs"] = l.rawlogs;
+    j["rawlogs"] = l.options.rawlogs;
     j["frames"] = l.frames();
     j["localization"] = {
         {"localized_frames", l.localizedFrames()},
@@ -264,21 +266,25 @@ json summaryJson(const CAfraidLearner& l, const std::string& afraidFile,
     j["events_total"] = g.totalRobotEvents();
     j["runs_total"] = g.runs;
     j["afraid_file"] = afraidFile;
-    j["afraid_in"] = l.afraidIn;
+    j["afraid_in"] = l.options.afraid_in;
     j["zones"] = zones;
     j["peak_level"] = peak;
     j["profile_axis"] = axis;
-    j["parameters"] = {{"kernel_bandwidth", l.krr.bandwidth},
-                       {"kernel_lambda", l.krr.lambda},
-                       {"zone_threshold", l.zoneThreshold},
-                       {"v_max", l.vMax},
-                       {"v_safe", l.vSafe},
-                       {"t_delay", l.detector.options.t_delay},
-                       {"decel", l.detector.options.decel},
-                       {"beta", l.detector.options.beta},
-                       {"half_width", l.detector.options.half_width},
-                       {"foot_step", l.detector.options.foot_step},
-                       {"diff_threshold", l.detector.options.diff_threshold}};
+    const auto& o = l.options;
+    const auto& d = l.detector;
+    j["parameters"] = {{"kernel_bandwidth", o.krr.bandwidth},
+                       {"kernel_lambda", o.krr.lambda},
+                       {"zone_threshold", o.zone_threshold},
+                       {"v_max", o.v_max},
+                       {"v_safe", o.v_safe},
+                       {"t_delay", d.robot.t_delay},
+                       {"decel", d.robot.decel},
+                       {"robot_radius", d.robot.radius},
+                       {"beta", d.options.beta},
+                       {"lateral_margin", d.options.lateral_margin},
+                       {"half_width", d.halfWidth()},
+                       {"foot_step", d.options.foot_step},
+                       {"diff_threshold", d.options.diff_threshold}};
     return j;
 }
 }  // namespace
@@ -289,11 +295,11 @@ json writeAfraidReport(const CAfraidLearner& l, COutputDir& out) {
     for (float v : l.level())
         peak = std::max(peak, double(v));
     TAfraidSpeedParams sp;
-    sp.vMax = l.vMax;
-    sp.vSafe = l.vSafe;
-    sp.threshold = l.zoneThreshold;
-    sp.tDelay = l.detector.options.t_delay;
-    sp.decel = l.detector.options.decel;
+    sp.vMax = l.options.v_max;
+    sp.vSafe = l.options.v_safe;
+    sp.threshold = l.options.zone_threshold;
+    sp.tDelay = l.detector.robot.t_delay;
+    sp.decel = l.detector.robot.decel;
     const auto route =
         routeSpeedProfile([&](double x, double y) { return l.levelAt(x, y); },
                           l.trajectory(), l.zones(), sp);
@@ -319,9 +325,11 @@ void runAfraidLearnApp(const TAppContext& ctx) {
     l.run(ctx.args.quiet);
     l.generalize();
     COutputDir out(ctx.args.outDir);
-    json summary = summaryHeader(ctx, l.seed);
+    json summary = summaryHeader(ctx, l.options.seed);
     summary.update(writeAfraidReport(l, out));
-    out.writeText("config_effective.ini", ctx.cfg.effectiveConfigText());
+    mrpt::config::CConfigFileMemory effective;
+    l.saveToConfigFile(effective);
+    out.writeText("config_effective.ini", effectiveConfigText(ctx.cfg.path(), effective));
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     summary["timing"] = {

@@ -1,4 +1,5 @@
 #include <risknav/afraid/kernel_regression.h>
+#include <risknav/common/config_read.h>
 
 #include <Eigen/Dense>
 #include <Eigen/IterativeLinearSolvers>
@@ -7,7 +8,30 @@
 #include <cmath>
 #include <unordered_map>
 
+using namespace risknav::common;
+
 namespace risknav::afraid {
+void TKrrOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                     const std::string& s) {
+    section = s;
+    bandwidth = readDouble(c, s, "kernel_bandwidth", bandwidth);
+    lambda = readDouble(c, s, "kernel_lambda", lambda);
+    cutoff = readDouble(c, s, "kernel_cutoff", cutoff);
+}
+
+void TKrrOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                   const std::string& s) const {
+    writeKey(c, s, "kernel_bandwidth", bandwidth);
+    writeKey(c, s, "kernel_lambda", lambda);
+    writeKey(c, s, "kernel_cutoff", cutoff);
+}
+
+void TKrrOptions::validate() const {
+    checkKey(section, "kernel_bandwidth", bandwidth, TRange::closed(0.01, 100, "m"));
+    checkKey(section, "kernel_lambda", lambda, {0, 1e6, true, false, ""});
+    checkKey(section, "kernel_cutoff", cutoff, TRange::closed(1, 10, "bandwidths"));
+}
+
 namespace {
 // Samples bucketed by cutoff-sized cells, for neighbour queries.
 struct TBuckets {

@@ -108,32 +108,3 @@ void CIniConfig::throwOnUnreadKeys(const std::vector<std::string>& only) const {
         msg += " (and " + std::to_string(unknown.size() - 1) + " more)";
     throw CBadInputError(msg + "; see config/ for the documented keys");
 }
-
-void CIniConfig::recordEffective(const std::string& section, const std::string& key,
-                                 const std::string& value) const {
-    auto sec = std::find_if(m_effective.begin(), m_effective.end(),
-                            [&](const auto& e) { return e.first == section; });
-    if (sec == m_effective.end()) {
-        m_effective.push_back({section, {}});
-        sec = m_effective.end() - 1;
-    }
-    for (auto& kv : sec->second)
-        if (kv.first == key) {
-            kv.second = value;
-            return;
-        }
-    sec->second.emplace_back(key, value);
-}
-
-std::string CIniConfig::effectiveConfigText() const {
-    std::string t =
-        "; Effective configuration of this run: every key with the value used\n"
-        "; (from " +
-        m_path + ", --set overrides, or the default).\n";
-    for (const auto& [sec, kvs] : m_effective) {
-        t += "\n[" + sec + "]\n";
-        for (const auto& [k, v] : kvs)
-            t += k + " = " + v + "\n";
-    }
-    return t;
-}

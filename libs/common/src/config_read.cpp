@@ -52,37 +52,6 @@ bool parseNumber(const std::string& txt, double& out) {
     return end && *end == '\0' && std::isfinite(out);
 }
 
-std::string text(double v) {
-    char b[40];
-    std::snprintf(b, sizeof(b), "%.9g", v);
-    return b;
-}
-std::string text(int v) {
-    return std::to_string(v);
-}
-std::string text(bool v) {
-    return v ? "true" : "false";
-}
-std::string text(const std::string& v) {
-    return v;
-}
-std::string text(const std::vector<double>& v) {
-    std::string t;
-    for (double x : v)
-        t += (t.empty() ? "" : " ") + text(x);
-    return t;
-}
-
-// Records the value a key took (from the file or the default) in a CIniConfig,
-// for config_effective.ini.
-template <class T>
-T noted(const CConfigFileBase& c, const std::string& s, const std::string& k,
-        const T& v) {
-    if (const auto* ini = dynamic_cast<const CIniConfig*>(&c))
-        ini->recordEffective(s, k, text(v));
-    return v;
-}
-
 void checkReadRange(const CConfigFileBase& c, const std::string& s, const std::string& k,
                     const std::string& raw, double v, const TRange& r) {
     if (!r.contains(v))
@@ -125,12 +94,12 @@ double readDouble(const CConfigFileBase& c, const std::string& s, const std::str
                   double def, const TRange& r) {
     std::string raw;
     if (!present(c, s, k, raw))
-        return noted(c, s, k, def);
+        return def;
     double v = 0;
     if (!parseNumber(raw, v))
         throwBadKey(c, s, k, raw, "not a number");
     checkReadRange(c, s, k, raw, v, r);
-    return noted(c, s, k, v);
+    return v;
 }
 
 double requireDouble(const CConfigFileBase& c, const std::string& s, const std::string& k,
@@ -144,41 +113,40 @@ double requireDouble(const CConfigFileBase& c, const std::string& s, const std::
 
 double readDegrees(const CConfigFileBase& c, const std::string& s, const std::string& k,
                    double defRad, const TRange& rangeDeg) {
-    return readDouble(c, s, k, defRad * 180.0 / M_PI, rangeDeg) * M_PI /
-           180.0;  // noted in deg
+    return readDouble(c, s, k, defRad * 180.0 / M_PI, rangeDeg) * M_PI / 180.0;
 }
 
 int readInt(const CConfigFileBase& c, const std::string& s, const std::string& k, int def,
             const TRange& r) {
     std::string raw;
     if (!present(c, s, k, raw))
-        return noted(c, s, k, def);
+        return def;
     double v = 0;
     if (!parseNumber(raw, v) || v != std::floor(v) || std::abs(v) > 2e9)
         throwBadKey(c, s, k, raw, "not an integer");
     checkReadRange(c, s, k, raw, v, r);
-    return noted(c, s, k, static_cast<int>(v));
+    return static_cast<int>(v);
 }
 
 bool readBool(const CConfigFileBase& c, const std::string& s, const std::string& k,
               bool def) {
     std::string raw;
     if (!present(c, s, k, raw))
-        return noted(c, s, k, def);
+        return def;
     std::string l = raw;
     std::transform(l.begin(), l.end(), l.begin(),
                    [](unsigned char ch) { return std::tolower(ch); });
     if (l == "true" || l == "1" || l == "yes" || l == "on")
-        return noted(c, s, k, true);
+        return true;
     if (l == "false" || l == "0" || l == "no" || l == "off")
-        return noted(c, s, k, false);
+        return false;
     throwBadKey(c, s, k, raw, "must be true or false");
 }
 
 std::string readString(const CConfigFileBase& c, const std::string& s,
                        const std::string& k, const std::string& def) {
     std::string raw;
-    return noted(c, s, k, present(c, s, k, raw) ? raw : def);
+    return present(c, s, k, raw) ? raw : def;
 }
 
 std::string requireString(const CConfigFileBase& c, const std::string& s,
@@ -207,7 +175,7 @@ std::vector<double> readNumbers(const CConfigFileBase& c, const std::string& s,
                                 const TRange& r, size_t minCount, size_t sizeMultiple) {
     std::string raw;
     if (!present(c, s, k, raw))
-        return noted(c, s, k, def);
+        return def;
     std::string body = raw;
     if (!body.empty() && body.front() == '[') {
         if (body.back() != ']')
@@ -231,7 +199,7 @@ std::vector<double> readNumbers(const CConfigFileBase& c, const std::string& s,
     if (sizeMultiple > 1 && out.size() % sizeMultiple != 0)
         throwBadKey(c, s, k, raw,
                     "needs a multiple of " + std::to_string(sizeMultiple) + " numbers");
-    return noted(c, s, k, out);
+    return out;
 }
 
 std::string readPath(const CConfigFileBase& c, const std::string& s, const std::string& k,
@@ -243,15 +211,19 @@ std::string readPath(const CConfigFileBase& c, const std::string& s, const std::
                                  ": required key is missing");
         return v;
     }
-    fs::path p(v);
+    const std::string p = configRelativePath(c, v);
+    std::error_code ec;
+    if (mustExist && !fs::is_regular_file(p, ec))
+        throwBadKey(c, s, k, v, "file not found (" + p + ")");
+    return p;  // absolute: config_effective.ini lives elsewhere
+}
+
+std::string configRelativePath(const CConfigFileBase& c, const std::string& path) {
+    fs::path p(path);
     if (p.is_relative())
         if (const auto* ini = dynamic_cast<const CIniConfig*>(&c))
             p = fs::path(ini->folder()) / p;
-    p = p.lexically_normal();
-    std::error_code ec;
-    if (mustExist && !fs::is_regular_file(p, ec))
-        throwBadKey(c, s, k, v, "file not found (" + p.string() + ")");
-    return noted(c, s, k, p.string());  // absolute: config_effective.ini lives elsewhere
+    return p.lexically_normal().string();
 }
 
 std::string numberText(double v) {

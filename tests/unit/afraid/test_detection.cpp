@@ -1,7 +1,9 @@
 #include <risknav/afraid/CAfraidDetector.h>
 #include <risknav/afraid/afraid_functions.h>
+#include <risknav/common/CBadInputError.h>
 #include <risknav/common/stopping.h>
 
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/maps/COccupancyGridMap2D.h>
 
 #include <gtest/gtest.h>
@@ -17,7 +19,7 @@ TEST(AfraidFunctions, ObsCurAndObsPredictSequences) {
     std::deque<int> hist;
     std::vector<int> pred;
     for (int t = 0; t < 12; t++) {
-        std::vector<TPoint> pts = {{0.5, 1.5}, {1.0, 1.5}, {-0.5, -1.5}};
+        std::vector<mrpt::math::TPoint2D> pts = {{0.5, 1.5}, {1.0, 1.5}, {-0.5, -1.5}};
         if (t >= 5 && t <= 7)
             pts.push_back({0.4, 0.05});
         pred.push_back(obsPredict(hist, 3));
@@ -129,4 +131,35 @@ TEST(CAfraidDetector, PersonWalkingAlongTheCorridorFarAhead) {
         EXPECT_EQ(st.obsCur, 1) << k;
         EXPECT_FALSE(st.afraid) << k;
     }
+}
+
+// The detector's robot is the [Robot] schema: its swept half-width is radius
+// + lateral_margin (0.25 + 0.1 = 0.35 m by default, the former half_width);
+// options set from code run the same validate(); save/load round-trips.
+TEST(CAfraidDetector, RobotSchemaOptionsValidateAndRoundTrip) {
+    using risknav::common::CConfigKeyError;
+    CAfraidDetector d;
+    EXPECT_EQ(d.halfWidth(), 0.35);
+    EXPECT_NO_THROW(d.validate());
+    d.robot.radius = 0.3;
+    d.robot.t_delay = 0.5;
+    d.options.lateral_margin = 0.05;
+    d.options.directions = 91;
+    EXPECT_NEAR(d.halfWidth(), 0.35, 1e-15);
+    mrpt::config::CConfigFileMemory m;
+    d.saveToConfigFile(m);
+    CAfraidDetector r;
+    r.loadFromConfigFile(m);
+    mrpt::config::CConfigFileMemory m2;
+    r.saveToConfigFile(m2);
+    EXPECT_EQ(m.getContent(), m2.getContent());
+    EXPECT_EQ(r.robot.radius, 0.3);
+    EXPECT_EQ(r.robot.t_delay, 0.5);
+    EXPECT_EQ(r.options.lateral_margin, 0.05);
+    EXPECT_EQ(r.options.directions, 91);
+    r.options.lateral_margin = -0.1;
+    EXPECT_THROW(r.validate(), CConfigKeyError);
+    r.options.lateral_margin = 0.1;
+    r.robot.decel = 0;
+    EXPECT_THROW(r.validate(), CConfigKeyError);
 }

@@ -1,6 +1,10 @@
 #include <risknav/afraid/CAfraidGrid.h>
+#include <risknav/afraid/CAfraidLearner.h>
 #include <risknav/afraid/afraid_zones.h>
 #include <risknav/afraid/kernel_regression.h>
+#include <risknav/common/CBadInputError.h>
+
+#include <mrpt/config/CConfigFileMemory.h>
 
 #include <gtest/gtest.h>
 
@@ -147,4 +151,56 @@ TEST(AfraidZones, ConnectedRegionsAndSpeedLimit) {
     // min with the behaviour's own speed.
     EXPECT_DOUBLE_EQ(
         afraidSpeedLimit(lv, {{3.5, 2}, {9, 2}}, 0.5, 0.8, 0.2, 0.1, 0.9, 1.0), 0.5);
+}
+
+// The learner's [AfraidLearn] options: set from code they run the same
+// validate() as when read from a file; save/load round-trips (paths with
+// spaces included).
+TEST(CAfraidLearnerOptions, SetFromCodeAreValidatedAndRoundTrip) {
+    using risknav::common::CConfigKeyError;
+    const std::string d = risknav::test::freshDir("opts");
+    risknav::test::writeFile(d + "/a b.rawlog", "x");
+    risknav::test::writeFile(d + "/c.rawlog", "x");
+    CAfraidLearner::TOptions o;
+    o.map.map_file =
+        risknav::test::sourcePath("datasets/corridor-doors/corridor.gridmap.gz");
+    EXPECT_THROW(o.validate(), CConfigKeyError);  // no rawlog
+    o.rawlogs = {d + "/a b.rawlog", d + "/c.rawlog"};
+    EXPECT_NO_THROW(o.validate());
+    o.v_safe = 1.0;  // > v_max
+    try {
+        o.validate();
+        ADD_FAILURE() << "v_safe > v_max accepted";
+    } catch (const CConfigKeyError& e) {
+        EXPECT_EQ(e.key, "v_safe");
+    }
+    o.v_safe = 0.3;
+    o.afraid_name = "x.txt";
+    EXPECT_THROW(o.validate(), CConfigKeyError);
+    o.afraid_name = "mine.afraid";
+    o.krr.bandwidth = 0;
+    EXPECT_THROW(o.validate(), CConfigKeyError);
+    o.krr.bandwidth = 0.7;
+    EXPECT_FALSE(o.obstacles.unknown_is_obstacle);  // the learner's default
+    o.obstacles.unknown_is_obstacle = true;
+    o.seed = 12345678901ULL;
+    o.match_distance = 0.1 / 3;
+    EXPECT_NO_THROW(o.validate());
+
+    mrpt::config::CConfigFileMemory m;
+    o.saveToConfigFile(m, "AfraidLearn");
+    CAfraidLearner::TOptions r;
+    r.loadFromConfigFile(m, "AfraidLearn");
+    mrpt::config::CConfigFileMemory m2;
+    r.saveToConfigFile(m2, "AfraidLearn");
+    EXPECT_EQ(m.getContent(), m2.getContent());
+    EXPECT_EQ(r.rawlogs, o.rawlogs);
+    EXPECT_EQ(r.afraid_name, "mine.afraid");
+    EXPECT_EQ(r.v_safe, 0.3);
+    EXPECT_EQ(r.krr.bandwidth, 0.7);
+    EXPECT_TRUE(r.obstacles.unknown_is_obstacle);
+    EXPECT_FALSE(r.obstacles.outside_is_obstacle);
+    EXPECT_EQ(r.seed, 12345678901ULL);
+    EXPECT_EQ(r.match_distance, o.match_distance);
+    EXPECT_NO_THROW(r.validate());
 }

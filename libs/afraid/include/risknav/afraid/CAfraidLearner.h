@@ -4,15 +4,18 @@
 #include <risknav/afraid/afraid_zones.h>
 #include <risknav/afraid/kernel_regression.h>
 #include <risknav/common/CIniConfig.h>
+#include <risknav/common/CValidatedOptions.h>
 #include <risknav/common/grid_io.h>
 #include <risknav/localization/CRawlogMcl.h>
+#include <risknav/mapping/CDistanceField.h>
+#include <risknav/mapping/TObstacleRule.h>
 
 #include <mrpt/maps/COccupancyGridMap2D.h>
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <optional>
-
 #include <string>
 #include <vector>
 
@@ -40,33 +43,72 @@ struct TAfraidEvent {
  * replays rawlogs with MCL on a known map, detects afraid events, accumulates
  * them with the exposure in a CAfraidGrid (optionally starting from an
  * earlier .afraid file), generalizes by kernel ridge regression and finds the
- * zones. Sections [AfraidLearn] [Localization] [PF_options] [KLD_options]
- * [AfraidDetector]; keys in config/risknav-afraid-learn.ini. */
+ * zones. Sections [AfraidLearn] (options), [AfraidDetector] and [Robot]
+ * (detector), [Localization] [PF_options] [KLD_options] (mcl); keys in
+ * config/risknav-afraid-learn.ini. */
 class CAfraidLearner {
   public:
-    // ---- options
-    common::TMapSourceOptions mapSource;
-    std::vector<std::string> rawlogs;
-    std::string afraidIn;  ///< earlier .afraid file to start from ("" = none)
-    std::string afraidName = "learned.afraid";
-    std::string groundTruth;  ///< optional "t x y phi" file for the MCL error
-    std::string scanLabel;    ///< "" = the first 2D scan of each frame
-    double matchDistance =
-        0.25;  ///< [m] a scan point this close to a map obstacle agrees with the map
-    double minMatch = 0.5;  ///< frames with fewer agreeing points are not localized
-    double divergedFraction = 0.5;  ///< more frames than this not localized: MCL diverged
-    TKrrOptions krr;
-    double sampleBin =
-        0.25;  ///< [m] exposure and events are pooled in bins this size before regression
-    double zoneThreshold = 0.04;     ///< level above which a cell is in a zone
-    double vMax = 0.8, vSafe = 0.2;  ///< [m/s] for the speed mask
-    uint64_t seed = 1;
-    CAfraidDetector detector;
-    localization::CRawlogMcl mcl;
+    /** The [AfraidLearn] keys: the map, which of its cells are obstacles (for
+     * the scan-to-map agreement), the inputs and outputs, and the learning. */
+    struct TOptions : public common::CValidatedOptions {
+        common::TMapSourceOptions map;  ///< map_* keys
+        /** occupied_threshold ... outside_is_obstacle. Here the rule says which
+         * cells confirm a scan point, so unknown cells and the outside do not by
+         * default (a scan into unexplored space is no evidence of a good pose). */
+        mapping::TObstacleRule obstacles;
+        /** Absolute paths; relative ones in the file resolve against its folder.
+         * Whitespace-separated, "double quotes" keep a path with spaces. */
+        std::vector<std::string> rawlogs;
+        std::string afraid_in;  ///< earlier .afraid file to start from ("" = none)
+        std::string afraid_name = "learned.afraid";  ///< a file name ending in .afraid
+        std::string groundtruth_file;  ///< optional "t x y phi" file for the MCL error
+        std::string scan_label;        ///< "" = the first 2D scan of each frame
+        double match_distance =
+            0.25;  ///< [m] a scan point this close to a map obstacle agrees with the map
+        double min_match = 0.5;  ///< frames with fewer agreeing points are not localized
+        double diverged_fraction =
+            0.5;                   ///< more frames than this not localized: MCL diverged
+        TKrrOptions krr;           ///< kernel_bandwidth, kernel_lambda, kernel_cutoff
+        double sample_bin = 0.25;  ///< [m] exposure and events are pooled in bins this
+                                   ///< size before regression
+        double zone_threshold = 0.04;  ///< level above which a cell is in a zone
+        double v_max = 0.8;            ///< [m/s] speed outside the zones (eq. 13)
+        double v_safe = 0.2;           ///< [m/s] speed inside the zones (eq. 13)
+        uint64_t seed = 1;  ///< particle filter seed (with the rawlog's name and size)
+        std::string section = "AfraidLearn";  ///< the host section (for messages)
 
+        TOptions() {
+            map.section = obstacles.section = krr.section = section;
+            obstacles.unknown_is_obstacle = obstacles.outside_is_obstacle = false;
+        }
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                const std::string& section) override;
+        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                              const std::string& section) const override;
+        /** Ranges, v_safe <= v_max, the afraid_name form, at least one rawlog,
+         * and that every named input file exists. */
+        void validate() const override;
+    };
+
+    TOptions options;              ///< [AfraidLearn]
+    CAfraidDetector detector;      ///< [AfraidDetector], [Robot]
+    localization::CRawlogMcl mcl;  ///< [Localization], [PF_options], [KLD_options]
+
+    /** Reads every section (each options struct loads its own keys, then
+     * validate()), adds the command line's rawlogs, applies the --seed
+     * override, rejects unknown sections and keys, then prepare(). Any
+     * problem: CBadInputError naming the file. */
     void loadFromConfigFile(const common::CIniConfig& c,
                             const std::vector<std::string>& extraRawlogs,
                             std::optional<uint64_t> seedOverride);
+    /** Writes every key of every section (config_effective.ini). */
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c) const;
+    /** Every options struct's validate(). Throws CConfigKeyError. */
+    void validate() const;
+    /** validate(), then loads the map, its distance field, the earlier .afraid
+     * file and the ground truth. Run again after changing options. Throws
+     * CConfigKeyError or CBadInputError (a file that cannot be used). */
+    void prepare();
 
     /** Replays every rawlog. A corrupt rawlog stops the replay: partial()
      * becomes true and error() says where; what was learned so far stays. */
@@ -75,6 +117,7 @@ class CAfraidLearner {
     void generalize();
 
     const mrpt::maps::COccupancyGridMap2D& map() const { return m_map; }
+    const mapping::CDistanceField& distanceField() const { return m_field; }
     const CAfraidGrid& grid() const { return m_grid; }
     const CAfraidGrid& newExperience() const { return m_new; }
     const std::vector<TAfraidEvent>& events() const { return m_events; }
@@ -99,8 +142,12 @@ class CAfraidLearner {
 
   private:
     void replay(const std::string& path, bool quiet);
+    /** Fraction of the scan's points within match_distance of a map obstacle
+     * (by the obstacle rule) at the estimated pose. */
+    double scanMapAgreement(const mrpt::obs::CObservation2DRangeScan& scan,
+                            const mrpt::math::TPose2D& pose) const;
     mrpt::maps::COccupancyGridMap2D m_map;
-    std::vector<float> m_obstDist;  // distance to the nearest map obstacle, per cell [m]
+    mapping::CDistanceField m_field;
     CAfraidGrid m_grid, m_new, m_old;
     std::vector<TAfraidEvent> m_events;
     std::vector<float> m_level;

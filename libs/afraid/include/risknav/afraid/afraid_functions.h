@@ -1,19 +1,20 @@
 #pragma once
+#include <mrpt/math/TPoint2D.h>
+
 #include <cstddef>
 #include <deque>
 #include <vector>
 
 namespace risknav::afraid {
-/** A sensed point in the robot frame [m]: x forward, y left. */
-struct TPoint {
-    double x = 0, y = 0;
-};
+// Sensed points are in the robot frame [m], x forward, y left, as
+// mapping::scanToRobotFrame() gives them.
 
 /** Choi, Chung, Song (002) eq. (5): obs_cur(t) = 1 when every sensed obstacle
  * is at least dist_stop + beta away, 0 when one is closer. "Obstacles" are the
  * points in the collision area of Fig. 1: ahead of the robot (x > 0) and inside
  * its swept corridor (|y| <= halfWidth); distance along the path (x). */
-int obsCur(const std::vector<TPoint>& pts, double dStop, double beta, double halfWidth);
+int obsCur(const std::vector<mrpt::math::TPoint2D>& pts, double dStop, double beta,
+           double halfWidth);
 
 /** Eq. (6): obs_predict(t) = product of obs_cur over the previous foot_step
  * cycles (history.back() is t-1). 1: nothing was in the collision area lately,
@@ -30,8 +31,8 @@ int obsPredict(const std::deque<int>& history, size_t footStep);
  * meet, in front (cos(theta - theta') > 0) and within dist_stop + beta, block.
  * (The paper's eq. 8 takes the min over all obstacles; far walls would block
  * every direction, which the collision-area reading of Figs. 4-5 excludes.) */
-double nonBlockedArea(const std::vector<TPoint>& pts, double dStop, double beta, double r,
-                      int nDirections = 181);
+double nonBlockedArea(const std::vector<mrpt::math::TPoint2D>& pts, double dStop,
+                      double beta, double r, int nDirections = 181);
 
 /** Eq. (11), written out: Afr(t) = 1 when an obstacle is in the collision area
  * now (obs_cur = 0) that was not there during the previous foot_step cycles

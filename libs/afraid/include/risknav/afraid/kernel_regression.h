@@ -1,4 +1,7 @@
 #pragma once
+#include <risknav/common/CValidatedOptions.h>
+
+#include <string>
 #include <vector>
 
 namespace risknav::afraid {
@@ -10,12 +13,22 @@ namespace risknav::afraid {
  * Beyond the paper, for maps of 2000 x 2000 cells: the kernel is cut at
  * `cutoff` bandwidths (exp(-8) = 3e-4 at 4 h), which makes K sparse; the
  * system is solved by conjugate gradients on the sparse SPD matrix (no dense
- * n x n inverse), and f is evaluated only within the cutoff of a sample. */
-struct TKrrOptions {
+ * n x n inverse), and f is evaluated only within the cutoff of a sample.
+ *
+ * Config keys kernel_bandwidth, kernel_lambda, kernel_cutoff in the host
+ * section (e.g. [AfraidLearn]); the CG tolerance is not configurable. */
+struct TKrrOptions : public common::CValidatedOptions {
     double bandwidth = 0.5;  ///< h [m]
     double lambda = 0.5;     ///< ridge regularization
     double cutoff = 4.0;     ///< kernel support, in bandwidths
     double tolerance = 1e-10;
+    std::string section = "AfraidLearn";  ///< the host section (for messages)
+
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                            const std::string& section) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                          const std::string& section) const override;
+    void validate() const override;
 };
 
 struct TKrrSample {

@@ -45,14 +45,6 @@ class CIniConfig : public mrpt::config::CConfigFile {
     bool hasKey(const std::string& section, const std::string& key) const;
     std::vector<std::string> sections() const;
 
-    /** The value a key took in this run, from the file or the default
-     * (recorded by the strict reads of config_read.h). */
-    void recordEffective(const std::string& section, const std::string& key,
-                         const std::string& value) const;
-    /** Every recorded key with its effective value, as an .ini text that
-     * reproduces the run (sections and keys in the order they were read). */
-    std::string effectiveConfigText() const;
-
   protected:
     std::string readString(const std::string& section, const std::string& name,
                            const std::string& defaultStr,
@@ -61,9 +53,6 @@ class CIniConfig : public mrpt::config::CConfigFile {
   private:
     std::string m_path, m_folder;
     mutable std::set<std::pair<std::string, std::string>> m_read;
-    mutable std::vector<
-        std::pair<std::string, std::vector<std::pair<std::string, std::string>>>>
-        m_effective;
 };
 
 }  // namespace risknav::common

@@ -70,6 +70,11 @@ std::vector<double> readNumbers(const mrpt::config::CConfigFileBase& c,
  * the config is a CIniConfig. mustExist: throws if the file is not there. */
 std::string readPath(const mrpt::config::CConfigFileBase& c, const std::string& section,
                      const std::string& key, const std::string& def, bool mustExist);
+/** A path as a config names it: a relative one resolves against the config
+ * file's folder when the config is a CIniConfig (what readPath() does, for
+ * keys that hold several paths). Lexically normal. */
+std::string configRelativePath(const mrpt::config::CConfigFileBase& c,
+                               const std::string& path);
 /** @} */
 
 /** @name Writing, for saveToConfigFile(): every value reads back to the same bits
