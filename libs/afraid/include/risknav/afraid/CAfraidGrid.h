@@ -60,8 +60,13 @@ class CAfraidGrid {
     bool sameGeometry(const CAfraidGrid& o) const;
     std::string geometryText() const;
 
+    /** The robot was at (x, y) [m] (one count of exposure). */
     void addExposure(double x, double y);
+    /** An afraid event (eq. 11) with the robot at (x, y): eq. (12) counted at
+     * the robot's cell. */
     void addRobotEvent(double x, double y);
+    /** The unexpected obstacle of an event was at (x, y): eq. (12) counted at
+     * the obstacle's cell (the paper's Fig. 8 counts along the corridor). */
     void addObstacleEvent(double x, double y);
     /** Adds another grid's counts (learning is resumable); throws
      * std::runtime_error if the geometry differs. */

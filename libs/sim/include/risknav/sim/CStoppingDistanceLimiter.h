@@ -27,7 +27,9 @@ class CStoppingDistanceLimiter : public common::CSpeedLimiter {
         void validate() const override;
     } options;
 
-    /** Whether moving at speed v [m/s] is blocked by a point of the scan. */
+    /** Whether moving at speed v [m/s] is blocked by a point of the scan: the
+     * collision condition |x_robot - x_obstacle| < d_stop(v) of Choi et al.
+     * (002) eq. (4), measured from the robot's front, plus the margin. */
     bool blocked(const mrpt::obs::CObservation2DRangeScan& scan, double v,
                  const common::TRobotOptions& robot) const;
 
