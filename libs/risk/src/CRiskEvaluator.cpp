@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <set>
 
 using namespace risknav::common;
@@ -48,6 +49,9 @@ void CRiskEvaluator::TOptions::loadFromConfigFile(const mrpt::config::CConfigFil
     gvg.loadFromConfigFile(c, s);
     ellipse_interval = readDouble(c, s, "ellipse_interval", ellipse_interval);
     eval_step = readDouble(c, s, "eval_step", eval_step);
+    // The seed is an integer type: its range is a parsing rule.
+    seed = static_cast<uint64_t>(
+        readDouble(c, s, "seed", double(seed), TRange::closed(0, 9007199254740992.0)));
 }
 
 void CRiskEvaluator::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
@@ -62,6 +66,7 @@ void CRiskEvaluator::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c
     gvg.saveToConfigFile(c, s);
     writeKey(c, s, "ellipse_interval", ellipse_interval);
     writeKey(c, s, "eval_step", eval_step);
+    writeKey(c, s, "seed", std::to_string(seed));
 }
 
 void CRiskEvaluator::TOptions::validate() const {
@@ -82,6 +87,7 @@ void CRiskEvaluator::TOptions::validate() const {
 }
 
 void CRiskEvaluator::loadFromConfigFile(const CIniConfig& c) {
+    m_where = configWhere(c);
     for (const auto& s : c.sections())
         if (s != "RiskEval" && s != "Robot" && s != "Odometry" && !numbered(s, "Route") &&
             !numbered(s, "SensingPoint"))
@@ -142,6 +148,48 @@ void CRiskEvaluator::validate() const {
               "gvg_routes", std::to_string(options.gvg_routes),
               "no candidate routes: add [RouteN] sections or set [RiskEval] gvg_routes "
               "> 0");
+    // The work of a run, as far as the config decides it.
+    const size_t routes = configRoutes.size() + size_t(options.gvg_routes);
+    checkRule(routes <= kMaxRoutes, options.section, "gvg_routes",
+              std::to_string(options.gvg_routes),
+              std::to_string(configRoutes.size()) +
+                  " [RouteN] sections + gvg_routes = " + std::to_string(routes) +
+                  " candidate routes; at most " + std::to_string(kMaxRoutes));
+    const double rows = double(routes) * sensingSubsets();
+    char b[200];
+    std::snprintf(b, sizeof(b),
+                  "%zu candidate routes x %.0f subsets of the %zu sensing points = %.0f "
+                  "rows to evaluate; at most %zu (fewer sensing points or a smaller "
+                  "max_sensing_subset)",
+                  routes, sensingSubsets(), sensingPoints.size(), rows, kMaxRows);
+    checkRule(rows <= double(kMaxRows), options.section, "max_sensing_subset",
+              std::to_string(options.max_sensing_subset), b);
+}
+
+double CRiskEvaluator::sensingSubsets() const {
+    // sum_{k = 0}^{min(n, max)} C(n, k), in doubles (no overflow).
+    const int n = int(sensingPoints.size());
+    double sum = 0, c = 1;
+    for (int k = 0; k <= std::min(n, options.max_sensing_subset); k++) {
+        sum += c;
+        c = c * double(n - k) / double(k + 1);
+    }
+    return sum;
+}
+
+size_t CRiskEvaluator::trajectoriesPerStep() const {
+    const TRiskOptions o = riskOptions();
+    const size_t n = o.model == TErrorModel::Systematic ? 6 : 3;
+    switch (o.propagation) {
+        case TPropagation::Linear:
+            return 1;
+        case TPropagation::Unscented:
+            return 2 * n;
+        case TPropagation::Cubature5:
+            return 2 * n * n + 1;
+        default:
+            return size_t(o.samples);
+    }
 }
 
 void CRiskEvaluator::prepare() {
@@ -185,7 +233,7 @@ void CRiskEvaluator::prepare() {
 }
 
 TRiskOptions CRiskEvaluator::riskOptions() const {
-    return makeRiskOptions(odometry, propagation, options.eval_step);
+    return makeRiskOptions(odometry, propagation, options.eval_step, options.seed);
 }
 
 void CRiskEvaluator::evaluate() {
@@ -213,19 +261,24 @@ void CRiskEvaluator::evaluate() {
         for (size_t i = 0; i < g.size(); i++)
             m_routes.push_back({"G" + std::to_string(i + 1), g[i], true});
     }
-    // Every subset of sensing points up to maxSensingSubset, smallest first.
+    // Every subset of sensing points up to max_sensing_subset, smallest first,
+    // each size in colexicographic order (validate() bounded their number).
     std::vector<std::vector<size_t>> subsets = {{}};
     const size_t n = sensingPoints.size();
-    for (size_t mask = 1; mask < (size_t(1) << n); mask++) {
-        std::vector<size_t> s;
-        for (size_t i = 0; i < n; i++)
-            if (mask & (size_t(1) << i))
-                s.push_back(i);
-        if (int(s.size()) <= options.max_sensing_subset)
-            subsets.push_back(s);
+    for (size_t k = 1; k <= std::min(n, size_t(options.max_sensing_subset)); k++) {
+        std::vector<size_t> c(k);
+        std::iota(c.begin(), c.end(), 0);
+        for (;;) {
+            subsets.push_back(c);
+            size_t i = 0;
+            while (i < k && c[i] + 1 == (i + 1 < k ? c[i + 1] : n))
+                i++;
+            if (i == k)
+                break;
+            c[i]++;
+            std::iota(c.begin(), c.begin() + long(i), 0);
+        }
     }
-    std::stable_sort(subsets.begin(), subsets.end(),
-                     [](const auto& a, const auto& b) { return a.size() < b.size(); });
     m_rows.clear();
     m_best = -1;
     for (size_t r = 0; r < m_routes.size(); r++)
@@ -242,23 +295,82 @@ void CRiskEvaluator::evaluate() {
                 row.excluded = true;
                 row.reason =
                     "a sensing point cannot be reached in a straight line from the route";
-            } else {
-                row.result = evaluatePathRisk(row.path, visit, *m_field, risk);
-                if (row.result.blocked) {
-                    row.excluded = true;
-                    row.reason = "collides with an obstacle";
-                } else if (options.u_threshold > 0 &&
-                           row.result.uMax > options.u_threshold) {
-                    row.excluded = true;
-                    row.reason = "max u above u_threshold";
-                }
             }
             m_rows.push_back(row);
-            const size_t k = m_rows.size() - 1;
-            if (!row.excluded &&
-                (m_best < 0 || row.result.U < m_rows[size_t(m_best)].result.U))
-                m_best = long(k);
         }
+    // The work, before any of it is done.
+    TStepCount steps;
+    for (const auto& row : m_rows)
+        if (row.feasible) {
+            const TStepCount n =
+                motionStepCount(row.path, risk.speed, risk.turnRate, risk.tau);
+            steps.straight += n.straight;
+            steps.turning += n.turning;
+        }
+    m_steps = steps.total();
+    m_trajSteps = m_steps * double(trajectoriesPerStep());
+    auto tooMuch = [&](const std::string& key, const std::string& value,
+                       const std::string& rule) {
+        throw CBadInputError(m_where + "[" + propagation.section + "] " + key + " = '" +
+                             value + "': " + rule);
+    };
+    char b[400];
+    if (m_steps > kMaxSteps) {
+        const bool turns = steps.turning > steps.straight;
+        std::snprintf(b, sizeof(b),
+                      "the %zu rows need %.3g propagation steps (%s / (%s x tau), tau = "
+                      "%s s); at most %.3g: raise %s or tau, or evaluate fewer rows",
+                      m_rows.size(), m_steps, turns ? "turn angles" : "path lengths",
+                      turns ? "turn_rate_deg" : "speed",
+                      numberText(propagation.tau).c_str(), kMaxSteps,
+                      turns ? "turn_rate_deg" : "speed");
+        tooMuch(turns ? "turn_rate_deg" : "speed",
+                numberText(turns ? propagation.turn_rate_deg : propagation.speed), b);
+    }
+    if (m_trajSteps > kMaxTrajectorySteps) {
+        std::snprintf(b, sizeof(b),
+                      "the %zu rows need %.3g propagation steps x %zu trajectories = "
+                      "%.3g trajectory steps; at most %.3g: a cheaper propagation (fewer "
+                      "samples, cubature5, linear), a larger tau or fewer rows",
+                      m_rows.size(), m_steps, trajectoriesPerStep(), m_trajSteps,
+                      kMaxTrajectorySteps);
+        tooMuch("propagation", propagation.propagation, b);
+    }
+    // Evaluate. Only the plain row and the best row of each route keep their
+    // samples (cov_*.csv, images); the table has every row.
+    std::vector<long> routeBest(m_routes.size(), -1);
+    for (size_t k = 0; k < m_rows.size(); k++) {
+        TRow& row = m_rows[k];
+        if (!row.feasible)
+            continue;
+        std::vector<TSensingPoint> visit;
+        for (size_t i : row.sensing)
+            visit.push_back(sensingPoints[i].point());
+        row.result = evaluatePathRisk(row.path, visit, *m_field, risk);
+        if (!row.result.failure.empty()) {
+            row.excluded = true;
+            row.reason = row.result.failure;
+        } else if (row.result.blocked) {
+            row.excluded = true;
+            row.reason = "collides with an obstacle";
+        } else if (options.u_threshold > 0 && row.result.uMax > options.u_threshold) {
+            row.excluded = true;
+            row.reason = "max u above u_threshold";
+        }
+        auto beats = [&](long other) {
+            return other < 0 || row.result.U < m_rows[size_t(other)].result.U;
+        };
+        long& rb = routeBest[row.route];
+        const bool best = !row.excluded && beats(rb);
+        if (best) {
+            if (rb >= 0 && !m_rows[size_t(rb)].sensing.empty())
+                m_rows[size_t(rb)].result.samples = {};
+            rb = long(k);
+        } else if (!row.sensing.empty())
+            row.result.samples = {};
+        if (!row.excluded && beats(m_best))
+            m_best = long(k);
+    }
 }
 
 std::string CRiskEvaluator::sensingName(const TRow& r) const {

@@ -1,9 +1,26 @@
 #include <risknav/common/config_read.h>
 #include <risknav/risk/TPropagationOptions.h>
 
+#include <algorithm>
+
 using namespace risknav::common;
 
 namespace risknav::risk {
+namespace {
+const std::vector<std::string> kPropagations = {"linear", "unscented", "cubature5",
+                                                "sampled"};
+}
+
+TPropagation propagationFromName(const std::string& n) {
+    if (n == "linear")
+        return TPropagation::Linear;
+    if (n == "unscented")
+        return TPropagation::Unscented;
+    if (n == "sampled")
+        return TPropagation::Sampled;
+    return TPropagation::Cubature5;
+}
+
 void TPropagationOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                              const std::string& s) {
     section = s;
@@ -17,6 +34,8 @@ void TPropagationOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase
     noise_sigma_y = readDouble(c, s, "noise_sigma_y", noise_sigma_y);
     noise_sigma_theta_deg =
         readDouble(c, s, "noise_sigma_theta_deg", noise_sigma_theta_deg);
+    propagation = readChoice(c, s, "propagation", propagation, kPropagations);
+    samples = readInt(c, s, "samples", samples);
 }
 
 void TPropagationOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
@@ -30,6 +49,8 @@ void TPropagationOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
     writeKey(c, s, "noise_sigma_x", noise_sigma_x);
     writeKey(c, s, "noise_sigma_y", noise_sigma_y);
     writeKey(c, s, "noise_sigma_theta_deg", noise_sigma_theta_deg);
+    writeKey(c, s, "propagation", propagation);
+    writeKey(c, s, "samples", samples);
 }
 
 void TPropagationOptions::validate() const {
@@ -37,18 +58,25 @@ void TPropagationOptions::validate() const {
     checkKey(s, "tau", tau, TRange::closed(0.001, 1, "s"));
     checkKey(s, "speed", speed, {0, 5, true, false, "m/s"});
     checkKey(s, "turn_rate_deg", turn_rate_deg, {0, 720, true, false, "deg/s"});
-    checkKey(s, "init_sigma_x", init_sigma_x, TRange::nonNegative("m"));
-    checkKey(s, "init_sigma_y", init_sigma_y, TRange::nonNegative("m"));
+    // Bounded so that no covariance can overflow (issue 8: sigmas near 1e154
+    // made D_max = inf and U = 0): 1 km, 10 m/s, a half turn (per second).
+    checkKey(s, "init_sigma_x", init_sigma_x, TRange::closed(0, 1000, "m"));
+    checkKey(s, "init_sigma_y", init_sigma_y, TRange::closed(0, 1000, "m"));
     checkKey(s, "init_sigma_theta_deg", init_sigma_theta_deg,
              TRange::closed(0, 180, "deg"));
-    checkKey(s, "noise_sigma_x", noise_sigma_x, TRange::nonNegative("m/s"));
-    checkKey(s, "noise_sigma_y", noise_sigma_y, TRange::nonNegative("m/s"));
+    checkKey(s, "noise_sigma_x", noise_sigma_x, TRange::closed(0, 10, "m/s"));
+    checkKey(s, "noise_sigma_y", noise_sigma_y, TRange::closed(0, 10, "m/s"));
     checkKey(s, "noise_sigma_theta_deg", noise_sigma_theta_deg,
-             TRange::nonNegative("deg/s"));
+             TRange::closed(0, 180, "deg/s"));
+    checkRule(std::find(kPropagations.begin(), kPropagations.end(), propagation) !=
+                  kPropagations.end(),
+              s, "propagation", propagation,
+              "must be one of: linear, unscented, cubature5, sampled");
+    checkKey(s, "samples", samples, TRange::closed(10, 100000));
 }
 
 TRiskOptions makeRiskOptions(const TOdometryOptions& odo, const TPropagationOptions& p,
-                             double evalStep) {
+                             double evalStep, uint64_t seed) {
     TRiskOptions o;
     auto& m = o.odometry;
     m.radiusL = odo.wheel_radius_l;
@@ -73,6 +101,9 @@ TRiskOptions makeRiskOptions(const TOdometryOptions& odo, const TPropagationOpti
                                 p.init_sigma_y * p.init_sigma_y, st * st)
                     .asDiagonal();
     o.evalStep = evalStep;
+    o.propagation = propagationFromName(p.propagation);
+    o.samples = p.samples;
+    o.seed = seed;
     return o;
 }
 

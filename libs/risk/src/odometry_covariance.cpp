@@ -1,6 +1,7 @@
 #include <risknav/risk/odometry_covariance.h>
 
 #include <cmath>
+#include <random>
 
 namespace risknav::risk {
 Eigen::Matrix3d TOdometryModel::sigmaM() const {
@@ -66,6 +67,57 @@ Eigen::Matrix<double, 6, 6> augmentedInitial(const Eigen::Matrix3d& sigmaP0,
     z.block<3, 3>(0, 0) = sigmaP0;
     z.block<3, 3>(3, 3) = m.sigmaM();
     return z;
+}
+
+TSigmaPoints unscentedPoints(int n) {
+    TSigmaPoints s;
+    for (int i = 0; i < n; i++)
+        for (double sign : {-1.0, 1.0}) {
+            Eigen::VectorXd p = Eigen::VectorXd::Zero(n);
+            p[i] = sign * std::sqrt(double(n));
+            s.points.push_back(p);
+            s.weights.push_back(0.5 / n);
+        }
+    return s;
+}
+
+TSigmaPoints cubature5Points(int n) {
+    TSigmaPoints s;
+    const double n2 = n + 2.0, r = std::sqrt(n2);
+    s.points.push_back(Eigen::VectorXd::Zero(n));
+    s.weights.push_back(2.0 / n2);
+    for (int i = 0; i < n; i++)
+        for (double sign : {-1.0, 1.0}) {
+            Eigen::VectorXd p = Eigen::VectorXd::Zero(n);
+            p[i] = sign * r;
+            s.points.push_back(p);
+            s.weights.push_back((4.0 - n) / (2.0 * n2 * n2));
+        }
+    for (int i = 0; i < n; i++)
+        for (int j = i + 1; j < n; j++)
+            for (double si : {-1.0, 1.0})
+                for (double sj : {-1.0, 1.0}) {
+                    Eigen::VectorXd p = Eigen::VectorXd::Zero(n);
+                    p[i] = si * r / std::sqrt(2.0);
+                    p[j] = sj * r / std::sqrt(2.0);
+                    s.points.push_back(p);
+                    s.weights.push_back(1.0 / (n2 * n2));
+                }
+    return s;
+}
+
+TSigmaPoints sampledPoints(int n, int count, uint64_t seed) {
+    TSigmaPoints s;
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> n01;
+    for (int k = 0; k < count; k++) {
+        Eigen::VectorXd p(n);
+        for (int i = 0; i < n; i++)
+            p[i] = n01(rng);
+        s.points.push_back(p);
+        s.weights.push_back(1.0 / count);
+    }
+    return s;
 }
 
 }  // namespace risknav::risk

@@ -1,9 +1,11 @@
+#include <risknav/risk/CPosePropagator.h>
 #include <risknav/risk/path_risk.h>
 
 #include <mrpt/math/wrap2pi.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 using mrpt::math::TPoint2D;
@@ -24,42 +26,11 @@ double integrateRisk(const std::vector<double>& s, const std::vector<double>& u)
     return U;
 }
 
-namespace {
-// Pose covariance state under either error model.
-struct TCovState {
-    TErrorModel model;
-    Eigen::Matrix3d p;              // per_step
-    Eigen::Matrix<double, 6, 6> z;  // systematic (augmented)
-    Eigen::Matrix3d pose() const {
-        return model == TErrorModel::PerStep ? p : Eigen::Matrix3d(z.block<3, 3>(0, 0));
-    }
-    void step(double theta, double uL, double uR, double tau, const TOdometryModel& m) {
-        if (model == TErrorModel::PerStep)
-            p = propagatePerStep(p, theta, uL, uR, tau, m);
-        else
-            z = propagateSystematic(z, theta, uL, uR, tau, m);
-    }
-    // A landmark observation fixes the pose (to resetCov) independently of the
-    // wheel-parameter errors: the pose block and its cross terms are replaced,
-    // the calibration uncertainty stays.
-    void reset(const Eigen::Matrix3d& c) {
-        if (model == TErrorModel::PerStep)
-            p = c;
-        else {
-            z.block<3, 3>(0, 0) = c;
-            z.block<3, 3>(0, 3).setZero();
-            z.block<3, 3>(3, 0).setZero();
-        }
-    }
-};
-}  // namespace
-
-std::vector<TMotionStep> motionProfile(const std::vector<TPoint2D>& path,
-                                       const TOdometryModel& m, double speed,
-                                       double turnRate, double tau) {
-    std::vector<TMotionStep> steps;
+void forEachMotionStep(const std::vector<TPoint2D>& path, const TOdometryModel& m,
+                       double speed, double turnRate, double tau,
+                       const std::function<void(const TMotionStep&)>& visit) {
     if (path.size() < 2)
-        return steps;
+        return;
     double x = path[0].x, y = path[0].y, s = 0;
     double theta = std::atan2(path[1].y - path[0].y, path[1].x - path[0].x);
     for (size_t i = 1; i < path.size(); i++) {
@@ -77,7 +48,7 @@ std::vector<TMotionStep> motionProfile(const std::vector<TPoint2D>& path,
             k.y = y;
             k.s = s;
             k.turning = true;
-            steps.push_back(k);
+            visit(k);
             theta = mrpt::math::wrapToPi(theta + dth);
             turn -= dth;
         }
@@ -95,12 +66,39 @@ std::vector<TMotionStep> motionProfile(const std::vector<TPoint2D>& path,
             k.x = path[i - 1].x + ux * done;
             k.y = path[i - 1].y + uy * done;
             k.s = s;
-            steps.push_back(k);
+            visit(k);
         }
         x = path[i].x;
         y = path[i].y;
     }
+}
+
+std::vector<TMotionStep> motionProfile(const std::vector<TPoint2D>& path,
+                                       const TOdometryModel& m, double speed,
+                                       double turnRate, double tau) {
+    std::vector<TMotionStep> steps;
+    forEachMotionStep(path, m, speed, turnRate, tau,
+                      [&](const TMotionStep& k) { steps.push_back(k); });
     return steps;
+}
+
+TStepCount motionStepCount(const std::vector<TPoint2D>& path, double speed,
+                           double turnRate, double tau) {
+    TStepCount n;
+    if (path.size() < 2)
+        return n;
+    double theta = std::atan2(path[1].y - path[0].y, path[1].x - path[0].x);
+    for (size_t i = 1; i < path.size(); i++) {
+        const double dx = path[i].x - path[i - 1].x, dy = path[i].y - path[i - 1].y,
+                     len = std::hypot(dx, dy);
+        if (len < 1e-9)
+            continue;
+        const double turn = std::abs(mrpt::math::wrapToPi(std::atan2(dy, dx) - theta));
+        n.turning += std::ceil(turn / (turnRate * tau));
+        n.straight += std::ceil(len / (speed * tau));
+        theta = std::atan2(dy, dx);
+    }
+    return n;
 }
 
 TRiskResult evaluatePathRisk(const std::vector<TPoint2D>& path,
@@ -109,10 +107,11 @@ TRiskResult evaluatePathRisk(const std::vector<TPoint2D>& path,
     TRiskResult res;
     if (path.size() < 2)
         return res;
-    TCovState cov{opt.model, opt.sigmaP0, augmentedInitial(opt.sigmaP0, opt.odometry)};
     std::vector<bool> used(sensing.size(), false);
     double x = path[0].x, y = path[0].y, s = 0;
     double theta = std::atan2(path[1].y - path[0].y, path[1].x - path[0].x);
+    CPosePropagator prop(opt.odometry, opt.model, opt.propagation, opt.sigmaP0, x, y,
+                         theta, opt.samples, opt.seed);
     bool sensedSinceSample = false;
 
     auto checkSensing = [&]() {
@@ -120,48 +119,76 @@ TRiskResult evaluatePathRisk(const std::vector<TPoint2D>& path,
             if (!used[i] &&
                 std::hypot(sensing[i].x - x, sensing[i].y - y) <= sensing[i].radius) {
                 used[i] = true;
-                cov.reset(sensing[i].resetCov);
+                prop.reset(sensing[i].resetCov);
                 res.sensed.push_back(sensing[i].name);
                 sensedSinceSample = true;
             }
     };
+    // Returns false (and sets the failure) when the covariance is not finite.
     auto sample = [&]() {
         TRiskSample k;
         k.s = s;
         k.x = x;
         k.y = y;
         k.theta = theta;
-        k.cov = cov.pose();
+        k.bias = prop.bias();
+        k.cov = prop.secondMoment();
+        if (!k.cov.allFinite() || !k.bias.allFinite()) {
+            char b[160];
+            std::snprintf(b, sizeof(b),
+                          "the covariance is not finite (an overflow) at s = %.2f m", s);
+            res.failure = b;
+            return false;
+        }
         k.dmax = field.dMax(x, y, k.cov.block<2, 2>(0, 0));
         k.u = riskDensity(k.dmax.d);
+        if (!(k.dmax.d == 0 || std::isfinite(k.u))) {  // D_max < 1e-154, or NaN
+            char b[160];
+            std::snprintf(b, sizeof(b),
+                          "u = 1/D_max^2 overflows (D_max = %.3g) at s = %.2f m: the "
+                          "covariance is too large",
+                          k.dmax.d, s);
+            res.failure = b;
+            return false;
+        }
         k.sensedHere = sensedSinceSample;
         sensedSinceSample = false;
         res.samples.push_back(k);
+        return true;
     };
 
     checkSensing();
-    sample();
+    bool ok = sample();
     double nextEval = opt.evalStep;
-    for (const auto& st :
-         motionProfile(path, opt.odometry, opt.speed, opt.turnRate, opt.tau)) {
-        cov.step(st.theta, st.uL, st.uR, st.tau, opt.odometry);
-        double v, w;
-        twistFromWheels(opt.odometry, st.uL, st.uR, v, w);
-        theta = mrpt::math::wrapToPi(st.theta + w * st.tau);
-        x = st.x;
-        y = st.y;
-        s = st.s;
-        if (st.turning)
-            continue;  // u is a density along the path length
-        checkSensing();
-        if (s >= nextEval - 1e-9 || sensedSinceSample) {
-            sample();
-            while (nextEval <= s + 1e-9)
-                nextEval += opt.evalStep;
-        }
+    if (ok)
+        forEachMotionStep(path, opt.odometry, opt.speed, opt.turnRate, opt.tau,
+                          [&](const TMotionStep& st) {
+                              if (!ok)
+                                  return;
+                              double v, w;
+                              twistFromWheels(opt.odometry, st.uL, st.uR, v, w);
+                              theta = mrpt::math::wrapToPi(st.theta + w * st.tau);
+                              x = st.x;
+                              y = st.y;
+                              s = st.s;
+                              prop.step(st.theta, st.uL, st.uR, st.tau, x, y, theta);
+                              if (st.turning)
+                                  return;  // u is a density along the path length
+                              checkSensing();
+                              if (s >= nextEval - 1e-9 || sensedSinceSample) {
+                                  ok = sample();
+                                  while (nextEval <= s + 1e-9)
+                                      nextEval += opt.evalStep;
+                              }
+                          });
+    if (ok && res.samples.back().s < s - 1e-9)
+        ok = sample();
+    res.length = s;
+    if (!ok) {
+        res.U = res.uMax = std::numeric_limits<double>::infinity();
+        res.sMaxU = s;
+        return res;
     }
-    if (res.samples.back().s < s - 1e-9)
-        sample();
 
     std::vector<double> ss, uu;
     for (const auto& k : res.samples) {
@@ -171,10 +198,13 @@ TRiskResult evaluatePathRisk(const std::vector<TPoint2D>& path,
             res.uMax = k.u;
             res.sMaxU = k.s;
         }
-        res.blocked |= std::isinf(k.u);
+        res.blocked |= k.dmax.d == 0;
     }
-    res.length = s;
     res.U = integrateRisk(ss, uu);
+    if (!std::isfinite(res.U) && !res.blocked) {  // every u finite, their sum not
+        res.failure = "U = integral of u ds overflows: the covariance is too large";
+        res.U = std::numeric_limits<double>::infinity();
+    }
     return res;
 }
 

@@ -35,13 +35,16 @@ std::string num(double v) {
 }
 
 void writeCovCsv(const TRiskResult& r, const std::string& path) {
-    CCsvWriter csv(path,
-                   {"s", "x", "y", "theta", "cov_xx", "cov_xy", "cov_xtheta", "cov_yy",
-                    "cov_ytheta", "cov_thetatheta", "d_max", "u", "sensed"});
+    CCsvWriter csv(path, {"s", "x", "y", "theta", "cov_xx", "cov_xy", "cov_xtheta",
+                          "cov_yy", "cov_ytheta", "cov_thetatheta", "d_max", "u",
+                          "sensed", "bias_x", "bias_y", "bias_theta"});
+    // cov_*: the second moment about the planned pose (TRiskSample::cov);
+    // bias_*: the mean pose minus the plan (0 for linear propagation).
     for (const auto& k : r.samples)
         csv.row({num(k.s), num(k.x), num(k.y), num(k.theta), num(k.cov(0, 0)),
                  num(k.cov(0, 1)), num(k.cov(0, 2)), num(k.cov(1, 1)), num(k.cov(1, 2)),
-                 num(k.cov(2, 2)), num(k.dmax.d), num(k.u), k.sensedHere ? "1" : "0"});
+                 num(k.cov(2, 2)), num(k.dmax.d), num(k.u), k.sensedHere ? "1" : "0",
+                 num(k.bias[0]), num(k.bias[1]), num(k.bias[2])});
     csv.close();
 }
 
@@ -154,9 +157,10 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
         sp.push_back({{"name", p.name}, {"x", p.x}, {"y", p.y}, {"radius", p.radius}});
     j["sensing_points"] = sp;
 
-    // Covariance tables.
+    // Covariance tables: the plain row and the best row of each route (the
+    // rows that kept their samples, CRiskEvaluator::TRow::result).
     for (const auto& r : rows)
-        if (r.feasible) {
+        if (r.feasible && !r.result.samples.empty()) {
             const std::string suffix = r.sensing.empty() ? "" : "+" + ev.sensingName(r);
             writeCovCsv(
                 r.result,
@@ -279,7 +283,19 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
     const TRiskOptions o = ev.riskOptions();
     const auto& rule = ev.options.obstacles;
     j["error_model"] = ev.odometry.error_model;
-    j["parameters"] = {{"wheel_radius_l", o.odometry.radiusL},
+    j["propagation"] = ev.propagation.propagation;
+    j["work"] = {{"rows", rows.size()},
+                 {"propagation_steps", ev.propagationSteps()},
+                 {"trajectories_per_step", ev.trajectoriesPerStep()},
+                 {"trajectory_steps", ev.trajectorySteps()},
+                 {"limits",
+                  {{"routes", CRiskEvaluator::kMaxRoutes},
+                   {"rows", CRiskEvaluator::kMaxRows},
+                   {"propagation_steps", CRiskEvaluator::kMaxSteps},
+                   {"trajectory_steps", CRiskEvaluator::kMaxTrajectorySteps}}}};
+    j["parameters"] = {{"propagation", ev.propagation.propagation},
+                       {"samples", ev.propagation.samples},
+                       {"wheel_radius_l", o.odometry.radiusL},
                        {"wheel_radius_r", o.odometry.radiusR},
                        {"tread", o.odometry.tread},
                        {"sigma_wheel_radius_l", o.odometry.sigmaRL},
@@ -311,9 +327,11 @@ void runRiskEvalApp(const TAppContext& ctx) {
     const auto t0 = std::chrono::steady_clock::now();
     CRiskEvaluator ev;
     ev.loadFromConfigFile(ctx.cfg);
+    if (ctx.args.seed)
+        ev.options.seed = *ctx.args.seed;
     ev.evaluate();
     COutputDir out(ctx.args.outDir);
-    json summary = summaryHeader(ctx, ctx.args.seed.value_or(0));
+    json summary = summaryHeader(ctx, ev.options.seed);
     summary.update(writeRiskReport(ev, out));
     mrpt::config::CConfigFileMemory effective;
     ev.saveToConfigFile(effective);

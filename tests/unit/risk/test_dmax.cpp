@@ -298,8 +298,9 @@ TEST(DMax, ExactDiscGrowthAgainstDenseBoundarySampling) {
             if (rule.outside_is_obstacle)
                 e = std::min(
                     {e, x - df.xMin(), df.xMax() - x, y - df.yMin(), df.yMax() - y});
-            if (std::abs(e - r) > 1e-9)
+            if (std::abs(e - r) > 1e-9) {
                 ASSERT_EQ(f.isObstacleAt(x, y), e <= r) << "case " << cases << " e " << e;
+            }
             ASSERT_EQ(fast == 0, e <= r) << "case " << cases;
         }
     }

@@ -157,3 +157,79 @@ TEST(RiskOptions, ErrorModelNoneMeansExactWheels) {
     EXPECT_EQ(makeRiskOptions(odo, {}, 0.05).model, TErrorModel::Systematic);
     EXPECT_NEAR(makeRiskOptions(odo, {}, 0.05).odometry.sigmaT, 0.001, 1e-15);
 }
+
+// Issue 8: sigmas near 1e154 overflowed the covariance to inf, D_max read inf
+// and U = 0: a hopeless route scored perfectly safe. The config bounds the
+// sigmas now (validate()); whatever still overflows is reported, never read
+// as safety: the evaluation stops with `failure`, U and u_max are +inf; D_max
+// of a covariance that is not finite is NaN, not inf.
+TEST(PathRisk, AnOverflowIsReportedNeverReadAsSafety) {
+    const CObstacleField f(corridor(), {}, 0.25);
+    const std::vector<TPoint2D> path = {{1, 1}, {29, 1}};
+    for (TPropagation p : {TPropagation::Linear, TPropagation::Cubature5}) {
+        TRiskOptions o = paperOptions();
+        o.propagation = p;
+        for (double big : {1e307, 1e308}) {  // u overflows; the covariance too
+            o.sigmaP0.diagonal() << big, big, 1;
+            const auto r = evaluatePathRisk(path, {}, f, o);
+            EXPECT_NE(r.failure.find("overflow"), std::string::npos) << int(p);
+            EXPECT_TRUE(std::isinf(r.U) && r.U > 0);
+            EXPECT_GT(r.uMax, 1e300);
+            EXPECT_FALSE(r.blocked);  // not a collision
+        }
+        // A sensing point whose reset covariance overflows does not "help".
+        o.sigmaP0 = paperOptions().sigmaP0;
+        TSensingPoint sp;
+        sp.name = "SP";
+        sp.x = 15;
+        sp.y = 1;
+        sp.resetCov.diagonal() << 1e308, 1e308, 1e308;
+        const auto rs = evaluatePathRisk(path, {sp}, f, o);
+        EXPECT_FALSE(rs.failure.empty());
+        EXPECT_TRUE(std::isinf(rs.U));
+    }
+    Eigen::Matrix2d inf = Eigen::Matrix2d::Identity();
+    inf(0, 0) = std::numeric_limits<double>::infinity();
+    EXPECT_TRUE(std::isnan(f.dMax(10, 1, inf).d));
+    // Huge but finite: a tiny D_max (very risky), never NaN.
+    const double d = f.dMax(10, 1, Eigen::Matrix2d::Identity() * 1e300).d;
+    EXPECT_TRUE(std::isfinite(d));
+    EXPECT_LT(d, 1e-100);
+}
+
+// The evaluator turns such a row into an excluded one with the reason (set
+// from code past validate(), which would refuse these sigmas).
+TEST(RiskOptions, TheSigmasAreBoundedAndAnOverflowExcludesTheRow) {
+    using risknav::common::CConfigKeyError;
+    TPropagationOptions p;
+    p.init_sigma_x = 1e154;
+    EXPECT_THROW(p.validate(), CConfigKeyError);
+    p = {};
+    p.noise_sigma_x = 11;
+    EXPECT_THROW(p.validate(), CConfigKeyError);
+    p = {};
+    p.propagation = "ukf";
+    EXPECT_THROW(p.validate(), CConfigKeyError);
+    TSensingPointOptions sp;
+    sp.name = "S";
+    sp.x = sp.y = 1;
+    sp.sigma_y = 1e308;
+    EXPECT_THROW(sp.validate(), CConfigKeyError);
+
+    CRiskEvaluator ev;
+    ev.options.map.map_file =
+        risknav::test::sourcePath("datasets/risk-two-routes/two_routes.png");
+    ev.options.start = {2.0, 7.0};
+    ev.options.goal = {22.0, 7.0};
+    ev.options.gvg_routes = 1;
+    ev.prepare();
+    ev.propagation.init_sigma_x = ev.propagation.init_sigma_y = 1e200;
+    ev.evaluate();
+    ASSERT_FALSE(ev.rows().empty());
+    for (const auto& r : ev.rows()) {
+        EXPECT_TRUE(r.excluded);
+        EXPECT_NE(r.reason.find("overflow"), std::string::npos);
+        EXPECT_TRUE(std::isinf(r.result.U));
+    }
+    EXPECT_EQ(ev.best(), -1);
+}

@@ -16,6 +16,7 @@
 #include <mrpt/math/TPoint2D.h>
 
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,6 +32,26 @@ namespace risknav::risk {
  * config/risknav-risk-eval.ini. */
 class CRiskEvaluator {
   public:
+    /** @name The work of one run, bounded (issue 8: a tiny speed grew memory as
+     * 1/speed; 20 sensing points with max_sensing_subset = 6 ran 146 s and wrote
+     * 60,467 files). validate() checks what the config alone decides
+     * (candidates, rows); evaluate() checks the propagation steps of the rows'
+     * paths before it propagates any. Exceeding one: CBadInputError (exit 2)
+     * naming the key to change.
+     * @{ */
+    /** Candidate routes: [RouteN] sections + gvg_routes. */
+    static constexpr size_t kMaxRoutes = 100;
+    /** Rows = candidates x sensing subsets (sum_{k <= max_sensing_subset} C(n, k)). */
+    static constexpr size_t kMaxRows = 1000;
+    /** Propagation steps of all rows together (motionStepCount()): each keeps
+     * at most one u sample (~200 bytes) per straight step. */
+    static constexpr double kMaxSteps = 5e6;
+    /** Trajectory steps = propagation steps x trajectories driven (1 linear,
+     * 2n unscented, 2n^2 + 1 cubature5, `samples` sampled; n = 3 per_step, 6
+     * systematic): 30-100 ns each (bench_risk), so at most ~20 s. */
+    static constexpr double kMaxTrajectorySteps = 2e8;
+    /** @} */
+
     /** The [RiskEval] keys: the map, which of its cells are obstacles, start
      * and goal, the candidates and the evaluation. */
     struct TOptions : public common::CValidatedOptions {
@@ -41,10 +62,11 @@ class CRiskEvaluator {
         mrpt::math::TPoint2D goal{std::nan(""), std::nan("")};   ///< [m] required
         double u_threshold =
             0;  ///< exclude rows whose max u exceeds this (section 5.3); 0: off
-        int max_sensing_subset = 2;        ///< subsets of sensing points up to this size
-        int gvg_routes = 3;                ///< k shortest GVG routes (0: only [RouteN])
-        double ellipse_interval = 2;       ///< [m] between drawn ellipses
-        double eval_step = 0.05;           ///< [m] D_max / u sampling along the path
+        int max_sensing_subset = 2;   ///< subsets of sensing points up to this size
+        int gvg_routes = 3;           ///< k shortest GVG routes (0: only [RouteN])
+        double ellipse_interval = 2;  ///< [m] between drawn ellipses
+        double eval_step = 0.05;      ///< [m] D_max / u sampling along the path
+        uint64_t seed = 1;  ///< of [Odometry] propagation = sampled; --seed overrides
         std::string section = "RiskEval";  ///< the host section (for messages)
 
         TOptions() { map.section = obstacles.section = gvg.section = section; }
@@ -66,6 +88,9 @@ class CRiskEvaluator {
         std::vector<size_t> sensing;             ///< indices into sensingPoints
         std::vector<mrpt::math::TPoint2D> path;  ///< route with the detours
         bool feasible = true;  ///< false: a detour to a sensing point crosses an obstacle
+        /** result.samples are kept for the plain row of each route and the best
+         * row of each route only (their cov_*.csv, images); the others are
+         * summarised in the table (U, u_max, ...). */
         TRiskResult result;
         bool excluded = false;
         std::string reason;  ///< why excluded ("" if not)
@@ -94,7 +119,9 @@ class CRiskEvaluator {
     void prepare();
 
     /** Builds the candidates and evaluates every route x sensing subset
-     * (prepare() first if it has not run). */
+     * (prepare() first if it has not run). Throws CBadInputError (naming the
+     * config file when loaded from one) when the rows need more than kMaxSteps
+     * propagation steps or kMaxTrajectorySteps trajectory steps. */
     void evaluate();
 
     /** What evaluatePathRisk() is given (makeRiskOptions). */
@@ -111,7 +138,17 @@ class CRiskEvaluator {
     /** The row of a route without sensing. */
     const TRow& plainRow(size_t route) const;
 
+    /** Propagation and trajectory steps of the last evaluate(). */
+    double propagationSteps() const { return m_steps; }
+    double trajectorySteps() const { return m_trajSteps; }
+    /** Trajectories one propagation step drives (1 for linear). */
+    size_t trajectoriesPerStep() const;
+    /** Number of sensing subsets evaluated per route. */
+    double sensingSubsets() const;
+
   private:
+    std::string m_where;  // "file.ini: " when loaded from a file
+    double m_steps = 0, m_trajSteps = 0;
     mrpt::maps::COccupancyGridMap2D m_grid;
     std::unique_ptr<CObstacleField> m_field;
     std::unique_ptr<CGvgRoutes> m_gvg;

@@ -6,6 +6,8 @@
 
 #include <Eigen/Dense>
 
+#include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,11 @@ namespace risknav::risk {
 struct TRiskOptions {
     TOdometryModel odometry;
     TErrorModel model = TErrorModel::Systematic;
+    /** How the pose error is propagated (the [Odometry] default, chosen by
+     * measurement: see TPropagationOptions). */
+    TPropagation propagation = TPropagation::Cubature5;
+    int samples = 1000;  ///< draws of TPropagation::Sampled
+    uint64_t seed = 1;   ///< seed of TPropagation::Sampled
     Eigen::Matrix3d sigmaP0 =
         Eigen::Matrix3d::Zero();  ///< initial pose covariance (x y theta)
     double tau = 0.05;            ///< [s] propagation step
@@ -33,9 +40,12 @@ struct TSensingPoint {
 
 /** One evaluation sample along the path. */
 struct TRiskSample {
-    double s = 0;  ///< arc length [m]
-    double x = 0, y = 0, theta = 0;
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();  ///< pose covariance
+    double s = 0;                    ///< arc length [m]
+    double x = 0, y = 0, theta = 0;  ///< the planned pose
+    /** E[(p - plan)(p - plan)^T] of the pose (x y theta): the covariance plus
+     * bias bias^T (CPosePropagator::secondMoment()); its x-y block gives D_max. */
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d bias = Eigen::Vector3d::Zero();  ///< mean pose - plan
     TDmax dmax;
     double u = 0;  ///< eq. (29), 1 / D_max^2
     bool sensedHere = false;
@@ -49,6 +59,10 @@ struct TRiskResult {
     double uMax = 0;
     double sMaxU = 0;      ///< where u peaks [m]
     bool blocked = false;  ///< the robot centre entered a grown obstacle (D_max = 0)
+    /** Not empty when the covariance overflowed (not finite): the evaluation
+     * stopped there, U and uMax are +inf (never a finite or zero risk read
+     * from an overflow). */
+    std::string failure;
 };
 
 /** One propagation step of the motion along a path: the commanded wheel speeds
@@ -61,10 +75,26 @@ struct TMotionStep {
 
 /** The path as a feasible motion for a differential drive: start facing the
  * first leg, turn in place at each waypoint at turnRate, drive legs straight
- * at speed; steps of tau (the last step of a turn or leg is shorter). */
+ * at speed; steps of tau (the last step of a turn or leg is shorter). Calls
+ * `visit` for each step in order (nothing is stored). */
+void forEachMotionStep(const std::vector<mrpt::math::TPoint2D>& path,
+                       const TOdometryModel& m, double speed, double turnRate, double tau,
+                       const std::function<void(const TMotionStep&)>& visit);
+/** forEachMotionStep()'s steps, as a vector. */
 std::vector<TMotionStep> motionProfile(const std::vector<mrpt::math::TPoint2D>& path,
                                        const TOdometryModel& m, double speed,
                                        double turnRate, double tau);
+
+/** How many propagation steps the motion of a path takes, without making
+ * them: straight = sum over legs of ceil(length / (speed tau)), turning = sum
+ * over turns of ceil(|angle| / (turnRate tau)) (an upper bound of
+ * forEachMotionStep()'s count, by at most one per leg and turn). */
+struct TStepCount {
+    double straight = 0, turning = 0;
+    double total() const { return straight + turning; }
+};
+TStepCount motionStepCount(const std::vector<mrpt::math::TPoint2D>& path, double speed,
+                           double turnRate, double tau);
 
 /** u(x) = 1 / D_max(x)^2, eq. (29). D_max = inf (no obstacle) gives 0;
  * D_max = 0 (in collision) gives +inf. */
@@ -76,10 +106,12 @@ double integrateRisk(const std::vector<double>& s, const std::vector<double>& u)
 
 /** Drives the polyline: starts facing the first leg, turns in place at each
  * waypoint at turnRate, drives straight legs at speed; the commanded wheel
- * speeds of each tau step propagate the covariance (per_step: eq. 15;
- * systematic: augmented state). Selected sensing points reset the covariance
- * when the robot comes within their radius (once each). u is sampled every
- * evalStep metres (and at both ends). */
+ * speeds of each tau step propagate the pose error (CPosePropagator: per_step
+ * eq. 15 or systematic, linear or by sigma points). Selected sensing points
+ * reset the covariance when the robot comes within their radius (once each).
+ * u is sampled every evalStep metres (and at both ends), from D_max of the
+ * second moment about the plan (eq. 28 centred on the path). A covariance
+ * that is not finite stops the evaluation with `failure` set. */
 TRiskResult evaluatePathRisk(const std::vector<mrpt::math::TPoint2D>& path,
                              const std::vector<TSensingPoint>& sensing,
                              const CObstacleField& field, const TRiskOptions& opt);
