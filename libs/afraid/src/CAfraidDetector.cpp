@@ -3,13 +3,20 @@
 #include <risknav/common/stopping.h>
 #include <risknav/mapping/scan_points.h>
 
+#include <mrpt/math/wrap2pi.h>
 #include <mrpt/poses/CPose2D.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace risknav::common;
 
 namespace risknav::afraid {
+namespace {
+// Headings within this of the current one count as "the same way" [rad].
+constexpr double kSameHeading = 15 * M_PI / 180;
+}  // namespace
+
 void CAfraidDetector::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                                    const std::string& s) {
     beta = readDouble(c, s, "beta", beta);
@@ -18,6 +25,7 @@ void CAfraidDetector::TOptions::loadFromConfigFile(const mrpt::config::CConfigFi
     diff_threshold = readDouble(c, s, "diff_threshold", diff_threshold);
     directions = readInt(c, s, "directions", directions);
     unexpected_margin = readDouble(c, s, "unexpected_margin", unexpected_margin);
+    explain_sigmas = readDouble(c, s, "explain_sigmas", explain_sigmas);
 }
 
 void CAfraidDetector::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
@@ -28,6 +36,7 @@ void CAfraidDetector::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& 
     writeKey(c, s, "diff_threshold", diff_threshold);
     writeKey(c, s, "directions", directions);
     writeKey(c, s, "unexpected_margin", unexpected_margin);
+    writeKey(c, s, "explain_sigmas", explain_sigmas);
 }
 
 void CAfraidDetector::TOptions::validate() const {
@@ -35,9 +44,11 @@ void CAfraidDetector::TOptions::validate() const {
     checkKey(s, "beta", beta, TRange::closed(0, 10, "m"));
     checkKey(s, "lateral_margin", lateral_margin, TRange::closed(0, 5, "m"));
     checkKey(s, "foot_step", foot_step, TRange::closed(1, 1000));
-    checkKey(s, "diff_threshold", diff_threshold, TRange::nonNegative("m"));
+    checkKey(s, "diff_threshold", diff_threshold,
+             TRange::closed(0, 1, "(a fraction of the collision-possible area)"));
     checkKey(s, "directions", directions, TRange::closed(3, 3601));
     checkKey(s, "unexpected_margin", unexpected_margin, TRange::closed(0, 5, "m"));
+    checkKey(s, "explain_sigmas", explain_sigmas, TRange::closed(0, 10));
 }
 
 void CAfraidDetector::loadFromConfigFile(const mrpt::config::CConfigFileBase& c) {
@@ -56,54 +67,92 @@ void CAfraidDetector::validate() const {
 }
 
 TAfraidStep CAfraidDetector::step(const mrpt::obs::CObservation2DRangeScan& scan,
-                                  const mrpt::math::TPose2D& pose, double speed,
-                                  const mrpt::maps::COccupancyGridMap2D& map) {
+                                  const mrpt::math::TPose2D& pose,
+                                  const mrpt::math::CMatrixDouble33& cov, double speed,
+                                  const mrpt::maps::COccupancyGridMap2D& map,
+                                  const mapping::CDistanceField& field) {
     const auto& o = options;
-    const double r = halfWidth();
     TAfraidStep s;
-    s.speed = std::max(0.0, speed);
+    // d_stop from the highest recent speed (eqs. 1-3): braking for an obstacle
+    // must not shrink the area the obstacle is looked for in.
+    // Only the speeds with which the robot was heading the same way count: a
+    // robot that stops and turns in place sweeps its area over things it was
+    // not driving towards.
+    m_speeds.emplace_back(std::max(0.0, speed), pose.phi);
+    while (m_speeds.size() > size_t(o.foot_step) + 1)
+        m_speeds.pop_front();
+    s.speed = 0;
+    for (const auto& [v, phi] : m_speeds)
+        if (std::abs(mrpt::math::wrapToPi(phi - pose.phi)) <= kSameHeading)
+            s.speed = std::max(s.speed, v);
     s.dStop = stoppingDistance(s.speed, robot.t_delay, robot.decel);
+    s.area = {robot.radius + s.dStop + o.beta, halfWidth()};
 
     // The scan the map predicts at the localized pose (same geometry).
     mrpt::obs::CObservation2DRangeScan expected = scan;
     map.laserScanSimulator(expected, mrpt::poses::CPose2D(pose), 0.5f, scan.getScanSize(),
                            0.0f);
-    const auto actual = mapping::scanToRobotFrame(scan);
     const auto predicted = mapping::scanToRobotFrame(expected);
 
-    s.obsCur = obsCur(actual, s.dStop, o.beta, r);
-    s.obsPredict = obsPredict(m_history, size_t(o.foot_step));
-    s.actualArea = nonBlockedArea(actual, s.dStop, o.beta, r, o.directions);
-    s.expectedArea = nonBlockedArea(predicted, s.dStop, o.beta, r, o.directions);
-    s.diff = std::abs(s.expectedArea - s.actualArea);  // eq. (10)
-    s.afraid = afraidFlag(s.obsCur, s.obsPredict, s.diff, o.diff_threshold);
-
-    // Where the unexpected obstacle is: the nearest ray in the collision area
-    // that is shorter than the map says (an obstacle the map does not have).
-    double best = 1e9;
+    // The actual scan, with the rays the map explains within the pose
+    // uncertainty replaced by the map's prediction.
+    const double sigmaXY = std::sqrt(std::max(0.0, std::max(cov(0, 0), cov(1, 1))));
+    const double sigmaPhi = std::sqrt(std::max(0.0, cov(2, 2)));
     const mrpt::poses::CPose2D robotPose(pose);
+    std::vector<mrpt::math::TPoint2D> actual;
+    actual.reserve(scan.getScanSize());
+    double nearest = 1e9;
     for (size_t i = 0; i < scan.getScanSize(); i++) {
         if (!scan.getScanRangeValidity(i))
             continue;
-        const double range = scan.getScanRange(i);
-        const double re =
-            expected.getScanRangeValidity(i) ? expected.getScanRange(i) : scan.maxRange;
-        if (range > re - o.unexpected_margin)
+        const double range = scan.getScanRange(i), a = mapping::scanRayAngle(scan, i);
+        const mrpt::math::TPoint2D p(scan.sensorPose.x() + range * std::cos(a),
+                                     scan.sensorPose.y() + range * std::sin(a));
+        const auto w = robotPose + mrpt::poses::CPose2D(p.x, p.y, 0);
+        const double tol =
+            o.unexpected_margin + o.explain_sigmas * (sigmaXY + range * sigmaPhi);
+        // On the surface of a map obstacle within the tolerance: in front of it
+        // (clearance) or inside it (depth; the pose is too far ahead).
+        const bool explained =
+            field.clearanceAt(w.x(), w.y()) <= tol && field.depthAt(w.x(), w.y()) <= tol;
+        if (explained && expected.getScanRangeValidity(i)) {
+            const double re = expected.getScanRange(i);
+            actual.emplace_back(scan.sensorPose.x() + re * std::cos(a),
+                                scan.sensorPose.y() + re * std::sin(a));
+            s.explained++;
             continue;
-        const double a = mapping::scanRayAngle(scan, i);
-        const double px = scan.sensorPose.x() + range * std::cos(a),
-                     py = scan.sensorPose.y() + range * std::sin(a);
-        if (px <= 0 || std::abs(py) > r || px >= s.dStop + o.beta + r)
+        }
+        actual.push_back(p);
+        if (explained || !s.area.contains(p))
             continue;
-        if (px < best) {
-            best = px;
-            const auto w = robotPose + mrpt::poses::CPose2D(px, py, 0);
+        // An obstacle the map does not have, inside the collision area: the
+        // nearest one is where the event happens.
+        s.unexpected++;
+        if (p.x < nearest) {
+            nearest = p.x;
+            s.obstacleAlong = p.x;
             s.obstacleX = w.x();
             s.obstacleY = w.y();
             s.obstacleFound = true;
         }
     }
-    m_history.push_back(s.obsCur);
+
+    // Eq. (5) on what the robot really senses; eqs. (8)-(10) on the areas.
+    std::vector<mrpt::math::TPoint2D> raw = mapping::scanToRobotFrame(scan);
+    s.obsCur = obsCur(raw, s.area);
+    s.obsPredict = obsPredict(m_history, size_t(o.foot_step));
+    s.actualArea = nonBlockedArea(actual, s.area, o.directions);
+    s.expectedArea = nonBlockedArea(predicted, s.area, o.directions);
+    s.diff = areaDifference(s.expectedArea, s.actualArea, s.area, o.directions);
+    s.afraid = afraidFlag(s.obsCur, s.obsPredict, s.diff, o.diff_threshold);
+
+    // Eq. (6)'s history tracks the UNEXPECTED obstacles (obs_cur = 0 and the
+    // map does not explain the area: diff > threshold), not every obstacle:
+    // a mapped wall that enters the collision area (a dead end, a corner) must
+    // not hide a person who steps out next to it, and a person who enters
+    // from the side is an event in the first frame in which it blocks enough
+    // of the area, not lost because it touched the area's edge a frame before.
+    m_history.push_back(s.obsCur == 0 && s.diff > o.diff_threshold ? 0 : 1);
     while (m_history.size() > size_t(o.foot_step))
         m_history.pop_front();
     return s;

@@ -126,7 +126,9 @@ struct THeader {
     uint64_t frames = 0;
     uint64_t cells() const { return uint64_t(sx) * uint64_t(sy); }
     // The decompressed size a file with this header can legitimately have.
-    uint64_t maxBytes() const { return kHeaderBytes + 3 * (4 + 8 * cells()); }
+    uint64_t maxBytes() const {
+        return kHeaderBytes + (version >= 3 ? 4 : 3) * (4 + 8 * cells());
+    }
 };
 THeader getHeader(CLeReader& r, const std::string& bytes) {
     if (bytes.size() < 8 || std::memcmp(bytes.data(), kMagic, 8) != 0)
@@ -165,6 +167,7 @@ CAfraidGrid::CAfraidGrid(const mrpt::maps::COccupancyGridMap2D& map)
     m_exposure.assign(size_t(m_sx) * m_sy, 0);
     m_robotEvents.assign(size_t(m_sx) * m_sy, 0);
     m_obstacleEvents.assign(size_t(m_sx) * m_sy, 0);
+    m_passes.assign(size_t(m_sx) * m_sy, 0);
 }
 
 bool CAfraidGrid::sameGeometry(const CAfraidGrid& o) const {
@@ -198,6 +201,28 @@ void CAfraidGrid::addExposure(double x, double y) {
     if (ok)
         m_exposure[i]++;
 }
+void CAfraidGrid::addTraversal(double x0, double y0, double x1, double y1) {
+    // Cells entered along the segment, by sampling at a quarter cell: a cell
+    // counts when the sample moves into it from another one.
+    const int c0 = xToCol(x0), r0 = yToRow(y0);
+    const double L = std::hypot(x1 - x0, y1 - y0);
+    const int n = int(std::ceil(L / (0.25 * m_res)));
+    int pc = c0, pr = r0;
+    for (int k = 1; k <= n; k++) {
+        const double f = double(k) / n;
+        const int c = xToCol(x0 + f * (x1 - x0)), r = yToRow(y0 + f * (y1 - y0));
+        if ((c != pc || r != pr) && inside(c, r))
+            m_passes[size_t(r) * m_sx + c]++;
+        pc = c;
+        pr = r;
+    }
+}
+void CAfraidGrid::addPass(double x, double y) {
+    bool ok;
+    const size_t i = index(x, y, ok);
+    if (ok)
+        m_passes[i]++;
+}
 void CAfraidGrid::addRobotEvent(double x, double y) {
     bool ok;
     const size_t i = index(x, y, ok);
@@ -227,6 +252,7 @@ void CAfraidGrid::merge(const CAfraidGrid& o) {
         m_exposure[i] += o.m_exposure[i];
         m_robotEvents[i] += o.m_robotEvents[i];
         m_obstacleEvents[i] += o.m_obstacleEvents[i];
+        m_passes[i] += o.m_passes[i];
     }
     runs += o.runs;
     frames += o.frames;
@@ -245,6 +271,7 @@ std::string CAfraidGrid::encode() const {
     putSparse(b, m_exposure);
     putSparse(b, m_robotEvents);
     putSparse(b, m_obstacleEvents);
+    putSparse(b, m_passes);
     return b;
 }
 
@@ -264,13 +291,17 @@ CAfraidGrid CAfraidGrid::decode(const std::string& bytes, const std::string& nam
     const auto exposure = getSparse(r, cells, version),
                robotEvents = getSparse(r, cells, version),
                obstacleEvents = getSparse(r, cells, version);
+    // Version 3 counts the cells the robot entered (passes); older files have
+    // only frames, taken as passes (at the learning speeds, ~ one cell per frame).
+    const auto passes = version >= 3 ? getSparse(r, cells, version) : exposure;
     if (version >= 2 && r.remaining() != 0)
         r.fail("corrupt .afraid file (" + std::to_string(r.remaining()) +
                " bytes after the data)");
     // Only now, with the whole file valid, the dense layers.
     for (auto [layer, sparse] :
          {std::pair{&g.m_exposure, &exposure}, std::pair{&g.m_robotEvents, &robotEvents},
-          std::pair{&g.m_obstacleEvents, &obstacleEvents}}) {
+          std::pair{&g.m_obstacleEvents, &obstacleEvents},
+          std::pair{&g.m_passes, &passes}}) {
         layer->assign(size_t(cells), 0);
         for (const auto& [i, x] : *sparse)
             (*layer)[i] = x;

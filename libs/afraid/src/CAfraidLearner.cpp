@@ -3,6 +3,7 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/CProgress.h>
 #include <risknav/common/config_read.h>
+#include <risknav/common/stopping.h>
 #include <risknav/localization/CRawlogReader.h>
 #include <risknav/mapping/scan_points.h>
 
@@ -226,7 +227,11 @@ double CAfraidLearner::scanMapAgreement(const mrpt::obs::CObservation2DRangeScan
         // A point off the map is no evidence either way, whatever the rule
         // says of the outside (else a scan into the void would agree).
         const int cx = m_field.x2idx(w.x()), cy = m_field.y2idx(w.y());
-        if (m_field.inside(cx, cy) && m_field.clearance(cx, cy) <= options.match_distance)
+        // On the surface of a map obstacle: near it from outside, and not deep
+        // inside it (a point inside a solid wall is as wrong as one in the open).
+        if (m_field.inside(cx, cy) &&
+            m_field.clearance(cx, cy) <= options.match_distance &&
+            m_field.depth(cx, cy) <= options.match_distance)
             agree++;
     }
     return pts.empty() ? 0.0 : double(agree) / pts.size();
@@ -272,6 +277,7 @@ void CAfraidLearner::replay(const std::string& path, bool quiet) {
                                              std::to_string(size)));
     detector.reset();
     std::optional<mrpt::Clock::time_point> lastT;
+    std::optional<mrpt::math::TPose2D> lastLocalized;
     size_t done = 0;
     while (true) {
         std::optional<localization::TRawlogFrame> frame;
@@ -316,17 +322,29 @@ void CAfraidLearner::replay(const std::string& path, bool quiet) {
         const bool localized = match >= options.min_match;
         m_matchSum += match;
         m_frames++;
-        const auto step = detector.step(*scan, est.mean, speed, m_map);
+        const auto step = detector.step(*scan, est.mean, est.cov, speed, m_map, m_field);
         m_est.push_back({mrpt::Clock::toDouble(t), est.mean.x, est.mean.y, est.mean.phi,
                          est.cov(0, 0), est.cov(1, 1), match, est.particles, localized});
         if (localized) {
             m_localized++;
             m_new.addExposure(est.mean.x, est.mean.y);
+            if (lastLocalized)
+                m_new.addTraversal(lastLocalized->x, lastLocalized->y, est.mean.x,
+                                   est.mean.y);
+            else
+                m_new.addPass(est.mean.x, est.mean.y);
+            lastLocalized = est.mean;
             m_traj.emplace_back(est.mean.x, est.mean.y);
             if (step.afraid) {
                 m_new.addRobotEvent(est.mean.x, est.mean.y);
-                if (step.obstacleFound)
-                    m_new.addObstacleEvent(step.obstacleX, step.obstacleY);
+                // Where the robot meets the obstacle on its way: the obstacle
+                // projected onto the robot's line (on the path, whichever way
+                // the robot comes; the robot's own cell if none was found).
+                const auto onPath = step.obstacleFound ? mrpt::poses::CPose2D(est.mean) +
+                                                             mrpt::poses::CPose2D(
+                                                                 step.obstacleAlong, 0, 0)
+                                                       : mrpt::poses::CPose2D(est.mean);
+                m_new.addObstacleEvent(onPath.x(), onPath.y());
                 TAfraidEvent e;
                 e.t = mrpt::Clock::toDouble(t);
                 e.rawlog = fs::path(path).filename().string();
@@ -374,7 +392,10 @@ void CAfraidLearner::generalize() {
     if (!options.afraid_in.empty())
         m_grid.merge(m_old);
     m_level = afraidLevel(m_grid, options.krr, options.sample_bin);
-    m_zones = findZones(m_level, m_grid, options.zone_threshold);
+    const auto& rb = detector.robot;
+    m_zones = findZones(
+        m_level, m_grid, options.zone_threshold,
+        common::stoppingDistance(options.v_max, rb.t_delay, rb.decel) + rb.radius);
 }
 
 double CAfraidLearner::levelAt(double x, double y) const {

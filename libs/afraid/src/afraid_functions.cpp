@@ -4,10 +4,9 @@
 #include <cmath>
 
 namespace risknav::afraid {
-int obsCur(const std::vector<mrpt::math::TPoint2D>& pts, double dStop, double beta,
-           double halfWidth) {
+int obsCur(const std::vector<mrpt::math::TPoint2D>& pts, const TCollisionArea& area) {
     for (const auto& p : pts)
-        if (p.x > 0 && std::abs(p.y) <= halfWidth && p.x < dStop + beta)
+        if (area.contains(p))
             return 0;
     return 1;
 }
@@ -20,30 +19,35 @@ int obsPredict(const std::deque<int>& history, size_t footStep) {
     return prod;
 }
 
-double nonBlockedArea(const std::vector<mrpt::math::TPoint2D>& pts, double dStop,
-                      double beta, double r, int nDirections) {
-    // Obstacles the robot could meet: within dist_stop + beta.
-    std::vector<std::pair<double, double>> near;  // (d, bearing)
-    for (const auto& p : pts) {
-        const double d = std::hypot(p.x, p.y);
-        if (d <= dStop + beta && p.x > -r)
-            near.emplace_back(d, std::atan2(p.y, p.x));
-    }
-    double area = 0;
-    for (int i = 0; i < nDirections; i++) {
-        const double th = -M_PI / 2 + M_PI * i / std::max(1, nDirections - 1);
-        double reach = dStop;
-        for (const auto& [d, b] : near) {
-            const double dth = th - b;
-            if (std::cos(dth) <= 0)
+double nonBlockedArea(const std::vector<mrpt::math::TPoint2D>& pts,
+                      const TCollisionArea& area, int nDirections) {
+    std::vector<std::pair<double, double>> inside;  // (d, bearing)
+    for (const auto& p : pts)
+        if (area.contains(p))
+            inside.emplace_back(std::hypot(p.x, p.y), std::atan2(p.y, p.x));
+    const int n = std::max(1, nDirections);
+    if (inside.empty())
+        return n * area.length;
+    double sum = 0;
+    for (int i = 0; i < n; i++) {
+        const double th = n > 1 ? -M_PI / 2 + M_PI * i / (n - 1) : 0.0;
+        double reach = area.length;
+        for (const auto& [d, b] : inside) {
+            const double c = std::cos(th - b);
+            if (c <= 0)
                 continue;  // behind this direction
-            const double lateral = d * std::abs(std::sin(dth));
-            if (lateral <= r)
-                reach = std::min(reach, lateral);
+            if (d * std::abs(std::sin(th - b)) <= area.halfWidth)
+                reach = std::min(reach, d * c);
         }
-        area += reach;
+        sum += reach;
     }
-    return area;
+    return sum;
+}
+
+double areaDifference(double expectedArea, double actualArea, const TCollisionArea& area,
+                      int nDirections) {
+    const double whole = std::max(1, nDirections) * area.length;
+    return whole > 0 ? std::abs(expectedArea - actualArea) / whole : 0.0;
 }
 
 bool afraidFlag(int obsCurNow, int obsPredictNow, double diff, double diffThreshold) {

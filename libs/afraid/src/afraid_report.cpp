@@ -68,20 +68,24 @@ json writeZonesCsv(const CAfraidLearner& l, COutputDir& out) {
     json zones = json::array();
     CCsvWriter csv(out.stage("zones.csv"),
                    {"zone", "x_min", "x_max", "y_min", "y_max", "area_m2", "peak_level",
-                    "robot_events", "obstacle_events"});
+                    "robot_events", "obstacle_events", "slow_x_min", "slow_x_max",
+                    "slow_y_min", "slow_y_max"});
     for (const auto& z : l.zones()) {
         csv.row({std::to_string(z.id), num(z.xMin), num(z.xMax), num(z.yMin), num(z.yMax),
                  num(z.area), num(z.peak), std::to_string(z.robotEvents),
-                 std::to_string(z.obstacleEvents)});
-        zones.push_back({{"id", z.id},
-                         {"x_min", z.xMin},
-                         {"x_max", z.xMax},
-                         {"y_min", z.yMin},
-                         {"y_max", z.yMax},
-                         {"area_m2", z.area},
-                         {"peak_level", z.peak},
-                         {"robot_events", z.robotEvents},
-                         {"obstacle_events", z.obstacleEvents}});
+                 std::to_string(z.obstacleEvents), num(z.slowXMin), num(z.slowXMax),
+                 num(z.slowYMin), num(z.slowYMax)});
+        zones.push_back(
+            {{"id", z.id},
+             {"x_min", z.xMin},
+             {"x_max", z.xMax},
+             {"y_min", z.yMin},
+             {"y_max", z.yMax},
+             {"area_m2", z.area},
+             {"peak_level", z.peak},
+             {"robot_events", z.robotEvents},
+             {"obstacle_events", z.obstacleEvents},
+             {"slow_region", {z.slowXMin, z.slowXMax, z.slowYMin, z.slowYMax}}});
     }
     csv.close();
     return zones;
@@ -95,7 +99,7 @@ void writeSpeedMask(const CAfraidLearner& l, COutputDir& out) {
     const int pct = int(std::lround(100.0 * l.options.v_safe / l.options.v_max));
     std::vector<uint8_t> pix(size_t(sx) * sy, 255);
     for (const auto& z : l.zones())
-        for (int k : z.mask) {
+        for (int k : z.slowMask) {
             const int cx = k % sx, cy = k / sx;
             pix[size_t(sy - 1 - cy) * sx + cx] =
                 uint8_t(std::lround(255.0 * (1.0 - (100 - pct) / 100.0)));

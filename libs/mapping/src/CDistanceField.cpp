@@ -36,6 +36,17 @@ CDistanceField::CDistanceField(const mrpt::maps::COccupancyGridMap2D& g,
             m_obst[size_t(cy) * m_w + cx] = o;
             m_nObst += o;
         }
+    if (m_nObst > 0 && m_nObst < m_obst.size()) {
+        // Depth inside the obstacles: the same transform on the inverted mask
+        // (the outside ring does not count as free space).
+        cv::Mat inv = 255 - paddedFreeMask(m_obst, m_w, m_h, true), d;
+        cv::distanceTransform(inv, d, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+        m_depth.assign(m_obst.size(), 0.f);
+        for (int cy = 0; cy < m_h; cy++)
+            for (int cx = 0; cx < m_w; cx++)
+                m_depth[size_t(cy) * m_w + cx] =
+                    d.at<float>(cy + 1, cx + 1) * float(m_res);
+    }
     if (m_nObst == 0 && !rule.outside_is_obstacle)
         return;  // nothing to measure against: +inf everywhere
     cv::Mat dist;

@@ -36,6 +36,9 @@ void CWorldSimulator::TSimulationOptions::loadFromConfigFile(
         readDouble(c, s, "seed", double(seed), TRange::closed(0, 9007199254740992.0)));
     start_time = readDouble(c, s, "start_time", start_time);
     near_miss_distance = readDouble(c, s, "near_miss_distance", near_miss_distance);
+    relevance_beta = readDouble(c, s, "relevance_beta", relevance_beta);
+    relevance_lateral_margin =
+        readDouble(c, s, "relevance_lateral_margin", relevance_lateral_margin);
 }
 
 void CWorldSimulator::TSimulationOptions::saveToConfigFile(
@@ -46,6 +49,8 @@ void CWorldSimulator::TSimulationOptions::saveToConfigFile(
     writeKey(c, s, "seed", std::to_string(seed));
     writeKey(c, s, "start_time", start_time);
     writeKey(c, s, "near_miss_distance", near_miss_distance);
+    writeKey(c, s, "relevance_beta", relevance_beta);
+    writeKey(c, s, "relevance_lateral_margin", relevance_lateral_margin);
 }
 
 void CWorldSimulator::TSimulationOptions::validate() const {
@@ -55,6 +60,9 @@ void CWorldSimulator::TSimulationOptions::validate() const {
     checkKey(s, "duration_max", duration_max, TRange::closed(1, 1e6, "s"));
     checkKey(s, "start_time", start_time, TRange::closed(0, 4e9, "s"));
     checkKey(s, "near_miss_distance", near_miss_distance, TRange::closed(0, 5, "m"));
+    checkKey(s, "relevance_beta", relevance_beta, TRange::closed(0, 10, "m"));
+    checkKey(s, "relevance_lateral_margin", relevance_lateral_margin,
+             TRange::closed(0, 5, "m"));
     const double ratio = 1.0 / (frame_rate_hz * sim_dt);
     checkRule(std::abs(ratio - std::round(ratio)) <= 1e-6, s, "sim_dt",
               numberText(sim_dt),
@@ -281,8 +289,8 @@ json CWorldSimulator::run(COutputDir& out, bool quiet) {
         const auto& rb = world.robot;
         r.safety.updateCorridor(t + dt, now, world.speed(), rb.radius,
                                 stoppingDistance(world.speed(), rb.t_delay, rb.decel) +
-                                    stopRule.options.margin,
-                                rb.radius + stopRule.options.lateral_margin,
+                                    simulation.relevance_beta,
+                                rb.radius + simulation.relevance_lateral_margin,
                                 world.agents);
     }
     r.rawlog.close();

@@ -53,7 +53,8 @@ void leF64(std::string& b, double v) {
 }
 
 // The .afraid content, laid out field by field (version, geometry and layers
-// as given); version 1 is the format risknav wrote before version 2.
+// as given); version 1 is the format risknav wrote before version 2, version 2
+// has no passes layer.
 std::string layout(uint32_t version, const CAfraidGrid& g) {
     std::string b = "RNAFRAID";
     le(b, version, 4);
@@ -64,7 +65,11 @@ std::string layout(uint32_t version, const CAfraidGrid& g) {
     le(b, uint32_t(g.sizeY()), 4);
     le(b, g.runs, 4);
     le(b, g.frames, 8);
-    for (const auto* layer : {&g.exposure(), &g.robotEvents(), &g.obstacleEvents()}) {
+    std::vector<const std::vector<uint32_t>*> layers = {&g.exposure(), &g.robotEvents(),
+                                                        &g.obstacleEvents()};
+    if (version >= 3)
+        layers.push_back(&g.passes());
+    for (const auto* layer : layers) {
         uint32_t n = 0;
         for (uint32_t v : *layer)
             n += v != 0;
@@ -130,33 +135,38 @@ TEST(AfraidFile, RoundTrip) {
     expectSameGrid(CAfraidGrid::load(d + "/e.afraid"), e);
 }
 
-TEST(AfraidFile, Version2IsLittleEndianByteByByte) {
+TEST(AfraidFile, Version3IsLittleEndianByteByByte) {
     // encode() equals the layout written out byte by byte, whatever the host.
-    const CAfraidGrid g = filledGrid();
-    EXPECT_EQ(CAfraidGrid::kVersion, 2u);
-    EXPECT_EQ(g.encode(), layout(2, g));
+    CAfraidGrid g = filledGrid();
+    g.addTraversal(-0.9, 0.1, 0.9, 0.1);
+    EXPECT_EQ(CAfraidGrid::kVersion, 3u);
+    EXPECT_EQ(g.encode(), layout(3, g));
     const std::string b = g.encode();
-    EXPECT_EQ(b.substr(8, 4), std::string("\x02\x00\x00\x00", 4));
+    EXPECT_EQ(b.substr(8, 4), std::string("\x03\x00\x00\x00", 4));
     EXPECT_EQ(b.substr(36, 4), std::string("\xc8\x00\x00\x00", 4));  // 200 columns
     EXPECT_EQ(b.substr(48, 8), std::string("\x08\x07\x06\x05\x04\x03\x02\x01", 8));
 }
 
-TEST(AfraidFile, Version1StillLoads) {
-    // A file of the version before the explicit byte order, written here byte by
-    // byte in its layout (as risknav wrote it on little-endian hosts), loads to
-    // the same grid; saving it again writes version 2.
+TEST(AfraidFile, Versions1And2StillLoad) {
+    // Files of the versions before (v1: before the explicit byte order, as
+    // risknav wrote it on little-endian hosts; v2: no passes layer) load to the
+    // same grid, their frames taken as passes; saving again writes version 3.
     const CAfraidGrid g = filledGrid();
     const std::string d = risknav::test::freshDir("afraid-file");
-    writeGz(d + "/v1.afraid", layout(1, g));
-    const CAfraidGrid h = CAfraidGrid::load(d + "/v1.afraid");
-    expectSameGrid(h, g);
-    EXPECT_EQ(h.encode(), layout(2, g));
+    for (uint32_t v : {1u, 2u}) {
+        const std::string f = d + "/v" + std::to_string(v) + ".afraid";
+        writeGz(f, layout(v, g));
+        const CAfraidGrid h = CAfraidGrid::load(f);
+        expectSameGrid(h, g);
+        EXPECT_EQ(h.passes(), g.exposure()) << v;
+        EXPECT_EQ(h.encode(), layout(3, h));
+    }
     // Version 1's leniency: trailing bytes were ignored and still are.
     writeGz(d + "/v1tail.afraid", layout(1, g) + "tail");
     expectSameGrid(CAfraidGrid::load(d + "/v1tail.afraid"), g);
     // Resuming from a version 1 file: merging gives the sum.
     CAfraidGrid m = filledGrid();
-    m.merge(h);
+    m.merge(CAfraidGrid::load(d + "/v1.afraid"));
     EXPECT_EQ(m.totalRobotEvents(), 2 * g.totalRobotEvents());
 }
 
@@ -194,9 +204,9 @@ TEST(AfraidFile, ForeignNewerAndCorruptAreRefused) {
                   d + "/missing.afraid", "not found");
 
     const CAfraidGrid g = filledGrid();
-    writeGz(d + "/v3.afraid", layout(3, g));
-    expectRefused([&] { CAfraidGrid::load(d + "/v3.afraid"); }, d + "/v3.afraid",
-                  ".afraid file version 3 (this build reads 1 to 2)");
+    writeGz(d + "/v4.afraid", layout(4, g));
+    expectRefused([&] { CAfraidGrid::load(d + "/v4.afraid"); }, d + "/v4.afraid",
+                  ".afraid file version 4 (this build reads 1 to 3)");
     writeGz(d + "/v0.afraid", layout(0, g));
     expectRefused([&] { CAfraidGrid::load(d + "/v0.afraid"); }, d + "/v0.afraid",
                   "version 0");

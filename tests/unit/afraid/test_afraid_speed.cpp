@@ -24,33 +24,43 @@ mrpt::maps::COccupancyGridMap2D corridor() {
 }
 }  // namespace
 
-TEST(AfraidLevel, SamplesPoolExposureAndEventsPerBin) {
+TEST(AfraidLevel, SamplesAreEventsPerPassAndStandingDoesNotDilute) {
     CAfraidGrid g(corridor());
-    // One 25 cm bin (5 x 5 cells): 10 frames in one cell, 30 in another, 2 events.
-    for (int i = 0; i < 10; i++)
-        g.addExposure(5.01, 2.01);
-    for (int i = 0; i < 30; i++)
-        g.addExposure(5.21, 2.01);
-    g.addRobotEvent(5.01, 2.01);
-    g.addRobotEvent(5.21, 2.01);
-    const auto s = afraidSamples(g, 0.25);
-    ASSERT_EQ(s.size(), 1u);
-    // Exposure-weighted mean of the cell centres 5.025 and 5.225.
-    EXPECT_NEAR(s[0].x, (10 * 5.025 + 30 * 5.225) / 40, 1e-6);
-    EXPECT_NEAR(s[0].y, 2.025, 1e-6);
-    // events per pass = events / (exposure / cells per bin side) = 2 / (40 / 5).
-    EXPECT_DOUBLE_EQ(s[0].target, 2.0 * 5 / 40);
+    // Three passes along y = 2.01 through the bin x 5.0..5.25 (5 cells of 5 cm
+    // each pass), one event there.
+    for (int pass = 0; pass < 3; pass++)
+        g.addTraversal(4.0, 2.01, 6.0, 2.01);
+    g.addObstacleEvent(5.11, 2.01);
+    auto rate = [&] {
+        for (const auto& s : afraidSamples(g, 0.25))
+            if (std::abs(s.x - 5.125) < 0.01)
+                return s.target;
+        return -1.0;
+    };
+    EXPECT_NEAR(rate(), 1.0 / 3, 1e-9);
+    // A robot that stands 100 frames in that bin: frames of exposure, no pass.
+    for (int i = 0; i < 100; i++)
+        g.addExposure(5.11, 2.01);
+    EXPECT_NEAR(rate(), 1.0 / 3, 1e-9);
+    // Three more passes without an event: the rate halves (it does not fall
+    // with more experience of the same rate, only with a lower rate).
+    for (int pass = 0; pass < 3; pass++)
+        g.addTraversal(6.0, 2.01, 4.0, 2.01);
+    EXPECT_NEAR(rate(), 1.0 / 6, 1e-9);
+    // An event that falls into the next bin across (no passes there) goes to
+    // the bin the path runs through.
+    g.addObstacleEvent(5.11, 1.98);
+    EXPECT_NEAR(rate(), 2.0 / 6, 1e-9);
 }
 
 TEST(AfraidLevel, KernelRegressionOfTheSamplesOnEveryCell) {
     CAfraidGrid g(corridor());
     // A robot line along y = 2 (10 passes), events only around x = 12.
-    for (int pass = 0; pass < 10; pass++)
-        for (double x = 0.5; x < 19.5; x += 0.05) {
-            g.addExposure(x, 2.0);
-            if (pass < 4 && std::abs(x - 12) < 0.2)
-                g.addRobotEvent(x, 2.0);
-        }
+    for (int pass = 0; pass < 10; pass++) {
+        g.addTraversal(0.5, 2.0, 19.5, 2.0);
+        if (pass < 4)
+            g.addObstacleEvent(12.0, 2.0);
+    }
     TKrrOptions o;
     const auto level = afraidLevel(g, o, 0.25);
     ASSERT_EQ(level.size(), size_t(g.sizeX()) * g.sizeY());

@@ -173,3 +173,18 @@ TEST(ScanPoints, RightToLeftAndSensorPose) {
     EXPECT_NEAR(p[0].x, 2.0, 1e-6);  // rotated by the sensor's yaw
     EXPECT_NEAR(p[0].y, 0.0, 1e-6);
 }
+
+TEST(DistanceField, DepthInsideObstacles) {
+    // A wall 7 cells thick (columns 10..16) across the map.
+    std::vector<std::pair<int, int>> wall;
+    for (int cy = 0; cy < 20; cy++)
+        for (int cx = 10; cx <= 16; cx++)
+            wall.emplace_back(cx, cy);
+    const auto g = smallMap(wall);
+    const CDistanceField f(g, TObstacleRule{});
+    EXPECT_EQ(f.depth(5, 5), 0.0);           // free
+    EXPECT_NEAR(f.depth(10, 5), 0.1, 1e-6);  // the wall's face: next to free space
+    EXPECT_NEAR(f.depth(13, 5), 0.4, 1e-6);  // its middle
+    EXPECT_EQ(f.clearance(13, 5), 0.0);      // inside: no clearance
+    EXPECT_EQ(f.depth(-1, 5), 0.0);          // off the map
+}

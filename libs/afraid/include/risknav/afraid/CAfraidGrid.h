@@ -8,10 +8,12 @@
 namespace risknav::afraid {
 /** Accumulated experience (Choi, Chung, Song (002) eq. 12), on the geometry
  * of the map: per cell, how many afraid events happened with the robot there,
- * how many unexpected obstacles were seen there, and how often the robot was
- * there at all (exposure, in frames), so that rates and not raw counts are
- * compared. Saved as a versioned gz file (.afraid) that later runs load and
- * add to.
+ * how many unexpected obstacles were seen there (projected onto the robot's
+ * path), how often the robot entered the cell (passes) and how many frames it
+ * spent there (exposure), so that rates per pass and not raw counts are
+ * compared: a robot that stands or crawls does not dilute the rate, and more
+ * laps of the same world give the same rate. Saved as a versioned gz file (.afraid) that
+ * later runs load and add to.
  *
  * The .afraid format (gzip-compressed; every number LITTLE-ENDIAN, written and
  * read byte by byte whatever the host's byte order; doubles are IEEE-754
@@ -24,13 +26,16 @@ namespace risknav::afraid {
  *       36     8  i32 size_x, i32 size_y [cells] (> 0, product <= kMaxCells)
  *       44     4  u32 runs
  *       48     8  u64 frames
- *       56        three sparse layers, in this order: exposure, robot events,
- *                 obstacle events; each one u32 n (<= cells) followed by n
- *                 pairs (u32 cell index = cy * size_x + cx, u32 count)
+ *       56        four sparse layers, in this order: exposure (frames), robot
+ *                 events, obstacle events, passes (version 3 only); each one
+ *                 u32 n (<= cells) followed by n pairs (u32 cell index =
+ *                 cy * size_x + cx, u32 count)
  *
- * Version 2 (this build writes it): the layout above, explicitly
+ * Version 3 (this build writes it): the layout above, explicitly
  * little-endian; cell indices strictly increasing, counts > 0, nothing after
- * the third layer. Version 1 (risknav before the explicit byte order): the
+ * the last layer. Version 2: the same without the passes layer; its frames
+ * are taken as passes (at the learning speeds the robot enters about one
+ * cell per frame). Version 1 (risknav before the explicit byte order): the
  * same layout, each field's memory written as is, i.e. in the writer's HOST
  * byte order; it is read as little-endian, the order of the hosts risknav
  * runs on (x86-64, arm64); a version 1 file from a big-endian host would be
@@ -44,7 +49,7 @@ namespace risknav::afraid {
  * allows (a gz bomb is not inflated past that). */
 class CAfraidGrid {
   public:
-    static constexpr uint32_t kVersion = 2;
+    static constexpr uint32_t kVersion = 3;
     /** Oldest version load() still reads. */
     static constexpr uint32_t kOldestVersion = 1;
     /** The largest grid, in cells (e.g. 5000 x 5000 cells: 250 m x 250 m at
@@ -62,6 +67,11 @@ class CAfraidGrid {
 
     /** The robot was at (x, y) [m] (one count of exposure). */
     void addExposure(double x, double y);
+    /** The robot moved from (x0, y0) to (x1, y1): one pass of each cell it
+     * entered on the way (standing still adds nothing). */
+    void addTraversal(double x0, double y0, double x1, double y1);
+    /** One pass of the cell at (x, y) (where a run starts). */
+    void addPass(double x, double y);
     /** An afraid event (eq. 11) with the robot at (x, y): eq. (12) counted at
      * the robot's cell. */
     void addRobotEvent(double x, double y);
@@ -101,6 +111,7 @@ class CAfraidGrid {
     const std::vector<uint32_t>& exposure() const { return m_exposure; }
     const std::vector<uint32_t>& robotEvents() const { return m_robotEvents; }
     const std::vector<uint32_t>& obstacleEvents() const { return m_obstacleEvents; }
+    const std::vector<uint32_t>& passes() const { return m_passes; }
     uint64_t totalRobotEvents() const;
     uint32_t runs = 0;    ///< learning runs (rawlogs) accumulated
     uint64_t frames = 0;  ///< frames accumulated
@@ -109,7 +120,7 @@ class CAfraidGrid {
     size_t index(double x, double y, bool& ok) const;
     double m_xmin = 0, m_ymin = 0, m_res = 0.05;
     int m_sx = 0, m_sy = 0;
-    std::vector<uint32_t> m_exposure, m_robotEvents, m_obstacleEvents;
+    std::vector<uint32_t> m_exposure, m_robotEvents, m_obstacleEvents, m_passes;
 };
 
 }  // namespace risknav::afraid

@@ -17,11 +17,18 @@ struct TAfraidZone {
     int cells = 0;
     unsigned robotEvents = 0, obstacleEvents = 0;
     std::vector<int> mask;  ///< cell indices (row-major)
+    /** Where the robot must already be slow for this zone: its cells grown by
+     * the approach distance (may overlap another zone's). Bounding box [m]. */
+    double slowXMin = 0, slowXMax = 0, slowYMin = 0, slowYMax = 0;
+    std::vector<int> slowMask;  ///< cell indices (row-major)
 };
 
-/** Zones = 8-connected regions with level > threshold (OpenCV connected components). */
+/** Zones = 8-connected regions with level > threshold (OpenCV connected
+ * components), each with where the robot must already be slow for it: the
+ * zone grown by `approach` [m] (the stopping distance at the fast speed plus
+ * the robot's radius: a robot coming from any side has to brake there). */
 std::vector<TAfraidZone> findZones(const std::vector<float>& level, const CAfraidGrid& g,
-                                   double threshold);
+                                   double threshold, double approach = 0);
 
 /** Choi, Chung, Song (002) eqs. (13)-(14), with a look-ahead: v_afraid =
  * v_safe when the level exceeds the threshold anywhere on the path ahead within

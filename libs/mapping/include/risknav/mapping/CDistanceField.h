@@ -72,6 +72,14 @@ class CDistanceField {
     double clearance(int cx, int cy) const;
     double clearanceAt(double x, double y) const { return clearance(x2idx(x), y2idx(y)); }
 
+    /** Depth [m] of an obstacle cell: the distance from its centre to the
+     * nearest free cell centre (0 for a free cell; off the map: 0). A scan
+     * point deep inside a wall is as wrong as one far from every wall. */
+    double depth(int cx, int cy) const {
+        return inside(cx, cy) && !m_depth.empty() ? m_depth[size_t(cy) * m_w + cx] : 0.0;
+    }
+    double depthAt(double x, double y) const { return depth(x2idx(x), y2idx(y)); }
+
     /** Row-major masks / values, sizeX() * sizeY(). */
     const std::vector<uint8_t>& obstacles() const { return m_obst; }
     const std::vector<float>& clearances() const { return m_dist; }
@@ -87,7 +95,7 @@ class CDistanceField {
     int m_w = 0, m_h = 0;
     double m_xmin = 0, m_ymin = 0, m_res = 1;
     std::vector<uint8_t> m_obst;
-    std::vector<float> m_dist;
+    std::vector<float> m_dist, m_depth;
     size_t m_nObst = 0;
 };
 

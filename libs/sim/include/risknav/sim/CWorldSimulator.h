@@ -37,6 +37,13 @@ class CWorldSimulator {
             1.6e9;  ///< [s] UNIX time of the first frame (reproducible logs)
         double near_miss_distance =
             0.2;  ///< [m] gap below which a pass counts as near miss
+        /** The collision-possible area in which a door pedestrian's entry is
+         * logged (enter_corridor, "relevant" for the afraid detector): beta
+         * [m] beyond d_stop ahead of the robot's front, and lateral_margin [m]
+         * beyond its radius to each side (Choi et al. (002) eq. 5 and Fig. 1;
+         * the afraid detector's defaults). */
+        double relevance_beta = 0.4;
+        double relevance_lateral_margin = 0.1;
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                 const std::string& s) override;
