@@ -1,6 +1,9 @@
 // End-to-end: risknav-afraid-learn on simulated corridors (datasets/corridor-doors)
 // and on MRPT's own real logs, against MRPT's pf-localization.
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
 #include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
@@ -136,13 +139,13 @@ TEST(AfraidLearnE2E, ResumingFromAnAfraidFileEqualsLearningOnBoth) {
                       b = simulateCorridor(freshDir("b"), 1, true, 22);
     const std::string outA = freshDir("outA"), outB = freshDir("outB"),
                       outAB = freshDir("outAB");
-    const auto sa = learn(outA, "--set AfraidLearn.rawlogs=" + a + "/simulation.rawlog");
-    const auto sb =
-        learn(outB, "--set AfraidLearn.rawlogs=" + b +
-                        "/simulation.rawlog --set AfraidLearn.afraid_in=" + outA +
-                        "/corridor.afraid");
+    // Each rawlog with its own ground truth (one file per rawlog).
+    const auto sa = learn(outA, onSim(a));
+    const auto sb = learn(
+        outB, onSim(b) + " --set AfraidLearn.afraid_in=" + outA + "/corridor.afraid");
     learn(outAB, "--set 'AfraidLearn.rawlogs=" + a + "/simulation.rawlog " + b +
-                     "/simulation.rawlog'");
+                     "/simulation.rawlog' --set 'AfraidLearn.groundtruth_file=" + a +
+                     "/groundtruth.txt " + b + "/groundtruth.txt'");
     EXPECT_EQ(sb["runs_total"], 2);
     EXPECT_EQ(sb["events_total"].get<int>(),
               sa["events"].get<int>() + sb["events"].get<int>());
@@ -292,13 +295,17 @@ TEST(AfraidLearnBadInput, TruncatedRawlogSavesPartialResultsAndKeepsEarlierFiles
     const std::string sim = simulateCorridor(freshDir("w"), 1, true, 5);
     const std::string full = readFile(sim + "/simulation.rawlog");
     writeFile(sim + "/cut.rawlog", full.substr(0, full.size() * 6 / 10));
-    // An earlier complete result in the output folder, and an earlier .afraid to resume
-    // from.
+    // A complete earlier run in the output folder, and an earlier .afraid to
+    // resume from; a temporary a killed run left behind.
     const std::string out = freshDir("out"), prev = freshDir("prev");
     learn(prev, "--set AfraidLearn.rawlogs=" + sim + "/simulation.rawlog");
-    fs::copy_file(prev + "/corridor.afraid", out + "/corridor.afraid");
-    const std::string before = readFile(out + "/corridor.afraid"),
-                      earlier = readFile(prev + "/corridor.afraid");
+    learn(out, "--set AfraidLearn.rawlogs=" + sim + "/simulation.rawlog");
+    writeFile(out + "/.tmp-999999999-zones.csv", "left by a killed run");
+    std::map<std::string, std::string> before;
+    for (const auto& f : listDir(out))
+        if (f.rfind(".tmp-", 0) != 0)
+            before[f] = readFile(out + "/" + f);
+    const std::string earlier = readFile(prev + "/corridor.afraid");
     const auto r =
         run(binPath(kLearn) + " -q -o '" + out + "' --set AfraidLearn.rawlogs=" + sim +
             "/cut.rawlog --set AfraidLearn.afraid_in=" + prev + "/corridor.afraid '" +
@@ -307,14 +314,46 @@ TEST(AfraidLearnBadInput, TruncatedRawlogSavesPartialResultsAndKeepsEarlierFiles
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_NE(r.err.find("corrupt or truncated rawlog at entry"), std::string::npos)
         << r.err;
-    const auto s = readJson(out + "/summary.json");
+    EXPECT_NE(r.err.find(out + "/partial"), std::string::npos) << r.err;
+    // The partial results, apart.
+    const auto s = readJson(out + "/partial/summary.json");
     EXPECT_EQ(s["status"], "partial");
     EXPECT_TRUE(s["partial"].get<bool>());
     EXPECT_GT(s["frames"].get<int>(), 100);
-    EXPECT_TRUE(fs::is_regular_file(out + "/corridor.partial.afraid"));
-    EXPECT_TRUE(readFile(out + "/corridor.afraid") ==
-                before);  // the complete earlier file is untouched
+    EXPECT_TRUE(fs::is_regular_file(out + "/partial/corridor.partial.afraid"));
+    // The complete earlier run: every file as it was, nothing added but partial/;
+    // the dead run's temporary is gone.
+    for (const auto& [f, content] : before)
+        EXPECT_TRUE(readFile(out + "/" + f) == content) << f;
+    auto now = listDir(out);
+    now.erase(std::remove(now.begin(), now.end(), "partial"), now.end());
+    std::vector<std::string> names;
+    for (const auto& [f, c] : before)
+        names.push_back(f);
+    EXPECT_EQ(now, names);
     EXPECT_TRUE(readFile(prev + "/corridor.afraid") == earlier);
+}
+
+TEST(AfraidLearnBadInput, OneGroundTruthPerRawlog) {
+    const std::string a = simulateCorridor(freshDir("a"), 1, true, 5);
+    const std::string b = simulateCorridor(freshDir("b"), 1, true, 6);
+    const std::string two = "--set 'AfraidLearn.rawlogs=" + a + "/simulation.rawlog " +
+                            b + "/simulation.rawlog' ";
+    // Two rawlogs, one ground truth: refused (the second would be scored
+    // against the first one's truth).
+    const std::string bad = freshDir("bad");
+    const auto r = run(binPath(kLearn) + " -q -o '" + bad + "' " + two +
+                       "--set AfraidLearn.groundtruth_file=" + a + "/groundtruth.txt '" +
+                       sourcePath("datasets/corridor-doors/afraid.ini") + "'");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("[AfraidLearn] groundtruth_file"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("needs one file per rawlog"), std::string::npos) << r.err;
+    // One each: both scored, both listed.
+    const auto s =
+        learn(freshDir("ok"), two + "--set 'AfraidLearn.groundtruth_file=" + a +
+                                  "/groundtruth.txt " + b + "/groundtruth.txt'");
+    EXPECT_EQ(s["rawlogs"].size(), 2u);
+    EXPECT_LT(s["localization"]["mcl_error_mean_m"].get<double>(), 0.2);
 }
 
 TEST(AfraidLearnBadInput, MapRawlogMismatchIsDetected) {

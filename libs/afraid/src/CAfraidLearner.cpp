@@ -80,7 +80,10 @@ void CAfraidLearner::TOptions::loadFromConfigFile(const mrpt::config::CConfigFil
         rawlogs.push_back(configRelativePath(c, r));
     afraid_in = readPath(c, s, "afraid_in", afraid_in, false);
     afraid_name = readString(c, s, "afraid_name", afraid_name);
-    groundtruth_file = readPath(c, s, "groundtruth_file", groundtruth_file, false);
+    groundtruth_files.clear();
+    for (const auto& g : splitPathList(c, s, "groundtruth_file",
+                                       readString(c, s, "groundtruth_file", "")))
+        groundtruth_files.push_back(configRelativePath(c, g));
     scan_label = readString(c, s, "scan_label", scan_label);
     match_distance = readDouble(c, s, "match_distance", match_distance);
     min_match = readDouble(c, s, "min_match", min_match);
@@ -102,7 +105,7 @@ void CAfraidLearner::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c
     writeKey(c, s, "rawlogs", joinPathList(rawlogs));
     writeKey(c, s, "afraid_in", afraid_in);
     writeKey(c, s, "afraid_name", afraid_name);
-    writeKey(c, s, "groundtruth_file", groundtruth_file);
+    writeKey(c, s, "groundtruth_file", joinPathList(groundtruth_files));
     writeKey(c, s, "scan_label", scan_label);
     writeKey(c, s, "match_distance", match_distance);
     writeKey(c, s, "min_match", min_match);
@@ -130,8 +133,15 @@ void CAfraidLearner::TOptions::validate() const {
     checkRule(afraid_name.find('/') == std::string::npos && afraid_name.size() >= 8 &&
                   endsWith(afraid_name, ".afraid"),
               s, "afraid_name", afraid_name, "must be a file name ending in .afraid");
-    checkRule(groundtruth_file.empty() || fs::is_regular_file(groundtruth_file, ec), s,
-              "groundtruth_file", groundtruth_file, "file not found");
+    for (const auto& g : groundtruth_files)
+        checkRule(fs::is_regular_file(g, ec), s, "groundtruth_file", g, "file not found");
+    // One ground truth per rawlog, in the same order: a second rawlog must not
+    // be scored against the first one's truth.
+    checkRule(groundtruth_files.empty() || groundtruth_files.size() == rawlogs.size(), s,
+              "groundtruth_file", joinPathList(groundtruth_files),
+              "needs one file per rawlog (" + std::to_string(rawlogs.size()) +
+                  " rawlogs, " + std::to_string(groundtruth_files.size()) +
+                  " ground-truth files)");
     checkKey(s, "match_distance", match_distance, TRange::closed(0.01, 5, "m"));
     checkKey(s, "min_match", min_match, TRange::closed(0, 1));
     checkKey(s, "diverged_fraction", diverged_fraction, TRange::closed(0, 1));
@@ -202,18 +212,19 @@ void CAfraidLearner::prepare() {
                                  "; this map: " + m_new.geometryText() + ")");
     }
     m_gt.clear();
-    if (!options.groundtruth_file.empty()) {
-        std::ifstream f(options.groundtruth_file);
+    for (const auto& file : options.groundtruth_files) {
+        auto& gt = m_gt.emplace_back();
+        std::ifstream f(file);
         for (std::string line; std::getline(f, line);) {
             if (line.empty() || line[0] == '%' || line[0] == '#')
                 continue;
             std::istringstream ls(line);
             std::array<double, 4> v{};
             if (ls >> v[0] >> v[1] >> v[2] >> v[3])
-                m_gt.push_back(v);
+                gt.push_back(v);
         }
-        checkRule(!m_gt.empty(), options.section, "groundtruth_file",
-                  options.groundtruth_file, "no 't x y phi' lines");
+        checkRule(!gt.empty(), options.section, "groundtruth_file", file,
+                  "no 't x y phi' lines");
     }
 }
 
@@ -240,8 +251,10 @@ double CAfraidLearner::scanMapAgreement(const mrpt::obs::CObservation2DRangeScan
 void CAfraidLearner::run(bool quiet) {
     const auto& o = options;
     const auto t0 = std::chrono::steady_clock::now();
-    for (size_t i = 0; i < o.rawlogs.size() && m_error.empty(); i++)
-        replay(o.rawlogs[i], quiet);
+    for (size_t i = 0; i < o.rawlogs.size() && m_error.empty(); i++) {
+        m_processed.push_back(o.rawlogs[i]);
+        replay(o.rawlogs[i], m_gt.empty() ? nullptr : &m_gt[i], quiet);
+    }
     m_replaySeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!m_sawScan && m_error.empty())
@@ -253,7 +266,8 @@ void CAfraidLearner::run(bool quiet) {
     m_new.frames = m_frames;
 }
 
-void CAfraidLearner::replay(const std::string& path, bool quiet) {
+void CAfraidLearner::replay(const std::string& path,
+                            const std::vector<std::array<double, 4>>* gt, bool quiet) {
     // Count the frames first (cheap: no filtering) for the progress line.
     size_t total = 0;
     try {
@@ -362,13 +376,13 @@ void CAfraidLearner::replay(const std::string& path, bool quiet) {
                 m_events.push_back(e);
             }
         }
-        if (!m_gt.empty()) {
+        if (gt) {
             const double tt = mrpt::Clock::toDouble(t);
             const auto it = std::lower_bound(
-                m_gt.begin(), m_gt.end(), tt,
+                gt->begin(), gt->end(), tt,
                 [](const std::array<double, 4>& g, double v) { return g[0] < v; });
-            for (auto g : {it, it == m_gt.begin() ? it : it - 1})
-                if (g != m_gt.end() && std::abs((*g)[0] - tt) < 0.05) {
+            for (auto g : {it, it == gt->begin() ? it : it - 1})
+                if (g != gt->end() && std::abs((*g)[0] - tt) < 0.05) {
                     const double err =
                         std::hypot((*g)[1] - est.mean.x, (*g)[2] - est.mean.y);
                     m_errSum += err;

@@ -251,7 +251,7 @@ json summaryJson(const CAfraidLearner& l, const std::string& afraidFile,
     j["status"] = l.partial() ? "partial" : (l.diverged() ? "diverged" : "ok");
     j["partial"] = l.partial();
     j["error"] = l.error();
-    j["rawlogs"] = l.options.rawlogs;
+    j["rawlogs"] = l.processedRawlogs();  // those replayed (the last maybe in part)
     j["frames"] = l.frames();
     j["localization"] = {
         {"localized_frames", l.localizedFrames()},
@@ -326,9 +326,13 @@ void runAfraidLearnApp(const TAppContext& ctx) {
     const auto t0 = std::chrono::steady_clock::now();
     CAfraidLearner l;
     l.loadFromConfigFile(ctx.cfg, ctx.args.extra, ctx.args.seed);
+    COutputDir out(ctx.args.outDir);  // checked before the replay, not after it
     l.run(ctx.args.quiet);
     l.generalize();
-    COutputDir out(ctx.args.outDir);
+    // A partial replay never replaces a complete run's files: its results go
+    // to <out>/partial/.
+    if (l.partial())
+        out.commitInto("partial");
     json summary = summaryHeader(ctx, l.options.seed);
     summary.update(writeAfraidReport(l, out));
     mrpt::config::CConfigFileMemory effective;
@@ -345,7 +349,8 @@ void runAfraidLearnApp(const TAppContext& ctx) {
     out.writeText("summary.json", jsonText(summary));
     out.commit();
     if (l.partial())  // results up to the bad entry are saved, marked partial
-        throw CBadInputError(l.error() + "; partial results in " + out.dir());
+        throw CBadInputError(l.error() + "; partial results in " +
+                             out.finalPath("partial"));
     if (!ctx.args.quiet)
         std::fprintf(stderr, "%s: %zu frames, %zu events, %zu zones%s -> %s\n",
                      ctx.info.name.c_str(), l.frames(), l.events().size(),

@@ -61,8 +61,10 @@ class CAfraidLearner {
         std::vector<std::string> rawlogs;
         std::string afraid_in;  ///< earlier .afraid file to start from ("" = none)
         std::string afraid_name = "learned.afraid";  ///< a file name ending in .afraid
-        std::string groundtruth_file;  ///< optional "t x y phi" file for the MCL error
-        std::string scan_label;        ///< "" = the first 2D scan of each frame
+        /** Optional "t x y phi" files for the MCL error (key groundtruth_file):
+         * one per rawlog, in the same order. */
+        std::vector<std::string> groundtruth_files;
+        std::string scan_label;  ///< "" = the first 2D scan of each frame
         double match_distance =
             0.25;  ///< [m] a scan point this close to a map obstacle agrees with the map
         double min_match = 0.5;  ///< frames with fewer agreeing points are not localized
@@ -127,6 +129,8 @@ class CAfraidLearner {
     /** Every frame's estimate (all rawlogs, in order). */
     const std::vector<TTrajectoryPoint>& estimates() const { return m_est; }
     bool partial() const { return !m_error.empty(); }
+    /** The rawlogs replayed (after a corrupt one, the rest are not). */
+    const std::vector<std::string>& processedRawlogs() const { return m_processed; }
     const std::string& error() const { return m_error; }
     size_t frames() const { return m_frames; }
     size_t localizedFrames() const { return m_localized; }
@@ -141,7 +145,8 @@ class CAfraidLearner {
     double levelAt(double x, double y) const;
 
   private:
-    void replay(const std::string& path, bool quiet);
+    void replay(const std::string& path, const std::vector<std::array<double, 4>>* gt,
+                bool quiet);
     /** Fraction of the scan's points within match_distance of a map obstacle
      * (by the obstacle rule) at the estimated pose. */
     double scanMapAgreement(const mrpt::obs::CObservation2DRangeScan& scan,
@@ -154,7 +159,8 @@ class CAfraidLearner {
     std::vector<TAfraidZone> m_zones;
     std::vector<mrpt::math::TPoint2D> m_traj;
     std::vector<TTrajectoryPoint> m_est;
-    std::vector<std::array<double, 4>> m_gt;  // t x y phi
+    std::vector<std::vector<std::array<double, 4>>> m_gt;  // per rawlog: t x y phi
+    std::vector<std::string> m_processed;
     std::string m_error;
     size_t m_frames = 0, m_localized = 0, m_errN = 0;
     double m_errSum = 0, m_errMax = 0, m_matchSum = 0, m_replaySeconds = 0;
