@@ -32,6 +32,9 @@ TEST_P(BadInput, ExitTwoOneLineOutputUntouched) {
     fs::copy_file(sourcePath("datasets/corridor-doors/corridor.png"),
                   work + "/corridor.png");
     writeFile(work + "/not_a_png.png", "plain text, not an image\n");
+    // A real PNG cut short: libpng's own complaint must not reach stderr.
+    const std::string png = readFile(sourcePath("datasets/corridor-doors/corridor.png"));
+    writeFile(work + "/truncated.png", png.substr(0, png.size() / 3));
     std::string ini = readFile(sourcePath("datasets/corridor-doors/world.ini"));
     if (!c.edit_from.empty()) {
         const std::string edited =
@@ -58,6 +61,13 @@ INSTANTIATE_TEST_SUITE_P(
     Simulate, BadInput,
     ::testing::Values(
         TCase{"missing_config", "", "", "", "nope.ini: config file not found"},
+        TCase{"truncated_png", "map_file       = corridor.png",
+              "map_file       = truncated.png", "",
+              "truncated.png: cannot read the map image"},
+        TCase{"duplicated_key", "\\[Robot\\]\n", "[Robot]\nradius = 0.3\n", "",
+              "[Robot] radius is given twice"},
+        TCase{"line_without_equals", "\\[Robot\\]\n", "[Robot]\nmax_v    1.1\n", "",
+              "'max_v    1.1' in [Robot]: expected KEY = VALUE"},
         TCase{"missing_map", "map_file\\s*=\\s*corridor.png", "map_file = nothere.png",
               "", "[World] map_file = 'nothere.png': file not found"},
         TCase{"unreadable_png", "map_file\\s*=\\s*corridor.png",

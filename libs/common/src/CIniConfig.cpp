@@ -6,6 +6,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 namespace fs = std::filesystem;
 using namespace risknav::common;
@@ -39,6 +40,7 @@ CIniConfig::CIniConfig(const std::string& path) try : mrpt
     ::config::CConfigFile(checkedConfigPath(path)), m_path(path),
         m_folder(fs::absolute(fs::path(path)).parent_path().string()) {
         discardSavingChanges();
+        checkLines(path);
     }
 catch (const CBadInputError&) {
     throw;
@@ -49,6 +51,54 @@ catch (const CBadInputError&) {
 
 CIniConfig::~CIniConfig() {
     discardSavingChanges();
+}
+
+namespace {
+std::string trimmed(const std::string& s) {
+    const auto b = s.find_first_not_of(" \t\r");
+    if (b == std::string::npos)
+        return {};
+    return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+}
+}  // namespace
+
+void CIniConfig::checkLines(const std::string& path) {
+    // MRPT (SimpleIni) keeps the last of two equal keys and drops a line
+    // without '=': both would silently change what a run uses.
+    std::ifstream f(path);
+    std::string section;
+    std::map<std::pair<std::string, std::string>, size_t> seen;
+    bool continued = false;
+    size_t n = 0;
+    for (std::string raw; std::getline(f, raw);) {
+        n++;
+        const bool wasContinued = continued;
+        std::string line = trimmed(raw);
+        continued = !line.empty() && line.back() == '\\';
+        if (wasContinued || line.empty() || line[0] == ';' || line[0] == '#' ||
+            line[0] == '@' || line.rfind("//", 0) == 0)
+            continue;
+        const std::string where = path + ": line " + std::to_string(n) + ": ";
+        if (line[0] == '[') {
+            const auto close = line.find(']');
+            if (close == std::string::npos)
+                throw CBadInputError(where + "'" + line +
+                                     "': a section needs a closing ']'");
+            section = trimmed(line.substr(1, close - 1));
+            continue;
+        }
+        const auto eq = line.find('=');
+        if (eq == std::string::npos)
+            throw CBadInputError(where + "'" + line + "' in [" + section +
+                                 "]: expected KEY = VALUE");
+        const std::string key = trimmed(line.substr(0, eq));
+        const auto [it, fresh] =
+            seen.emplace(std::make_pair(lower(section), lower(key)), n);
+        if (!fresh)
+            throw CBadInputError(where + "[" + section + "] " + key +
+                                 " is given twice (also line " +
+                                 std::to_string(it->second) + ")");
+    }
 }
 
 std::string CIniConfig::readString(const std::string& section, const std::string& name,

@@ -9,8 +9,12 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -50,6 +54,33 @@ void TMapSourceOptions::validate() const {
 }
 
 namespace {
+// Keeps a decoder's own messages (libpng: "libpng error: Read Error") off
+// stderr while it runs: the app reports the failure in its one line.
+class CStderrSilenced {
+  public:
+    CStderrSilenced() {
+        std::fflush(stderr);
+        m_saved = ::dup(2);
+        const int devnull = ::open("/dev/null", O_WRONLY);
+        if (devnull >= 0) {
+            ::dup2(devnull, 2);
+            ::close(devnull);
+        }
+    }
+    ~CStderrSilenced() {
+        std::fflush(stderr);
+        if (m_saved >= 0) {
+            ::dup2(m_saved, 2);
+            ::close(m_saved);
+        }
+    }
+    CStderrSilenced(const CStderrSilenced&) = delete;
+    CStderrSilenced& operator=(const CStderrSilenced&) = delete;
+
+  private:
+    int m_saved = -1;
+};
+
 bool endsWith(std::string s, const std::string& suffix) {
     std::transform(s.begin(), s.end(), s.begin(),
                    [](unsigned char ch) { return std::tolower(ch); });
@@ -72,6 +103,7 @@ COccupancyGridMap2D fromImage(const std::string& file, double res, double ox, do
                               TPixelModel model, const TRosParams& ros = {}) {
     cv::Mat img;
     try {
+        const CStderrSilenced quiet;  // libpng prints its own lines on a bad file
         img = cv::imread(file, cv::IMREAD_GRAYSCALE);
     } catch (const std::exception&) {
     }

@@ -196,3 +196,29 @@ TEST(ConfigRead, LoadOptionsAddsTheFileToValidateErrors) {
     const std::string e = errorOf([&] { loadOptions(o, c, "Demo"); });
     EXPECT_EQ(e, p + ": [Demo] b = '2.000000': must be >= a");
 }
+
+TEST(CIniConfig, DuplicateKeysAndLinesWithoutEqualsAreErrors) {
+    auto expectLine = [](const std::string& text, const std::string& what) {
+        const std::string f = iniFile(text);
+        try {
+            CIniConfig c(f);
+            FAIL() << "accepted: " << text;
+        } catch (const CBadInputError& e) {
+            const std::string m = e.what();
+            EXPECT_EQ(m.rfind(f + ": line ", 0), 0u) << m;
+            EXPECT_NE(m.find(what), std::string::npos) << m;
+            EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+        }
+    };
+    // MRPT would keep the last value / drop the line silently.
+    expectLine("[Robot]\nradius = 0.25\nRadius = 0.3\n",
+               "line 3: [Robot] Radius is given twice (also line 2)");
+    expectLine("[Robot]\nmax_v    1.1\n",
+               "line 2: 'max_v    1.1' in [Robot]: expected KEY = VALUE");
+    expectLine("[Robot\nradius = 1\n", "a section needs a closing ']'");
+    // The same key in two sections, comments, preprocessor lines and line
+    // continuations are fine.
+    EXPECT_NO_THROW(
+        CIniConfig(iniFile("; c\n# c\n// c\n@define R 0.25\n[A]\nk = ${R}\n"
+                           "l = 1 \\\n  2\n[B]\nk = 2\n")));
+}

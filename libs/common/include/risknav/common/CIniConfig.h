@@ -51,6 +51,10 @@ class CIniConfig : public mrpt::config::CConfigFile {
                            bool failIfNotFound = false) const override;
 
   private:
+    /** Throws CBadInputError (file, line) for a key given twice in a section
+     * and for a line that is neither a section, a KEY = VALUE, a comment nor
+     * a preprocessor line: MRPT would keep the last key / drop the line. */
+    static void checkLines(const std::string& path);
     std::string m_path, m_folder;
     mutable std::set<std::pair<std::string, std::string>> m_read;
 };
