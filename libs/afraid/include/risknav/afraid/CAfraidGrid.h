@@ -21,7 +21,7 @@ namespace risknav::afraid {
  *
  *   offset  size  field
  *        0     8  magic "RNAFRAID"
- *        8     4  u32 version (kVersion = 2; version 1 is still read)
+ *        8     4  u32 version (kVersion = 3; versions 1 and 2 are still read)
  *       12    24  f64 x_min, f64 y_min [m], f64 resolution [m] (finite, > 0)
  *       36     8  i32 size_x, i32 size_y [cells] (> 0, product <= kMaxCells)
  *       44     4  u32 runs

@@ -29,7 +29,7 @@ struct TPropagationOptions : public common::CValidatedOptions {
      * cubature5, by measurement: on the paper's Fig. 2 path its covariance is
      * within 1-2 % of a Monte Carlo of the same model for both error models,
      * where linear is off by up to 2.2x (systematic) and unscented by 20 %
-     * (the ratio table: tests/unit/risk/test_propagation.cpp). */
+     * (the ratio table: tests/unit/risk/test_covariance.cpp). */
     std::string propagation = "cubature5";
     int samples = 1000;                ///< draws of `sampled`
     std::string section = "Odometry";  ///< the host section (for messages)
