@@ -10,6 +10,7 @@ PACKAGES=(
   libopencv-dev nlohmann-json3-dev       # images, summary.json
   libgtest-dev libbenchmark-dev          # tests, benchmarks
   xvfb xauth imagemagick time            # headless runs of MRPT's GUI apps, screenshots, peak memory
+  parallel                               # scripts/learn_parallel.sh (GNU parallel)
 )
 
 missing=()

@@ -154,6 +154,135 @@ TEST(AfraidLearnE2E, ResumingFromAnAfraidFileEqualsLearningOnBoth) {
                 readFile(outAB + "/corridor.afraid"));
 }
 
+// Learning at fleet scale: one .afraid per rawlog, merged in any order, equals
+// one run over all the rawlogs, byte for byte; a merge-only run (no rawlog)
+// gives the one run's zones and a report without NaN.
+TEST(AfraidLearnE2E, MergingPerRawlogFilesInAnyOrderEqualsOneRun) {
+    std::vector<std::string> sims, outs;
+    std::string rawlogs, truths;
+    for (int k = 0; k < 3; k++) {
+        sims.push_back(
+            simulateCorridor(freshDir("w" + std::to_string(k)), 1, true, 31 + k));
+        outs.push_back(freshDir("out" + std::to_string(k)));
+        learn(outs.back(), onSim(sims.back()));
+        rawlogs += (k ? " " : "") + sims.back() + "/simulation.rawlog";
+        truths += (k ? " " : "") + sims.back() + "/groundtruth.txt";
+    }
+    const std::string all = freshDir("all");
+    const auto sAll =
+        learn(all, "--set 'AfraidLearn.rawlogs=" + rawlogs +
+                       "' --set 'AfraidLearn.groundtruth_file=" + truths + "'");
+    ASSERT_EQ(sAll["status"], "ok");
+    ASSERT_GT(sAll["events"].get<int>(), 0);  // something to merge
+    const auto merge = [&](const std::string& out, const std::vector<int>& order) {
+        std::string in;
+        for (int k : order)
+            in += (in.empty() ? "" : " ") + outs[size_t(k)] + "/corridor.afraid";
+        return learn(out,
+                     "--set AfraidLearn.rawlogs= --set AfraidLearn.groundtruth_file= "
+                     "--set 'AfraidLearn.afraid_in=" +
+                         in + "'");
+    };
+    const std::string m1 = freshDir("m1"), m2 = freshDir("m2");
+    const auto s1 = merge(m1, {0, 1, 2});
+    const auto s2 = merge(m2, {2, 0, 1});
+    const std::string one = readFile(all + "/corridor.afraid");
+    ASSERT_FALSE(one.empty());
+    EXPECT_TRUE(readFile(m1 + "/corridor.afraid") == one);
+    EXPECT_TRUE(readFile(m2 + "/corridor.afraid") == one);
+    EXPECT_EQ(s1["runs_total"], 3);
+    EXPECT_EQ(s1["events_total"], sAll["events"]);
+    // The same zones (and the same mask) as the one run.
+    EXPECT_EQ(s1["zones"].dump(), sAll["zones"].dump());
+    EXPECT_EQ(s2["zones"].dump(), sAll["zones"].dump());
+    EXPECT_GT(s1["zones"].size(), 0u);
+    for (const char* f : {"zones.csv", "speed_mask.pgm"})
+        EXPECT_TRUE(readFile(m1 + "/" + f) == readFile(all + "/" + f)) << f;
+    // Nothing replayed: counts 0, fractions and errors null, no NaN anywhere.
+    EXPECT_EQ(s1["status"], "ok");
+    EXPECT_EQ(s1["frames"], 0);
+    EXPECT_EQ(s1["events"], 0);
+    EXPECT_EQ(s1["rawlogs"].size(), 0u);
+    EXPECT_EQ(s1["afraid_in"].size(), 3u);
+    const auto& loc = s1["localization"];
+    EXPECT_EQ(loc["localized_frames"], 0);
+    EXPECT_TRUE(loc["localized_fraction"].is_null());
+    EXPECT_TRUE(loc["mean_scan_map_agreement"].is_null());
+    EXPECT_TRUE(loc["mcl_error_mean_m"].is_null());
+    EXPECT_TRUE(loc["final_pose"].is_null());
+    EXPECT_FALSE(loc["diverged"].get<bool>());
+    EXPECT_TRUE(s1["timing"]["frames_per_s"].is_null());
+    const std::string text = readFile(m1 + "/summary.json");
+    EXPECT_EQ(text.find("NaN"), std::string::npos);
+    EXPECT_EQ(text.find("nan"), std::string::npos);
+    EXPECT_EQ(readLines(m1 + "/events.csv").size(), 1u);  // the header only
+    EXPECT_EQ(readLines(m1 + "/trajectory.csv").size(), 1u);
+    EXPECT_FALSE(cv::imread(m1 + "/afraid.png").empty());
+    // A merge-only run over a complete run's folder leaves no route picture of
+    // the earlier run behind (it has no route to draw).
+    ASSERT_TRUE(fs::is_regular_file(all + "/profile.png"));
+    merge(all, {1, 2, 0});
+    EXPECT_FALSE(fs::exists(all + "/profile.png"));
+    EXPECT_FALSE(fs::exists(all + "/speed.png"));
+    EXPECT_TRUE(readFile(all + "/corridor.afraid") == one);
+}
+
+// scripts/learn_parallel.sh: one .afraid per rawlog with GNU parallel, then
+// the merge; the config's own afraid_in counts once. The same .afraid as one
+// run; a failing worker fails the script with one line.
+TEST(AfraidLearnE2E, LearnParallelScriptEqualsOneRun) {
+    ASSERT_EQ(run("parallel --version | grep -q 'GNU parallel'").exitCode, 0)
+        << "GNU parallel is needed (scripts/setup.sh installs it)";
+    const std::string a = simulateCorridor(freshDir("a"), 1, true, 41),
+                      b = simulateCorridor(freshDir("b"), 1, true, 42),
+                      c = simulateCorridor(freshDir("c"), 1, true, 43);
+    // An earlier .afraid (rawlog c) named by the config itself.
+    const std::string earlier = freshDir("earlier");
+    learn(earlier, onSim(c));
+    const std::string w = freshDir("w");
+    std::string ini = readFile(sourcePath("datasets/corridor-doors/afraid.ini"));
+    ini = std::regex_replace(ini, std::regex("corridor\\.gridmap\\.gz"),
+                             sourcePath("datasets/corridor-doors/corridor.gridmap.gz"));
+    ini = std::regex_replace(
+        ini, std::regex("\\[AfraidLearn\\]\n"),
+        "[AfraidLearn]\nafraid_in = " + earlier + "/corridor.afraid\n");
+    writeFile(w + "/fleet.ini", ini);
+    const std::string script = "RISKNAV_LEARN='" + binPath(kLearn) + "' bash '" +
+                               sourcePath("scripts/learn_parallel.sh") + "' ";
+    const std::string out = freshDir("out") + "/with space";
+    const auto r = run(script + "-j 2 '" + w + "/fleet.ini' '" + out + "' '" + a +
+                       "/simulation.rawlog' '" + b + "/simulation.rawlog'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string one = freshDir("one");
+    const auto rOne =
+        run(binPath(kLearn) + " -q -o '" + one + "' --set 'AfraidLearn.rawlogs=" + a +
+            "/simulation.rawlog " + b +
+            "/simulation.rawlog' --set 'AfraidLearn.groundtruth_file=" + a +
+            "/groundtruth.txt " + b + "/groundtruth.txt' '" + w + "/fleet.ini'");
+    ASSERT_EQ(rOne.exitCode, 0) << rOne.err;
+    const auto sOne = readJson(one + "/summary.json");
+    ASSERT_EQ(sOne["runs_total"], 3);
+    const auto s = readJson(out + "/summary.json");
+    EXPECT_EQ(s["runs_total"], 3);
+    EXPECT_EQ(s["zones"].dump(), sOne["zones"].dump());
+    EXPECT_TRUE(readFile(out + "/corridor.afraid") == readFile(one + "/corridor.afraid"));
+    // Per rawlog (both named simulation.rawlog): its own folder, its ground truth.
+    for (const char* k : {"001-simulation", "002-simulation"}) {
+        const auto sk = readJson(out + "/per-rawlog/" + k + "/summary.json");
+        EXPECT_EQ(sk["rawlogs"].size(), 1u) << k;
+        EXPECT_GT(sk["localization"]["mcl_error_samples"].get<int>(), 100) << k;
+    }
+    // A worker fails (a truncated rawlog): non-zero, one line naming it.
+    const std::string full = readFile(b + "/simulation.rawlog");
+    writeFile(w + "/cut.rawlog", full.substr(0, full.size() / 2));
+    const auto bad = run(script + "'" + w + "/fleet.ini' '" + freshDir("bad") + "' '" +
+                         a + "/simulation.rawlog' '" + w + "/cut.rawlog'");
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+    EXPECT_NE(bad.err.find("cut.rawlog"), std::string::npos) << bad.err;
+    EXPECT_NE(bad.err.find("corrupt or truncated rawlog"), std::string::npos) << bad.err;
+}
+
 // config_effective.ini holds every key with the value used (written by the
 // options' saveToConfigFile()): the app run on it reproduces the run byte for
 // byte, --set, --seed and command-line rawlogs included.
@@ -423,6 +552,12 @@ INSTANTIATE_TEST_SUITE_P(
              "no 2D laser scan (CObservation2DRangeScan)"},
         TBad{"missing_rawlog", "--set AfraidLearn.rawlogs=@W/none.rawlog",
              "rawlog not found"},
+        TBad{"afraid_in_twice",
+             "--set 'AfraidLearn.afraid_in=@W/text.afraid @W/./text.afraid'",
+             "given twice"},
+        TBad{"no_rawlog_no_afraid_in",
+             "--set AfraidLearn.rawlogs= --set AfraidLearn.groundtruth_file=",
+             "no rawlog"},
         TBad{"bad_name", "--set AfraidLearn.afraid_name=x.txt",
              "must be a file name ending in .afraid"},
         TBad{"bad_speeds", "--set AfraidLearn.v_safe=1.0", "[AfraidLearn] v_safe"},

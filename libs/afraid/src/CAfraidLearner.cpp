@@ -78,7 +78,10 @@ void CAfraidLearner::TOptions::loadFromConfigFile(const mrpt::config::CConfigFil
     rawlogs.clear();
     for (const auto& r : splitPathList(c, s, "rawlogs", readString(c, s, "rawlogs", "")))
         rawlogs.push_back(configRelativePath(c, r));
-    afraid_in = readPath(c, s, "afraid_in", afraid_in, false);
+    afraid_in.clear();
+    for (const auto& a :
+         splitPathList(c, s, "afraid_in", readString(c, s, "afraid_in", "")))
+        afraid_in.push_back(configRelativePath(c, a));
     afraid_name = readString(c, s, "afraid_name", afraid_name);
     groundtruth_files.clear();
     for (const auto& g : splitPathList(c, s, "groundtruth_file",
@@ -103,7 +106,7 @@ void CAfraidLearner::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c
     map.saveToConfigFile(c, s);
     obstacles.saveToConfigFile(c, s);
     writeKey(c, s, "rawlogs", joinPathList(rawlogs));
-    writeKey(c, s, "afraid_in", afraid_in);
+    writeKey(c, s, "afraid_in", joinPathList(afraid_in));
     writeKey(c, s, "afraid_name", afraid_name);
     writeKey(c, s, "groundtruth_file", joinPathList(groundtruth_files));
     writeKey(c, s, "scan_label", scan_label);
@@ -123,13 +126,22 @@ void CAfraidLearner::TOptions::validate() const {
     map.validate();
     obstacles.validate();
     krr.validate();
-    checkRule(!rawlogs.empty(), s, "rawlogs", "",
-              "no rawlog: give [" + s + "] rawlogs or RAWLOG arguments");
+    // Without rawlogs, a merge-only run of the afraid_in files.
+    checkRule(!rawlogs.empty() || !afraid_in.empty(), s, "rawlogs", "",
+              "no rawlog: give [" + s + "] rawlogs or RAWLOG arguments (or afraid_in " +
+                  "files to merge only)");
     std::error_code ec;
     for (const auto& r : rawlogs)
         checkRule(fs::is_regular_file(r, ec), s, "rawlogs", r, "rawlog not found");
-    checkRule(afraid_in.empty() || fs::is_regular_file(afraid_in, ec), s, "afraid_in",
-              afraid_in, "file not found");
+    std::vector<std::string> seen;
+    for (const auto& a : afraid_in) {
+        checkRule(fs::is_regular_file(a, ec), s, "afraid_in", a, "file not found");
+        // The same file twice would count its experience twice.
+        const std::string canon = fs::weakly_canonical(a, ec).string();
+        checkRule(std::find(seen.begin(), seen.end(), canon) == seen.end(), s,
+                  "afraid_in", a, "given twice (its experience would count twice)");
+        seen.push_back(canon);
+    }
     checkRule(afraid_name.find('/') == std::string::npos && afraid_name.size() >= 8 &&
                   endsWith(afraid_name, ".afraid"),
               s, "afraid_name", afraid_name, "must be a file name ending in .afraid");
@@ -199,17 +211,20 @@ void CAfraidLearner::prepare() {
     // the map side of the scan-to-map agreement.
     m_field = mapping::CDistanceField(m_map, options.obstacles);
     m_new = CAfraidGrid(m_map);
-    m_old = CAfraidGrid();
-    if (!options.afraid_in.empty()) {
+    // The earlier files, added up one at a time (integer counts: the sum does
+    // not depend on the order).
+    m_old = CAfraidGrid(m_map);
+    for (const auto& file : options.afraid_in) {
+        CAfraidGrid g;
         try {
-            m_old = CAfraidGrid::load(options.afraid_in);
+            g = CAfraidGrid::load(file);
         } catch (const std::exception& e) {
             throw CBadInputError(e.what());
         }
-        if (!m_old.sameGeometry(m_new))
-            throw CBadInputError(options.afraid_in + ": learned on another map (" +
-                                 m_old.geometryText() +
+        if (!g.sameGeometry(m_new))
+            throw CBadInputError(file + ": learned on another map (" + g.geometryText() +
                                  "; this map: " + m_new.geometryText() + ")");
+        m_old.merge(g);
     }
     m_gt.clear();
     for (const auto& file : options.groundtruth_files) {
@@ -257,7 +272,7 @@ void CAfraidLearner::run(bool quiet) {
     }
     m_replaySeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!m_sawScan && m_error.empty())
+    if (!o.rawlogs.empty() && !m_sawScan && m_error.empty())
         throw CBadInputError(
             o.rawlogs.front() + (o.rawlogs.size() > 1 ? " (and the others)" : "") +
             ": no 2D laser scan (CObservation2DRangeScan" +
@@ -402,6 +417,11 @@ bool CAfraidLearner::diverged() const {
 }
 
 void CAfraidLearner::generalize() {
+    // This run's experience plus the earlier files'. Every count (and runs,
+    // frames) is a sum, and each rawlog's replay depends only on the rawlog
+    // (its filter seed on its name and size, the detector and the filter reset
+    // per rawlog): one .afraid per rawlog, merged in any order, equals one run
+    // over all of them, byte for byte.
     m_grid = m_new;
     if (!options.afraid_in.empty())
         m_grid.merge(m_old);

@@ -253,11 +253,13 @@ json summaryJson(const CAfraidLearner& l, const std::string& afraidFile,
     j["error"] = l.error();
     j["rawlogs"] = l.processedRawlogs();  // those replayed (the last maybe in part)
     j["frames"] = l.frames();
+    // Without replayed frames (a merge-only run) the counts are 0 and the
+    // fractions and errors null: nothing was localized, nothing is measured.
     j["localization"] = {
         {"localized_frames", l.localizedFrames()},
         {"localized_fraction",
-         l.frames() ? double(l.localizedFrames()) / l.frames() : 0.0},
-        {"mean_scan_map_agreement", l.meanMatch()},
+         l.frames() ? json(double(l.localizedFrames()) / l.frames()) : json(nullptr)},
+        {"mean_scan_map_agreement", finite(l.meanMatch())},
         {"diverged", l.diverged()},
         {"mcl_error_mean_m", finite(l.mclErrorMean())},
         {"mcl_error_max_m", finite(l.mclErrorMax())},
@@ -340,18 +342,38 @@ void runAfraidLearnApp(const TAppContext& ctx) {
     out.writeText("config_effective.ini", effectiveConfigText(ctx.cfg.path(), effective));
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    summary["timing"] = {
-        {"wall_time_s", wall},
-        {"replay_s", l.replaySeconds()},
-        {"frames_per_s", l.replaySeconds() > 0 ? l.frames() / l.replaySeconds() : 0.0}};
+    summary["timing"] = {{"wall_time_s", wall},
+                         {"replay_s", l.replaySeconds()},
+                         {"frames_per_s", l.frames() && l.replaySeconds() > 0
+                                              ? json(l.frames() / l.replaySeconds())
+                                              : json(nullptr)}};
     summary["outputs"] = out.stagedNames();
     summary["outputs"].push_back("summary.json");
     out.writeText("summary.json", jsonText(summary));
     out.commit();
+    // Without a route (a merge-only run, or too few localized frames) there is
+    // no profile.png and speed.png: an earlier run's are removed, so that the
+    // folder does not mix runs.
+    if (!l.partial() && summary["profile_axis"].is_null()) {
+        std::error_code ec;
+        for (const char* f : {"profile.png", "speed.png"})
+            std::filesystem::remove(out.finalPath(f), ec);
+    }
     if (l.partial())  // results up to the bad entry are saved, marked partial
         throw CBadInputError(l.error() + "; partial results in " +
                              out.finalPath("partial"));
-    if (!ctx.args.quiet)
+    if (ctx.args.quiet)
+        return;
+    const auto& g = l.grid();
+    if (l.options.rawlogs.empty())  // merge only
+        std::fprintf(stderr,
+                     "%s: merged %zu .afraid files (%u runs, %llu frames, %llu events), "
+                     "%zu zones -> %s\n",
+                     ctx.info.name.c_str(), l.options.afraid_in.size(), g.runs,
+                     static_cast<unsigned long long>(g.frames),
+                     static_cast<unsigned long long>(g.totalRobotEvents()),
+                     l.zones().size(), out.dir().c_str());
+    else
         std::fprintf(stderr, "%s: %zu frames, %zu events, %zu zones%s -> %s\n",
                      ctx.info.name.c_str(), l.frames(), l.events().size(),
                      l.zones().size(), l.diverged() ? " (LOCALIZATION DIVERGED)" : "",

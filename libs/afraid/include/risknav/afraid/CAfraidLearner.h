@@ -59,7 +59,11 @@ class CAfraidLearner {
         /** Absolute paths; relative ones in the file resolve against its folder.
          * Whitespace-separated, "double quotes" keep a path with spaces. */
         std::vector<std::string> rawlogs;
-        std::string afraid_in;  ///< earlier .afraid file to start from ("" = none)
+        /** Earlier .afraid files to start from (key afraid_in, a list like
+         * rawlogs; empty = none): all are added up (integer counts, so the order
+         * does not matter), once each. With afraid_in, rawlogs may be empty: a
+         * merge-only run (merge, generalize, report). */
+        std::vector<std::string> afraid_in;
         std::string afraid_name = "learned.afraid";  ///< a file name ending in .afraid
         /** Optional "t x y phi" files for the MCL error (key groundtruth_file):
          * one per rawlog, in the same order. */
@@ -87,8 +91,9 @@ class CAfraidLearner {
                                 const std::string& section) override;
         void saveToConfigFile(mrpt::config::CConfigFileBase& c,
                               const std::string& section) const override;
-        /** Ranges, v_safe <= v_max, the afraid_name form, at least one rawlog,
-         * and that every named input file exists. */
+        /** Ranges, v_safe <= v_max, the afraid_name form, at least one rawlog
+         * or one afraid_in file, no afraid_in file twice, and that every named
+         * input file exists. */
         void validate() const override;
     };
 
@@ -108,14 +113,17 @@ class CAfraidLearner {
     /** Every options struct's validate(). Throws CConfigKeyError. */
     void validate() const;
     /** validate(), then loads the map, its distance field, the earlier .afraid
-     * file and the ground truth. Run again after changing options. Throws
+     * files (added up) and the ground truth. Run again after changing options. Throws
      * CConfigKeyError or CBadInputError (a file that cannot be used). */
     void prepare();
 
-    /** Replays every rawlog. A corrupt rawlog stops the replay: partial()
-     * becomes true and error() says where; what was learned so far stays. */
+    /** Replays every rawlog (none in a merge-only run). A corrupt rawlog stops
+     * the replay: partial() becomes true and error() says where; what was
+     * learned so far stays. */
     void run(bool quiet);
-    /** Merges the earlier grid (if any), regresses and finds zones. */
+    /** Adds the earlier grids (if any) to this run's, regresses and finds zones.
+     * The merged counts do not depend on the order of rawlogs or afraid_in
+     * files, so N per-rawlog runs merged equal one run over the N rawlogs. */
     void generalize();
 
     const mrpt::maps::COccupancyGridMap2D& map() const { return m_map; }
@@ -139,7 +147,8 @@ class CAfraidLearner {
     double mclErrorMean() const { return m_errN ? m_errSum / m_errN : std::nan(""); }
     double mclErrorMax() const { return m_errN ? m_errMax : std::nan(""); }
     size_t mclErrorSamples() const { return m_errN; }
-    double meanMatch() const { return m_frames ? m_matchSum / m_frames : 0.0; }
+    /** Mean scan-to-map agreement (NaN without frames, e.g. a merge-only run). */
+    double meanMatch() const { return m_frames ? m_matchSum / m_frames : std::nan(""); }
     double replaySeconds() const { return m_replaySeconds; }
     /** The learned level at a world point (0 off the map). */
     double levelAt(double x, double y) const;
