@@ -75,8 +75,8 @@ class CAfraidLearner {
         double diverged_fraction =
             0.5;                   ///< more frames than this not localized: MCL diverged
         TKrrOptions krr;           ///< kernel_bandwidth, kernel_lambda, kernel_cutoff
-        double sample_bin = 0.25;  ///< [m] exposure and events are pooled in bins this
-                                   ///< size before regression
+        double sample_bin = 0.25;  ///< [m] passes and obstacle events are pooled in
+                                   ///< bins this size before regression
         double zone_threshold = 0.04;  ///< level above which a cell is in a zone
         double v_max = 0.8;            ///< [m/s] speed outside the zones (eq. 13)
         double v_safe = 0.2;           ///< [m/s] speed inside the zones (eq. 13)
