@@ -23,10 +23,13 @@ json=$(mktemp)
 build/bin/risknav_bench_risk --benchmark_format=json --benchmark_out="$json" --benchmark_out_format=json >/dev/null
 python3 - "$json" <<'PY'
 import json, sys
-b = {x["name"].split("/")[0]: x for x in json.load(open(sys.argv[1]))["benchmarks"]}
+all_ = json.load(open(sys.argv[1]))["benchmarks"]
+b = {x["name"].split("/")[0]: x for x in all_}
 fast, brute = b["BM_DmaxFast_1000Poses"]["real_time"], b["BM_DmaxBruteForce_1000Poses"]["real_time"]
 print("D_max, 1000 poses, 1000 x 1000 grid, 5 %% obstacles: fast %.3f ms, brute force %.1f ms: %.0fx" % (fast, brute, brute / fast))
-print("50 m route at 5 cm steps: %.2f ms" % b["BM_Route50m"]["real_time"])
+for x in all_:
+    if x["name"].startswith("BM_Route50m"):
+        print("50 m route at 5 cm steps, %s: %.2f ms" % (x.get("label", x["name"]), x["real_time"]))
 PY
 rm -f "$json"
 
@@ -39,7 +42,7 @@ build/bin/risknav_bench_afraid
 tmp=$(mktemp -d)
 cat > "$tmp/pf.ini" <<INI
 [KLD_options]
-KLD_binSize_PHI_deg=10
+KLD_binSize_PHI=10
 KLD_binSize_XY=0.10
 KLD_delta=0.01
 KLD_epsilon=0.01
