@@ -38,7 +38,10 @@ struct TBuckets {
     double size;
     std::unordered_map<long long, std::vector<size_t>> cells;
     static long long key(long long i, long long j) {
-        return (i << 32) ^ (j & 0xffffffffLL);
+        // Shift the bits as unsigned: a negative i shifted left is undefined.
+        return static_cast<long long>(
+            (static_cast<unsigned long long>(i) << 32) ^
+            (static_cast<unsigned long long>(j) & 0xffffffffULL));
     }
     TBuckets(const std::vector<TKrrSample>& s, double sz) : size(sz) {
         for (size_t k = 0; k < s.size(); k++)

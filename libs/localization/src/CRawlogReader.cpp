@@ -41,10 +41,10 @@ std::optional<TRawlogFrame> CRawlogReader::next() {
     // is a corrupt or truncated rawlog.
     auto arch = mrpt::serialization::archiveFrom(*m_in);
     auto readObject = [&](bool eofAllowed) -> mrpt::serialization::CSerializable::Ptr {
+        mrpt::serialization::CSerializable::Ptr o;
         try {
-            auto o = arch.ReadObject();
+            o = arch.ReadObject();
             m_entry++;
-            return o;
         } catch (const mrpt::serialization::CExceptionEOF&) {
             if (eofAllowed)
                 return nullptr;
@@ -56,6 +56,12 @@ std::optional<TRawlogFrame> CRawlogReader::next() {
                                      std::to_string(m_entry) + " (" + firstMessage(e) +
                                      ")");
         }
+        // MRPT serializes a null pointer as a valid "null object": in a rawlog
+        // it is corruption, never an end of file (nor a frame to dereference).
+        if (!o)
+            throw std::runtime_error(m_path + ": corrupt rawlog at entry " +
+                                     std::to_string(m_entry - 1) + " (a null object)");
+        return o;
     };
     while (!m_eof) {
         const auto o = readObject(true);

@@ -170,3 +170,42 @@ TEST(CRawlogReader, FramesThatCannotBeRealAreErrorsWhereTheyAppear) {
         EXPECT_NE(err.find(why[int(bad)]), std::string::npos) << err;
     }
 }
+
+TEST(CRawlogReader, ANullObjectIsCorruptionNotTheEnd) {
+    // MRPT writes a null pointer as a "null object". After an action it used to
+    // crash the reader; between frames it read as a clean end of file.
+    const auto log = makeLog(6);
+    for (const bool afterAction : {true, false}) {
+        const std::string f = risknav::test::freshDir("null") + "/null.rawlog";
+        {
+            mrpt::io::CFileGZOutputStream out(f);
+            auto a = mrpt::serialization::archiveFrom(out);
+            for (size_t k = 0; k < log.odo.size(); k++) {
+                mrpt::obs::CActionCollection acts;
+                mrpt::obs::CActionRobotMovement2D mv;
+                mv.computeFromOdometry(CPose2D(0.05, 0, 0), {});
+                acts.insert(mv);
+                mrpt::obs::CSensoryFrame sf;
+                sf.insert(log.scans[k]);
+                if (k == 3 && !afterAction)
+                    a.WriteObject(nullptr);
+                a << acts;
+                if (k == 3 && afterAction)
+                    a.WriteObject(nullptr);
+                else
+                    a << sf;
+            }
+        }
+        CRawlogReader r(f);
+        size_t good = 0;
+        std::string err;
+        try {
+            while (r.next())
+                good++;
+        } catch (const std::runtime_error& e) {
+            err = e.what();
+        }
+        EXPECT_EQ(good, 3u) << afterAction;
+        EXPECT_NE(err.find("a null object"), std::string::npos) << err;
+    }
+}
