@@ -175,8 +175,9 @@ COccupancyGridMap2D fromRosYaml(const std::string& file) {
     if (img.is_relative())
         img = fs::path(file).parent_path() / img;
     const double res = number("resolution", need("resolution"));
-    if (!(res > 0))
-        throw CBadInputError(file + ": map YAML resolution must be > 0");
+    if (!(res >= 0.001 && res <= 10))
+        throw CBadInputError(file + ": map YAML resolution '" + need("resolution") +
+                             "' must be in [0.001, 10] m");
     std::string o = need("origin");
     std::replace(o.begin(), o.end(), '[', ' ');
     std::replace(o.begin(), o.end(), ']', ' ');
@@ -185,6 +186,8 @@ COccupancyGridMap2D fromRosYaml(const std::string& file) {
     double ox = 0, oy = 0, oyaw = 0;
     if (!(os >> ox >> oy))
         throw CBadInputError(file + ": map YAML origin must be [x, y, yaw]");
+    if (!(std::abs(ox) <= 1e6 && std::abs(oy) <= 1e6))
+        throw CBadInputError(file + ": map YAML origin x, y must be in [-1e6, 1e6] m");
     os >> oyaw;
     if (oyaw != 0.0)
         throw CBadInputError(file + ": map YAML origin yaw != 0 is not supported");
@@ -193,8 +196,21 @@ COccupancyGridMap2D fromRosYaml(const std::string& file) {
         rp.occupied = number("occupied_thresh", kv["occupied_thresh"]);
     if (kv.count("free_thresh"))
         rp.free = number("free_thresh", kv["free_thresh"]);
-    if (kv.count("negate"))
-        rp.negate = kv["negate"] == "1" || kv["negate"] == "true";
+    // map_server's thresholds are probabilities in [0, 1], free below occupied;
+    // anything else (nan, inf, 2) would silently turn every wall into unknown.
+    for (const auto& [k, v] :
+         {std::pair{"occupied_thresh", rp.occupied}, std::pair{"free_thresh", rp.free}})
+        if (!(v >= 0 && v <= 1))
+            throw CBadInputError(file + ": map YAML " + k + " = '" + kv[k] +
+                                 "' must be in [0, 1]");
+    if (!(rp.free < rp.occupied))
+        throw CBadInputError(file + ": map YAML free_thresh must be < occupied_thresh");
+    if (kv.count("negate")) {
+        const std::string n = kv["negate"];
+        if (n != "0" && n != "1" && n != "true" && n != "false")
+            throw CBadInputError(file + ": map YAML negate = '" + n + "' must be 0 or 1");
+        rp.negate = n == "1" || n == "true";
+    }
     const std::string mode = kv.count("mode") ? kv["mode"] : "trinary";
     if (mode != "trinary" && mode != "scale")
         throw CBadInputError(file + ": map YAML mode '" + mode +

@@ -122,3 +122,34 @@ TEST(GridIO, MrptSimplemapDataset) {
     EXPECT_GT(occupied, 1000u);
     EXPECT_GT(freeCells, 10000u);
 }
+
+// map_server YAML values that would silently change the map (every wall
+// unknown, no obstacle) or break MRPT's grid arithmetic: refused, one line.
+TEST(GridIO, RosYamlValuesOutOfRangeAreRefused) {
+    const std::string d = freshDir("m");
+    makePng(d);
+    const std::string ok = "image: m.png\nresolution: 0.05\norigin: [1.0, 2.0, 0.0]\n";
+    TMapSourceOptions s;
+    s.map_file = d + "/m.yaml";
+    for (const auto& [extra, what] : std::vector<std::pair<std::string, std::string>>{
+             {"occupied_thresh: nan\n", "occupied_thresh = 'nan' must be in [0, 1]"},
+             {"occupied_thresh: inf\n", "occupied_thresh = 'inf' must be in [0, 1]"},
+             {"occupied_thresh: 2\n", "occupied_thresh = '2' must be in [0, 1]"},
+             {"free_thresh: -0.1\n", "free_thresh = '-0.1' must be in [0, 1]"},
+             {"free_thresh: 0.9\noccupied_thresh: 0.65\n", "free_thresh must be <"},
+             {"negate: maybe\n", "negate = 'maybe' must be 0 or 1"}}) {
+        writeFile(d + "/m.yaml", ok + extra);
+        try {
+            loadOccupancyGrid(s);
+            ADD_FAILURE() << "accepted: " << extra;
+        } catch (const CBadInputError& e) {
+            EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+        }
+    }
+    writeFile(d + "/m.yaml",
+              "image: m.png\nresolution: 1e-300\norigin: [1.0, 2.0, 0.0]\n");
+    EXPECT_THROW(loadOccupancyGrid(s), CBadInputError);
+    writeFile(d + "/m.yaml",
+              "image: m.png\nresolution: 0.05\norigin: [1e300, 2.0, 0.0]\n");
+    EXPECT_THROW(loadOccupancyGrid(s), CBadInputError);
+}
