@@ -1,6 +1,8 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/COutputDir.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -54,17 +56,29 @@ COutputDir::COutputDir(const std::string& dir) : m_dir(dir) {
         throw CBadInputError(dir + ": output folder is not writable");
     f.close();
     fs::remove(probe, ec);
+    // One run per folder at a time: a lock on the folder itself (no file to
+    // leave behind; the lock dies with the process).
+    m_lockFd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (m_lockFd < 0)
+        throw CBadInputError(dir + ": cannot open the output folder");
+    if (::flock(m_lockFd, LOCK_EX | LOCK_NB) != 0) {
+        ::close(m_lockFd);
+        m_lockFd = -1;
+        throw CBadInputError(dir +
+                             ": the output folder is in use by another risknav run");
+    }
     for (const auto& e : fs::directory_iterator(dir, ec))
         if (e.is_regular_file(ec) && staleTemporary(e.path()))
             fs::remove(e.path(), ec);
 }
 
 COutputDir::~COutputDir() {
-    if (m_committed)
-        return;
     std::error_code ec;
-    for (const auto& [tmp, fin] : m_staged)
-        fs::remove(tmp, ec);
+    if (!m_committed)
+        for (const auto& [tmp, fin] : m_staged)
+            fs::remove(tmp, ec);
+    if (m_lockFd >= 0)
+        ::close(m_lockFd);
 }
 
 std::string COutputDir::finalPath(const std::string& name) const {

@@ -18,7 +18,10 @@ nlohmann::json summaryHeader(const TAppContext& ctx, uint64_t seed) {
 }
 
 std::string jsonText(const nlohmann::json& j) {
-    return j.dump(2) + "\n";
+    // Text from configs and files (a route name, a file name, a sensor label)
+    // may not be UTF-8: such bytes become U+FFFD instead of an exception that
+    // would lose the run's results.
+    return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace risknav::common

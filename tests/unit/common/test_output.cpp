@@ -2,6 +2,7 @@
 #include <risknav/common/CCsvWriter.h>
 #include <risknav/common/COutputDir.h>
 #include <risknav/common/CProgress.h>
+#include <risknav/common/summary_json.h>
 
 #include <gtest/gtest.h>
 
@@ -123,4 +124,31 @@ TEST(COutputDir, CommitIntoASubfolderLeavesTheFolderAlone) {
     EXPECT_EQ(readFile(d + "/partial/zones.csv"), "partial run");
     EXPECT_FALSE(std::filesystem::exists(d + "/partial/old.csv"));
     EXPECT_EQ(listDir(d), (std::vector<std::string>{"partial", "zones.csv"}));
+}
+
+TEST(SummaryJson, NonUtf8TextIsReplacedNotThrown) {
+    nlohmann::json j;
+    j["route"] = std::string("caf\xe9 \xff route");  // Latin-1, not UTF-8
+    const std::string t = jsonText(j);
+    EXPECT_NE(t.find("caf\xef\xbf\xbd \xef\xbf\xbd route"), std::string::npos) << t;
+    EXPECT_NO_THROW(nlohmann::json::parse(t));
+}
+
+TEST(COutputDir, OneRunPerFolderAtATime) {
+    const std::string d = freshDir("out");
+    {
+        COutputDir first(d);
+        try {
+            COutputDir second(d);
+            FAIL() << "a second run got the folder";
+        } catch (const CBadInputError& e) {
+            EXPECT_NE(std::string(e.what()).find("in use by another risknav run"),
+                      std::string::npos);
+        }
+        first.writeText("a.txt", "x");
+        first.commit();
+    }
+    // Released with the first: the folder holds only the results.
+    EXPECT_EQ(listDir(d), (std::vector<std::string>{"a.txt"}));
+    EXPECT_NO_THROW(COutputDir again(d));
 }

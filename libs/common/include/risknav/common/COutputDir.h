@@ -13,7 +13,9 @@ namespace risknav::common {
 class COutputDir {
   public:
     /** Creates the folder (and parents). Throws CBadInputError if it cannot
-     * (e.g. the path is a file or not writable). Removes the temporaries that
+     * (e.g. the path is a file or not writable) or if another run holds it
+     * (flock on the folder, held until this object is destroyed: two runs
+     * into one folder would mix their files). Removes the temporaries that
      * runs which died before their commit (killed, crashed) left behind. */
     explicit COutputDir(const std::string& dir);
     ~COutputDir();
@@ -41,6 +43,7 @@ class COutputDir {
     std::vector<std::pair<std::string, std::string>> m_staged;  // (temp, final name)
     std::string m_sub;  // commit into this subfolder ("" = the folder itself)
     bool m_committed = false;
+    int m_lockFd = -1;
 };
 
 /** Writes `content` to `path` through a temporary file + rename. */
