@@ -19,6 +19,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 namespace fs = std::filesystem;
 using mrpt::maps::COccupancyGridMap2D;
@@ -270,9 +271,15 @@ mrpt::maps::COccupancyGridMap2D loadOccupancyGrid(const TMapSourceOptions& src) 
 }
 
 void saveGridmapGz(const mrpt::maps::COccupancyGridMap2D& g, const std::string& path) {
-    mrpt::io::CFileGZOutputStream f(path);
-    auto a = mrpt::serialization::archiveFrom(f);
-    a << g;
+    try {
+        mrpt::io::CFileGZOutputStream f(path);
+        auto a = mrpt::serialization::archiveFrom(f);
+        a << g;
+    } catch (const std::exception&) {
+        // MRPT says only "Cannot write bytes to stream!": name the file.
+        throw std::runtime_error("cannot write " + path +
+                                 " (disk full or file system error)");
+    }
 }
 
 }  // namespace risknav::common

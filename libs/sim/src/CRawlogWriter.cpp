@@ -13,8 +13,14 @@ CRawlogWriter::CRawlogWriter(const std::string& path, int level)
 
 void CRawlogWriter::write(const mrpt::obs::CActionCollection& actions,
                           const mrpt::obs::CSensoryFrame& sf) {
-    auto a = mrpt::serialization::archiveFrom(*m_file);
-    a << actions << sf;
+    try {
+        auto a = mrpt::serialization::archiveFrom(*m_file);
+        a << actions << sf;
+    } catch (const std::exception&) {
+        // MRPT says only "Cannot write bytes to stream!" (a full disk): name the file.
+        throw std::runtime_error("cannot write rawlog " + m_path +
+                                 " (disk full or file system error)");
+    }
     m_frames++;
 }
 

@@ -1,5 +1,6 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/mapping/scan_points.h>
+#include <risknav/sim/CRawlogWriter.h>
 #include <risknav/sim/CSafetyMonitor.h>
 #include <risknav/sim/CSimRobotInterface.h>
 #include <risknav/sim/CSimWorld.h>
@@ -232,4 +233,23 @@ TEST(SafetyMonitor, DoorPedestrianEnteringTheStoppingCorridorIsLoggedOnce) {
     EXPECT_EQ(m.corridorEntries()[0].source, "DoorPedestrian1");
     m.updateCorridor(1.8, TPose2D(0.9, 0, 0), 0.5, 0.25, reach, halfW, agents);
     EXPECT_EQ(m.corridorEntries().size(), 1u);  // once per person
+}
+
+TEST(CRawlogWriter, AFullDiskNamesTheFile) {
+    // /dev/full fails every write with ENOSPC: the error names the file.
+    std::string err;
+    try {
+        CRawlogWriter w("/dev/full", 0);
+        mrpt::obs::CActionCollection acts;
+        mrpt::obs::CSensoryFrame sf;
+        auto scan = mrpt::obs::CObservation2DRangeScan::Create();
+        scan->resizeScan(2000);
+        sf.insert(scan);
+        for (int i = 0; i < 200; i++)  // beyond any buffer
+            w.write(acts, sf);
+        w.close();
+    } catch (const std::runtime_error& e) {
+        err = e.what();
+    }
+    EXPECT_NE(err.find("/dev/full"), std::string::npos) << err;
 }
