@@ -4,6 +4,7 @@
 
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/io/CMemoryStream.h>
 #include <mrpt/maps/CSimpleMap.h>
 #include <mrpt/serialization/CArchive.h>
 
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -223,14 +225,76 @@ COccupancyGridMap2D fromRosYaml(const std::string& file) {
                      rp);
 }
 
+// The largest grid risknav reads (cells): 25 M, e.g. 250 m x 250 m at 5 cm.
+constexpr uint64_t kMaxGridCells = 25'000'000;
+
+// A .gridmap is MRPT's serialized COccupancyGridMap2D. Its header (class name,
+// version 6: bits per cell, size_x, size_y, bounds, resolution) is checked
+// BEFORE MRPT deserializes it: a corrupt header (zeroed, resolution 0, huge
+// sizes) made MRPT allocate gigabytes. The file is decompressed into memory
+// no further than the largest grid needs.
 COccupancyGridMap2D fromGridmap(const std::string& file) {
-    COccupancyGridMap2D g;
+    std::string bytes;
     try {
         mrpt::io::CFileGZInputStream f(file);
-        auto a = mrpt::serialization::archiveFrom(f);
-        a >> g;
-    } catch (const std::exception& e) {
+        const size_t cap = size_t(kMaxGridCells) + (1u << 20);
+        char buf[1 << 16];
+        for (size_t n; (n = f.Read(buf, sizeof(buf))) > 0;) {
+            bytes.append(buf, n);
+            if (bytes.size() > cap)
+                throw CBadInputError(file +
+                                     ": larger than the largest map risknav reads (" +
+                                     std::to_string(kMaxGridCells) + " cells)");
+        }
+    } catch (const CBadInputError&) {
+        throw;
+    } catch (const std::exception&) {
         throw CBadInputError(file + ": not a readable MRPT .gridmap file");
+    }
+    const std::string name = "mrpt::maps::COccupancyGridMap2D";
+    const size_t h = 1 + name.size();  // length byte (0x80 | len) + class name
+    auto bad = [&](const std::string& why) {
+        return CBadInputError(file + ": not a readable MRPT .gridmap file (" + why + ")");
+    };
+    if (bytes.size() < h + 2 + 8 + 20 || uint8_t(bytes[0]) != (0x80 | name.size()) ||
+        bytes.compare(1, name.size(), name) != 0)
+        throw bad("no COccupancyGridMap2D header");
+    if (uint8_t(bytes[h]) == 6) {  // the version MRPT 2.5 writes
+        auto u32 = [&](size_t o) {
+            uint32_t v = 0;
+            for (int k = 3; k >= 0; k--)
+                v = (v << 8) | uint8_t(bytes[o + size_t(k)]);
+            return v;
+        };
+        auto f32 = [&](size_t o) {
+            const uint32_t u = u32(o);
+            float v;
+            std::memcpy(&v, &u, 4);
+            return double(v);
+        };
+        const size_t o = h + 2;  // after the version and the bits-per-cell byte
+        const uint64_t sx = u32(o), sy = u32(o + 4);
+        const double x0 = f32(o + 8), x1 = f32(o + 12), y0 = f32(o + 16),
+                     y1 = f32(o + 20), res = f32(o + 24);
+        if (!(res >= 0.001 && res <= 10))
+            throw bad("resolution " + std::to_string(res) + " m");
+        if (!(std::abs(x0) <= 1e6 && std::abs(x1) <= 1e6 && std::abs(y0) <= 1e6 &&
+              std::abs(y1) <= 1e6 && x0 < x1 && y0 < y1))
+            throw bad("map bounds");
+        if (sx == 0 || sy == 0 || sx * sy > kMaxGridCells)
+            throw bad(std::to_string(sx) + " x " + std::to_string(sy) + " cells");
+        if (sx * sy * (uint8_t(bytes[h + 1]) / 8) > bytes.size() - (o + 28))
+            throw bad("truncated: " + std::to_string(sx) + " x " + std::to_string(sy) +
+                      " cells announced");
+    }
+    COccupancyGridMap2D g;
+    try {
+        mrpt::io::CMemoryStream m;
+        m.assignMemoryNotOwn(bytes.data(), bytes.size());
+        auto a = mrpt::serialization::archiveFrom(m);
+        a >> g;
+    } catch (const std::exception&) {
+        throw bad("corrupt");
     }
     return g;
 }

@@ -1,7 +1,12 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/grid_io.h>
 
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+
 #include <gtest/gtest.h>
+
+#include <cstring>
 #include <opencv2/imgcodecs.hpp>
 
 #include "test_support.h"
@@ -152,4 +157,51 @@ TEST(GridIO, RosYamlValuesOutOfRangeAreRefused) {
     writeFile(d + "/m.yaml",
               "image: m.png\nresolution: 0.05\norigin: [1e300, 2.0, 0.0]\n");
     EXPECT_THROW(loadOccupancyGrid(s), CBadInputError);
+}
+
+// A corrupt .gridmap header is refused before MRPT allocates what it claims
+// (a zeroed tail or resolution 0 used to make it ask for gigabytes).
+TEST(GridIO, CorruptGridmapHeadersAreRefusedBeforeAllocating) {
+    const std::string d = freshDir("gm");
+    const std::string ok =
+        readFile(sourcePath("datasets/corridor-doors/corridor.gridmap.gz"));
+    std::string raw;
+    {
+        mrpt::io::CFileGZInputStream f(
+            sourcePath("datasets/corridor-doors/corridor.gridmap.gz"));
+        char buf[4096];
+        for (size_t n; (n = f.Read(buf, sizeof(buf))) > 0;)
+            raw.append(buf, n);
+    }
+    const size_t o = 1 + 31 + 2;  // name, version, bits per cell
+    auto writeGz = [&](const std::string& name, const std::string& bytes) {
+        mrpt::io::CFileGZOutputStream f(d + "/" + name);
+        f.Write(bytes.data(), bytes.size());
+        return d + "/" + name;
+    };
+    TMapSourceOptions s;
+    auto refused = [&](const std::string& path, const std::string& what) {
+        s.map_file = path;
+        try {
+            loadOccupancyGrid(s);
+            ADD_FAILURE() << "accepted " << path;
+        } catch (const CBadInputError& e) {
+            EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+        }
+    };
+    std::string huge = raw;
+    const uint32_t big = 40000;
+    std::memcpy(&huge[o], &big, 4);
+    std::memcpy(&huge[o + 4], &big, 4);
+    refused(writeGz("huge.gridmap.gz", huge), "40000 x 40000 cells");
+    std::string zeroRes = raw;
+    std::memset(&zeroRes[o + 24], 0, 4);
+    refused(writeGz("res0.gridmap.gz", zeroRes), "resolution");
+    refused(writeGz("cut.gridmap.gz", raw.substr(0, o + 28 + 1000)), "truncated");
+    std::string zeroTail = raw;
+    std::fill(zeroTail.begin() + o, zeroTail.end(), '\0');
+    refused(writeGz("zeros.gridmap.gz", zeroTail), "not a readable MRPT .gridmap file");
+    // The intact file still loads.
+    s.map_file = writeGz("ok.gridmap.gz", raw);
+    EXPECT_EQ(loadOccupancyGrid(s).getSizeX(), 600u);
 }
