@@ -111,16 +111,44 @@ void COutputDir::commit() {
         if (!fs::is_directory(folder))
             throw std::runtime_error("cannot create " + folder.string());
     }
+    // The run's files appear as one set: earlier files of the same names are
+    // first moved aside, then the new ones renamed in; if any step fails,
+    // everything is put back as it was.
+    std::vector<std::pair<std::string, std::string>> placed,
+        asideOf;  // (tmp, fin), (aside, fin)
+    auto rollback = [&] {
+        std::error_code e2;
+        for (auto it = placed.rbegin(); it != placed.rend(); ++it)
+            fs::rename(it->second, it->first, e2);
+        for (const auto& [aside, fin] : asideOf)
+            fs::rename(aside, fin, e2);
+    };
     for (const auto& [tmp, finName] : m_staged) {
         const std::string fin =
             m_sub.empty()
                 ? finName
                 : (fs::path(m_dir) / m_sub / fs::path(finName).filename()).string();
+        if (fs::exists(fin, ec)) {
+            const std::string aside =
+                tempName(fs::path(fin).parent_path() /
+                         ("old-" + fs::path(fin).filename().string()));
+            fs::rename(fin, aside, ec);
+            if (ec) {
+                rollback();
+                throw std::runtime_error("cannot replace " + fin + ": " + ec.message());
+            }
+            asideOf.emplace_back(aside, fin);
+        }
         fs::rename(tmp, fin, ec);
-        if (ec)
+        if (ec) {
+            rollback();
             throw std::runtime_error("cannot rename " + tmp + " to " + fin + ": " +
                                      ec.message());
+        }
+        placed.emplace_back(tmp, fin);
     }
+    for (const auto& [aside, fin] : asideOf)
+        fs::remove(aside, ec);
     m_committed = true;
 }
 

@@ -152,3 +152,21 @@ TEST(COutputDir, OneRunPerFolderAtATime) {
     EXPECT_EQ(listDir(d), (std::vector<std::string>{"a.txt"}));
     EXPECT_NO_THROW(COutputDir again(d));
 }
+
+TEST(COutputDir, ACommitThatFailsPutsEverythingBack) {
+    const std::string d = freshDir("out");
+    writeFile(d + "/a.txt", "earlier a");
+    writeFile(d + "/b.txt", "earlier b");
+    {
+        COutputDir out(d);
+        out.writeText("a.txt", "new a");
+        out.writeText("b.txt", "new b");
+        // The second file's temporary vanishes before the commit: the commit
+        // fails half-way, and the first file must not stay replaced.
+        std::filesystem::remove(out.stage("b.txt"));
+        EXPECT_THROW(out.commit(), std::runtime_error);
+    }
+    EXPECT_EQ(readFile(d + "/a.txt"), "earlier a");
+    EXPECT_EQ(readFile(d + "/b.txt"), "earlier b");
+    EXPECT_EQ(listDir(d), (std::vector<std::string>{"a.txt", "b.txt"}));
+}
