@@ -1,0 +1,77 @@
+// libFuzzer target: the config reader. The input is an .ini file; it is
+// loaded by risknav::common::CIniConfig (MRPT preprocessor, duplicate-key and
+// malformed-line checks), then the strict typed reads and a few options
+// structs are loaded from it. Documented failures: CBadInputError (a
+// std::runtime_error). Anything else escaping is a finding.
+#include "fuzz_common.h"
+
+#include <risknav/common/CBadInputError.h>
+#include <risknav/common/CIniConfig.h>
+#include <risknav/common/TOdometryOptions.h>
+#include <risknav/common/TRobotOptions.h>
+#include <risknav/common/config_read.h>
+#include <risknav/common/grid_io.h>
+#include <risknav/mapping/TObstacleRule.h>
+
+#include <stdexcept>
+
+using namespace risknav;
+
+namespace {
+template <class F>
+void tolerate(F&& f) {
+    try {
+        f();
+    } catch (const std::runtime_error&) {  // CBadInputError and readers' errors
+    }
+}
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    static const std::string path = fuzz::tempPath("config.ini");
+    fuzz::writeFile(path, data, size);
+    tolerate([&] {
+        common::CIniConfig c(path);
+        for (const auto& s : c.sections()) (void)s;
+        // Each read separately, so that one bad key does not hide the others.
+        tolerate([&] {
+            common::TRobotOptions o;
+            common::loadOptions(o, c, "Robot");
+        });
+        tolerate([&] {
+            common::TOdometryOptions o;
+            common::loadOptions(o, c, "Odometry");
+        });
+        for (const char* s : {"World", "RiskEval", "AfraidLearn"}) {
+            tolerate([&] {
+                mapping::TObstacleRule o;
+                common::loadOptions(o, c, s);
+            });
+            tolerate([&] {
+                common::TMapSourceOptions o;
+                common::loadOptions(o, c, s);
+            });
+        }
+        tolerate([&] {
+            (void)common::readDouble(c, "Simulation", "sim_dt", 0.05,
+                                     common::TRange::positive("s"));
+        });
+        tolerate([&] { (void)common::readInt(c, "Simulation", "seed", 7); });
+        tolerate([&] { (void)common::readBool(c, "World", "unknown_is_obstacle", true); });
+        tolerate([&] {
+            (void)common::readNumbers(c, "Route", "waypoints", {}, {}, 4, 2);
+        });
+        tolerate([&] {
+            (void)common::readChoice(c, "Odometry", "error_model", "systematic",
+                                     {"systematic", "per_step", "none"});
+        });
+        tolerate([&] { (void)common::readDegrees(c, "Robot", "max_w_deg", 1.0, {}); });
+        tolerate([&] {
+            (void)common::readPath(c, "World", "map_file", "", false);
+        });
+        tolerate([&] { c.applyOverride("Robot.max_v=0.5"); });
+        (void)c.unreadKeys();
+        tolerate([&] { c.throwOnUnreadKeys(); });
+    });
+    return 0;
+}
