@@ -4,7 +4,6 @@
 
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
-#include <mrpt/io/CMemoryStream.h>
 #include <mrpt/maps/CSimpleMap.h>
 #include <mrpt/serialization/CArchive.h>
 
@@ -253,49 +252,56 @@ COccupancyGridMap2D fromGridmap(const std::string& file) {
     }
     const std::string name = "mrpt::maps::COccupancyGridMap2D";
     const size_t h = 1 + name.size();  // length byte (0x80 | len) + class name
+    const size_t o = h + 2;            // after the version and the bits-per-cell byte
     auto bad = [&](const std::string& why) {
         return CBadInputError(file + ": not a readable MRPT .gridmap file (" + why + ")");
     };
-    if (bytes.size() < h + 2 + 8 + 20 || uint8_t(bytes[0]) != (0x80 | name.size()) ||
+    if (bytes.size() < o + 28 || uint8_t(bytes[0]) != (0x80 | name.size()) ||
         bytes.compare(1, name.size(), name) != 0)
         throw bad("no COccupancyGridMap2D header");
-    if (uint8_t(bytes[h]) == 6) {  // the version MRPT 2.5 writes
-        auto u32 = [&](size_t o) {
-            uint32_t v = 0;
-            for (int k = 3; k >= 0; k--)
-                v = (v << 8) | uint8_t(bytes[o + size_t(k)]);
-            return v;
-        };
-        auto f32 = [&](size_t o) {
-            const uint32_t u = u32(o);
-            float v;
-            std::memcpy(&v, &u, 4);
-            return double(v);
-        };
-        const size_t o = h + 2;  // after the version and the bits-per-cell byte
-        const uint64_t sx = u32(o), sy = u32(o + 4);
-        const double x0 = f32(o + 8), x1 = f32(o + 12), y0 = f32(o + 16),
-                     y1 = f32(o + 20), res = f32(o + 24);
-        if (!(res >= 0.001 && res <= 10))
-            throw bad("resolution " + std::to_string(res) + " m");
-        if (!(std::abs(x0) <= 1e6 && std::abs(x1) <= 1e6 && std::abs(y0) <= 1e6 &&
-              std::abs(y1) <= 1e6 && x0 < x1 && y0 < y1))
-            throw bad("map bounds");
-        if (sx == 0 || sy == 0 || sx * sy > kMaxGridCells)
-            throw bad(std::to_string(sx) + " x " + std::to_string(sy) + " cells");
-        if (sx * sy * (uint8_t(bytes[h + 1]) / 8) > bytes.size() - (o + 28))
-            throw bad("truncated: " + std::to_string(sx) + " x " + std::to_string(sy) +
-                      " cells announced");
-    }
+    // Only the layout MRPT 2.5 writes (version 6, 8-bit cells) is read.
+    if (uint8_t(bytes[h]) != 6)
+        throw bad("serialization version " + std::to_string(uint8_t(bytes[h])) +
+                  "; MRPT 2.5 writes 6");
+    if (uint8_t(bytes[h + 1]) != 8 * sizeof(COccupancyGridMap2D::cellType))
+        throw bad("cells of " + std::to_string(uint8_t(bytes[h + 1])) + " bits");
+    auto u32 = [&](size_t at) {
+        uint32_t v = 0;
+        for (int k = 3; k >= 0; k--)
+            v = (v << 8) | uint8_t(bytes[at + size_t(k)]);
+        return v;
+    };
+    auto f32 = [&](size_t at) {
+        const uint32_t u = u32(at);
+        float v;
+        std::memcpy(&v, &u, 4);
+        return v;
+    };
+    const uint64_t sx = u32(o), sy = u32(o + 4);
+    const double x0 = f32(o + 8), x1 = f32(o + 12), y0 = f32(o + 16), y1 = f32(o + 20),
+                 res = f32(o + 24);
+    if (!(res >= 0.001 && res <= 10))
+        throw bad("resolution " + std::to_string(res) + " m");
+    if (!(std::abs(x0) <= 1e6 && std::abs(x1) <= 1e6 && std::abs(y0) <= 1e6 &&
+          std::abs(y1) <= 1e6 && x0 < x1 && y0 < y1))
+        throw bad("map bounds");
+    if (sx == 0 || sy == 0 || sx * sy > kMaxGridCells)
+        throw bad(std::to_string(sx) + " x " + std::to_string(sy) + " cells");
+    if (sx * sy > bytes.size() - (o + 28))
+        throw bad("truncated: " + std::to_string(sx) + " x " + std::to_string(sy) +
+                  " cells announced");
+    // The grid is built from the checked header and its cells; the options
+    // MRPT stores after the cells (insertion / likelihood settings, which
+    // risknav sets itself) are not read: their lengths come from the file
+    // too, and a corrupt one made MRPT allocate gigabytes.
     COccupancyGridMap2D g;
-    try {
-        mrpt::io::CMemoryStream m;
-        m.assignMemoryNotOwn(bytes.data(), bytes.size());
-        auto a = mrpt::serialization::archiveFrom(m);
-        a >> g;
-    } catch (const std::exception&) {
-        throw bad("corrupt");
-    }
+    g.setSize(float(x0), float(x1), float(y0), float(y1), float(res));
+    if (g.getSizeX() != sx || g.getSizeY() != sy)
+        throw bad("size " + std::to_string(sx) + " x " + std::to_string(sy) +
+                  " does not match its bounds and resolution");
+    const char* cells = bytes.data() + o + 28;
+    for (uint64_t cy = 0; cy < sy; cy++)
+        std::memcpy(g.getRow(int(cy)), cells + cy * sx, size_t(sx));
     return g;
 }
 

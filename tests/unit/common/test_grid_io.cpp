@@ -3,6 +3,7 @@
 
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/serialization/CArchive.h>
 
 #include <gtest/gtest.h>
 
@@ -201,7 +202,36 @@ TEST(GridIO, CorruptGridmapHeadersAreRefusedBeforeAllocating) {
     std::string zeroTail = raw;
     std::fill(zeroTail.begin() + o, zeroTail.end(), '\0');
     refused(writeGz("zeros.gridmap.gz", zeroTail), "not a readable MRPT .gridmap file");
-    // The intact file still loads.
+    // The intact file loads to exactly what MRPT's own deserialization gives.
     s.map_file = writeGz("ok.gridmap.gz", raw);
-    EXPECT_EQ(loadOccupancyGrid(s).getSizeX(), 600u);
+    const auto ours = loadOccupancyGrid(s);
+    mrpt::maps::COccupancyGridMap2D ref;
+    {
+        mrpt::io::CFileGZInputStream f(s.map_file);
+        auto a = mrpt::serialization::archiveFrom(f);
+        a >> ref;
+    }
+    ASSERT_EQ(ours.getSizeX(), ref.getSizeX());
+    ASSERT_EQ(ours.getSizeY(), ref.getSizeY());
+    EXPECT_EQ(ours.getXMin(), ref.getXMin());
+    EXPECT_EQ(ours.getYMax(), ref.getYMax());
+    EXPECT_EQ(ours.getResolution(), ref.getResolution());
+    EXPECT_EQ(ours.getRawMap(), ref.getRawMap());
+}
+
+// Regression: the .gridmap.gz the fuzzer found (tests/fuzz/crashes/fuzz_map:
+// its first byte picks the format, 2 = .gridmap.gz) made MRPT allocate 8.7 GB
+// from a corrupt length AFTER the cells. Its header and cells are sound, so it
+// loads, without reading the corrupt tail.
+TEST(GridIO, FuzzerGridmapOomLoadsItsCellsOnly) {
+    const std::string in =
+        readFile(sourcePath("tests/fuzz/crashes/fuzz_map/oom-gridmap-gz-cell-count.bin"));
+    ASSERT_GT(in.size(), 1u);
+    ASSERT_EQ(uint8_t(in[0]) % 4, 2);
+    const std::string f = freshDir("fz") + "/m.gridmap.gz";
+    writeFile(f, in.substr(1));
+    TMapSourceOptions s;
+    s.map_file = f;
+    const auto g = loadOccupancyGrid(s);
+    EXPECT_LE(uint64_t(g.getSizeX()) * g.getSizeY(), 25'000'000u);
 }
