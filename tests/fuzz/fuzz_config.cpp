@@ -32,7 +32,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     fuzz::writeFile(path, data, size);
     tolerate([&] {
         common::CIniConfig c(path);
-        for (const auto& s : c.sections()) (void)s;
+        for (const auto& s : c.sections())
+            (void)s;
         // Each read separately, so that one bad key does not hide the others.
         tolerate([&] {
             common::TRobotOptions o;
@@ -57,18 +58,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                                      common::TRange::positive("s"));
         });
         tolerate([&] { (void)common::readInt(c, "Simulation", "seed", 7); });
-        tolerate([&] { (void)common::readBool(c, "World", "unknown_is_obstacle", true); });
-        tolerate([&] {
-            (void)common::readNumbers(c, "Route", "waypoints", {}, {}, 4, 2);
-        });
+        tolerate(
+            [&] { (void)common::readBool(c, "World", "unknown_is_obstacle", true); });
+        tolerate(
+            [&] { (void)common::readNumbers(c, "Route", "waypoints", {}, {}, 4, 2); });
         tolerate([&] {
             (void)common::readChoice(c, "Odometry", "error_model", "systematic",
                                      {"systematic", "per_step", "none"});
         });
         tolerate([&] { (void)common::readDegrees(c, "Robot", "max_w_deg", 1.0, {}); });
-        tolerate([&] {
-            (void)common::readPath(c, "World", "map_file", "", false);
-        });
+        tolerate([&] { (void)common::readPath(c, "World", "map_file", "", false); });
         tolerate([&] { c.applyOverride("Robot.max_v=0.5"); });
         (void)c.unreadKeys();
         tolerate([&] { c.throwOnUnreadKeys(); });

@@ -25,7 +25,8 @@ const unsigned char kRoomPng[] = {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    if (size < 1) return 0;
+    if (size < 1)
+        return 0;
     static const std::string base = fuzz::tempPath("map");
     static const std::string dir = [] {
         const std::string d = fuzz::tempPath("mapdir");

@@ -16,8 +16,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         size_t n = 0;
         while (auto f = r.next()) {
             // Touch what a consumer touches.
-            if (f->sf) n += f->sf->size();
-            if (f->actions) n += f->actions->size();
+            if (f->sf)
+                n += f->sf->size();
+            if (f->actions)
+                n += f->actions->size();
         }
         (void)n;
     } catch (const std::runtime_error&) {

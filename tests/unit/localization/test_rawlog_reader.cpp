@@ -38,6 +38,18 @@ TLog makeLog(size_t n) {
     }
     return l;
 }
+// Reads every frame of a rawlog: how many were good, and the error (if any).
+std::pair<size_t, std::string> readUntilError(const std::string& path) {
+    CRawlogReader r(path);
+    size_t good = 0;
+    try {
+        while (r.next())
+            good++;
+    } catch (const std::runtime_error& e) {
+        return {good, e.what()};
+    }
+    return {good, ""};
+}
 }  // namespace
 
 TEST(CRawlogReader, BothFormatsGiveTheSameFrames) {
@@ -152,15 +164,7 @@ TEST(CRawlogReader, FramesThatCannotBeRealAreErrorsWhereTheyAppear) {
                 a << acts << sf;
             }
         }
-        CRawlogReader r(f);
-        size_t good = 0;
-        std::string err;
-        try {
-            while (r.next())
-                good++;
-        } catch (const std::runtime_error& e) {
-            err = e.what();
-        }
+        const auto [good, err] = readUntilError(f);
         EXPECT_EQ(good, k) << int(bad);
         EXPECT_NE(err.find("corrupt rawlog at entry " + std::to_string(2 * k + 1)),
                   std::string::npos)
@@ -196,15 +200,7 @@ TEST(CRawlogReader, ANullObjectIsCorruptionNotTheEnd) {
                     a << sf;
             }
         }
-        CRawlogReader r(f);
-        size_t good = 0;
-        std::string err;
-        try {
-            while (r.next())
-                good++;
-        } catch (const std::runtime_error& e) {
-            err = e.what();
-        }
+        const auto [good, err] = readUntilError(f);
         EXPECT_EQ(good, 3u) << afterAction;
         EXPECT_NE(err.find("a null object"), std::string::npos) << err;
     }
