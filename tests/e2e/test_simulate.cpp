@@ -129,7 +129,7 @@ TEST_F(CorridorRun, PfLocalizationLocalizesOnIt) {
     const std::string work = freshDir("pf");
     const auto gt = readPoses(dir + "/groundtruth.txt");
     std::ostringstream ini;
-    ini << "[KLD_options]\nKLD_binSize_PHI_deg=10\nKLD_binSize_XY=0.10\nKLD_delta=0."
+    ini << "[KLD_options]\nKLD_binSize_PHI=10\nKLD_binSize_XY=0.10\nKLD_delta=0."
            "01\nKLD_epsilon=0.01\n"
            "KLD_maxSampleSize=40000\nKLD_minSampleSize=150\nKLD_minSamplesPerBin=0\n"
            "[PF_options]\nPF_algorithm=0\nresamplingMethod=0\nadaptiveSampleSize=1\nBETA="

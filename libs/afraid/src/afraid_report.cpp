@@ -328,7 +328,8 @@ void runAfraidLearnApp(const TAppContext& ctx) {
     const auto t0 = std::chrono::steady_clock::now();
     CAfraidLearner l;
     l.loadFromConfigFile(ctx.cfg, ctx.args.extra, ctx.args.seed);
-    COutputDir out(ctx.args.outDir);  // checked before the replay, not after it
+    COutputDir out(ctx.args.outDir,
+                   ctx.info.name);  // checked before the replay, not after it
     l.run(ctx.args.quiet);
     l.generalize();
     // A partial replay never replaces a complete run's files: its results go

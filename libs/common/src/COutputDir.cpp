@@ -35,6 +35,24 @@ bool staleTemporary(const fs::path& p) {
     return id != long(::getpid()) && !fs::exists("/proc/" + pid);
 }
 
+/** Files of the previous run listed in a manifest; names that could leave
+ * the folder (absolute, "..", hidden) are ignored: the manifest is data. */
+std::vector<std::string> manifestFiles(const fs::path& manifest) {
+    std::vector<std::string> files;
+    std::ifstream f(manifest);
+    std::string line;
+    while (std::getline(f, line)) {
+        if (line.rfind("file ", 0) != 0)
+            continue;
+        const std::string name = line.substr(5);
+        if (name.empty() || name[0] == '.' || name[0] == '/' ||
+            name.find("/.") != std::string::npos)
+            continue;
+        files.push_back(name);
+    }
+    return files;
+}
+
 void writeWhole(const std::string& path, const std::string& content) {
     std::ofstream f(path, std::ios::binary | std::ios::trunc);
     f << content;
@@ -44,7 +62,8 @@ void writeWhole(const std::string& path, const std::string& content) {
 }
 }  // namespace
 
-COutputDir::COutputDir(const std::string& dir) : m_dir(dir) {
+COutputDir::COutputDir(const std::string& dir, const std::string& app)
+    : m_dir(dir), m_app(app) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (!fs::is_directory(dir))
@@ -116,6 +135,24 @@ void COutputDir::commit() {
     // everything is put back as it was.
     std::vector<std::pair<std::string, std::string>> placed,
         asideOf;  // (tmp, fin), (aside, fin)
+    // A commit into the folder itself replaces the previous run's whole set:
+    // its files this run does not write go aside with the replaced ones.
+    std::vector<std::string> dropped;
+    if (m_sub.empty()) {
+        std::string manifest = "risknav output manifest 1\napp " + m_app + "\n";
+        for (const auto& s : m_staged)
+            manifest +=
+                "file " + fs::path(s.second).lexically_relative(m_dir).string() + "\n";
+        writeWhole(stage(kManifest), manifest);
+        for (const auto& name : manifestFiles(fs::path(m_dir) / kManifest)) {
+            const std::string fin = finalPath(name);
+            bool ours = false;
+            for (const auto& s : m_staged)
+                ours = ours || s.second == fin;
+            if (!ours && fs::is_regular_file(fin, ec))
+                dropped.push_back(fin);
+        }
+    }
     auto rollback = [&] {
         std::error_code e2;
         for (auto it = placed.rbegin(); it != placed.rend(); ++it)
@@ -146,6 +183,16 @@ void COutputDir::commit() {
                                      ec.message());
         }
         placed.emplace_back(tmp, fin);
+    }
+    for (const auto& fin : dropped) {
+        const std::string aside = tempName(fs::path(fin).parent_path() /
+                                           ("old-" + fs::path(fin).filename().string()));
+        fs::rename(fin, aside, ec);
+        if (ec) {
+            rollback();
+            throw std::runtime_error("cannot remove " + fin + ": " + ec.message());
+        }
+        asideOf.emplace_back(aside, fin);
     }
     for (const auto& [aside, fin] : asideOf)
         fs::remove(aside, ec);

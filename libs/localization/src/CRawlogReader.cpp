@@ -1,4 +1,6 @@
+#include <risknav/common/CAllocationBudget.h>
 #include <risknav/localization/CRawlogReader.h>
+#include <risknav/localization/rawlog_scan.h>
 
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
@@ -13,13 +15,34 @@
 namespace risknav::localization {
 CRawlogReader::CRawlogReader(const std::string& path, double minStdXY,
                              double minStdPhiDeg)
-    : m_path(path), m_minStdXY(minStdXY), m_minStdPhi(minStdPhiDeg * M_PI / 180.0) {
+    : CRawlogReader(path, minStdXY, minStdPhiDeg, nullptr) {
+    // One pass through MRPT in a child process finds the entry, if any,
+    // whose deserialization would kill this process (rawlog_scan.h).
+    m_crashEntry = probeInChild([&](const TProbeProgress& progress) {
+        CRawlogReader probe(path, minStdXY, minStdPhiDeg, &progress);
+        while (probe.next()) {
+        }
+    });
+}
+
+CRawlogReader::CRawlogReader(const std::string& path, double minStdXY,
+                             double minStdPhiDeg, const TProbeProgress* progress)
+    : m_path(path),
+      m_progress(progress),
+      m_minStdXY(minStdXY),
+      m_minStdPhi(minStdPhiDeg * M_PI / 180.0) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw std::runtime_error(path + ": rawlog not found");
+    m_bytes = rawlogBytes(path);
     m_in = std::make_unique<mrpt::io::CFileGZInputStream>();
     if (!m_in->open(path))
         throw std::runtime_error(path + ": cannot open rawlog");
+}
+
+std::size_t rawlogEntryBudget(std::uint64_t bytesLeft) {
+    const std::uint64_t b = kEntryBudgetBase + kEntryBudgetPerByte * bytesLeft;
+    return b > SIZE_MAX / 2 ? SIZE_MAX / 2 : static_cast<std::size_t>(b);
 }
 
 namespace {
@@ -41,10 +64,28 @@ std::optional<TRawlogFrame> CRawlogReader::next() {
     // is a corrupt or truncated rawlog.
     auto arch = mrpt::serialization::archiveFrom(*m_in);
     auto readObject = [&](bool eofAllowed) -> mrpt::serialization::CSerializable::Ptr {
+        if (m_crashEntry && m_entry == *m_crashEntry)
+            throw std::runtime_error(
+                m_path + ": corrupt rawlog at entry " + std::to_string(m_entry) +
+                ": MRPT's deserializer crashes on it (a null or mistyped object "
+                "inside; found by reading the file in a child process first)");
         mrpt::serialization::CSerializable::Ptr o;
+        const std::uint64_t pos = m_in->getPosition();
+        const std::uint64_t left = m_bytes > pos ? m_bytes - pos : 0;
+        const std::size_t limit = rawlogEntryBudget(left);
+        bool overBudget = false;
         try {
-            o = arch.ReadObject();
+            // the budget covers MRPT's deserialization only (not our messages)
+            risknav::common::CAllocationBudget budget(limit);
+            try {
+                o = arch.ReadObject();
+            } catch (...) {
+                overBudget = budget.exceeded();
+                throw;
+            }
             m_entry++;
+            if (m_progress)
+                (*m_progress)(m_entry);
         } catch (const mrpt::serialization::CExceptionEOF&) {
             if (eofAllowed)
                 return nullptr;
@@ -52,6 +93,13 @@ std::optional<TRawlogFrame> CRawlogReader::next() {
                                      std::to_string(m_entry) +
                                      " (an action without its sensory frame)");
         } catch (const std::exception& e) {
+            if (overBudget)
+                throw std::runtime_error(
+                    m_path + ": corrupt rawlog at entry " + std::to_string(m_entry) +
+                    ": it asks for more than " + std::to_string(limit >> 20) +
+                    " MiB, more than the " + std::to_string(left) +
+                    " bytes left in the file can hold (lengths or counts in it are "
+                    "damaged)");
             throw std::runtime_error(m_path + ": corrupt or truncated rawlog at entry " +
                                      std::to_string(m_entry) + " (" + firstMessage(e) +
                                      ")");
@@ -81,8 +129,8 @@ std::optional<TRawlogFrame> CRawlogReader::next() {
             f.actions = act;
             f.sf = sf;
             f.entry = m_entry - 1;
-            f.timestamp =
-                sf->size() ? (*sf->begin())->timestamp : mrpt::Clock::time_point();
+            f.timestamp = sf->size() && *sf->begin() ? (*sf->begin())->timestamp
+                                                     : mrpt::Clock::time_point();
             checkFrame(f);
             return f;
         }
@@ -135,6 +183,12 @@ void CRawlogReader::checkFrame(const TRawlogFrame& f) {
         std::snprintf(b, sizeof(b), "%g", v);
         return std::string(b);
     };
+    for (const auto& o : *f.sf)
+        if (!o)
+            bad("its sensory frame holds a null observation");
+    for (const auto& a : *f.actions)
+        if (!a.get_ptr())
+            bad("its action collection holds a null action");
     for (const auto& o : *f.sf) {
         const auto scan = std::dynamic_pointer_cast<CObservation2DRangeScan>(o);
         if (!scan)

@@ -329,7 +329,8 @@ void runRiskEvalApp(const TAppContext& ctx) {
     ev.loadFromConfigFile(ctx.cfg);
     if (ctx.args.seed)
         ev.options.seed = *ctx.args.seed;
-    COutputDir out(ctx.args.outDir);  // checked (and locked) before the work
+    COutputDir out(ctx.args.outDir,
+                   ctx.info.name);  // checked (and locked) before the work
     ev.evaluate();
     json summary = summaryHeader(ctx, ev.options.seed);
     summary.update(writeRiskReport(ev, out));

@@ -460,7 +460,7 @@ json CWorldSimulator::summary(const TRun& r, COutputDir& out) const {
 void runSimulateApp(const TAppContext& ctx) {
     CWorldSimulator sim;
     sim.loadFromConfigFile(ctx.cfg, ctx.args.seed);
-    COutputDir out(ctx.args.outDir);
+    COutputDir out(ctx.args.outDir, ctx.info.name);
     json summary = summaryHeader(ctx, sim.simulation.seed);
     summary.update(sim.run(out, ctx.args.quiet));
     mrpt::config::CConfigFileMemory effective;

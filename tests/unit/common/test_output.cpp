@@ -23,7 +23,7 @@ TEST(COutputDir, FilesAppearOnlyAtCommit) {
         EXPECT_FALSE(std::filesystem::exists(d + "/a.txt"));
         out.commit();
     }
-    EXPECT_EQ(listDir(d), (std::vector<std::string>{"a.txt", "b.csv"}));
+    EXPECT_EQ(listDir(d), (std::vector<std::string>{".risknav-run", "a.txt", "b.csv"}));
     EXPECT_EQ(readFile(d + "/a.txt"), "new a");
 }
 
@@ -149,7 +149,7 @@ TEST(COutputDir, OneRunPerFolderAtATime) {
         first.commit();
     }
     // Released with the first: the folder holds only the results.
-    EXPECT_EQ(listDir(d), (std::vector<std::string>{"a.txt"}));
+    EXPECT_EQ(listDir(d), (std::vector<std::string>{".risknav-run", "a.txt"}));
     EXPECT_NO_THROW(COutputDir again(d));
 }
 
@@ -169,4 +169,58 @@ TEST(COutputDir, ACommitThatFailsPutsEverythingBack) {
     EXPECT_EQ(readFile(d + "/a.txt"), "earlier a");
     EXPECT_EQ(readFile(d + "/b.txt"), "earlier b");
     EXPECT_EQ(listDir(d), (std::vector<std::string>{"a.txt", "b.txt"}));
+}
+
+TEST(COutputDir, ASecondRunReplacesTheWholeSetOfTheFirst) {
+    // risk-eval's files, then afraid-learn's (or a run with fewer routes): the
+    // folder ends with the second run's files only, plus the user's own.
+    const std::string d = freshDir("out");
+    writeFile(d + "/notes.txt", "the user's own file");
+    {
+        COutputDir out(d, "risknav-risk-eval");
+        out.writeText("summary.json", "risk");
+        out.writeText("paths.png", "png");
+        out.writeText("ellipses_a.png", "png");
+        out.commit();
+    }
+    EXPECT_NE(
+        readFile(d + "/.risknav-run").find("app risknav-risk-eval\nfile summary.json\n"),
+        std::string::npos);
+    {
+        COutputDir out(d, "risknav-afraid-learn");
+        out.writeText("summary.json", "afraid");
+        out.writeText("zones.csv", "csv");
+        out.commit();
+    }
+    EXPECT_EQ(listDir(d), (std::vector<std::string>{".risknav-run", "notes.txt",
+                                                    "summary.json", "zones.csv"}));
+    EXPECT_EQ(readFile(d + "/summary.json"), "afraid");
+    EXPECT_EQ(readFile(d + "/.risknav-run"),
+              "risknav output manifest 1\napp risknav-afraid-learn\nfile summary.json\n"
+              "file zones.csv\n");
+    // a run that fails in its commit leaves the second run's set whole
+    {
+        COutputDir out(d, "risknav-risk-eval");
+        out.writeText("summary.json", "risk again");
+        out.writeText("paths.png", "png");
+        std::filesystem::remove(out.stage("paths.png"));
+        EXPECT_THROW(out.commit(), std::runtime_error);
+    }
+    EXPECT_EQ(listDir(d), (std::vector<std::string>{".risknav-run", "notes.txt",
+                                                    "summary.json", "zones.csv"}));
+    EXPECT_EQ(readFile(d + "/summary.json"), "afraid");
+    // a manifest cannot make a run delete outside its folder or hidden files
+    writeFile(d + "/.x", "hidden");
+    const std::string outside = freshDir("elsewhere") + "/outside.txt";
+    writeFile(outside, "outside");
+    writeFile(d + "/.risknav-run",
+              "file .x\nfile ../elsewhere/outside.txt\nfile " + outside + "\n");
+    {
+        COutputDir out(d);
+        out.writeText("summary.json", "third");
+        out.commit();
+    }
+    EXPECT_TRUE(std::filesystem::exists(d + "/.x"));
+    EXPECT_TRUE(std::filesystem::exists(outside));
+    EXPECT_TRUE(std::filesystem::exists(d + "/zones.csv"));  // not in that manifest
 }

@@ -17,7 +17,7 @@ class COutputDir {
      * (flock on the folder, held until this object is destroyed: two runs
      * into one folder would mix their files). Removes the temporaries that
      * runs which died before their commit (killed, crashed) left behind. */
-    explicit COutputDir(const std::string& dir);
+    explicit COutputDir(const std::string& dir, const std::string& app = "");
     ~COutputDir();
     COutputDir(const COutputDir&) = delete;
     COutputDir& operator=(const COutputDir&) = delete;
@@ -29,17 +29,24 @@ class COutputDir {
     std::string stage(const std::string& name);
     /** Writes a whole text file to its staged name. */
     void writeText(const std::string& name, const std::string& content);
-    /** Renames every staged file to its final name. */
+    /** Renames every staged file to its final name, as one set: the files a
+     * previous run committed into the folder (listed in its manifest,
+     * kManifest) that this run did not write are removed in the same step, so
+     * the folder never holds a mix of two runs (of one app or of two); files
+     * the manifest does not list (the user's own) are left alone. Then writes
+     * this run's manifest. If any step fails, everything is put back. */
     void commit();
     /** Makes commit() put the files into the subfolder `sub` (emptied first)
      * instead of the folder itself: a partial run's results then never
      * replace a complete earlier run's files. */
     void commitInto(const std::string& sub);
+    /** The file listing the last commit's app and files. */
+    static constexpr const char* kManifest = ".risknav-run";
     /** Final names staged so far, in order. */
     std::vector<std::string> stagedNames() const;
 
   private:
-    std::string m_dir;
+    std::string m_dir, m_app;
     std::vector<std::pair<std::string, std::string>> m_staged;  // (temp, final name)
     std::string m_sub;  // commit into this subfolder ("" = the folder itself)
     bool m_committed = false;

@@ -1,14 +1,26 @@
 #pragma once
+#include <risknav/localization/rawlog_scan.h>
+
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose2D.h>
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
 
 namespace risknav::localization {
+/** What MRPT may allocate while deserializing one rawlog entry:
+ *  kEntryBudgetBase + kEntryBudgetPerByte x the bytes left in the
+ *  (decompressed) file. A real entry's arrays and strings are stored in the
+ *  file, so they cannot need more than a small multiple of what is left; the
+ *  base covers fixed-size buffers. Lengths or counts beyond it are damage. */
+constexpr std::uint64_t kEntryBudgetBase = 64ull << 20;
+constexpr std::uint64_t kEntryBudgetPerByte = 16;
+std::size_t rawlogEntryBudget(std::uint64_t bytesLeft);
+
 /** One step of a rawlog: odometry increment (as an action) + what was sensed. */
 struct TRawlogFrame {
     mrpt::obs::CActionCollection::Ptr actions;
@@ -30,7 +42,11 @@ struct TRawlogFrame {
  * a gz stream may still decode): a valid range outside [0, maxRange] or not
  * finite, a non-finite sensor pose, aperture or odometry increment, an
  * odometry jump beyond 100 m in one frame, a timestamp before the previous
- * frame's. */
+ * frame's, a null action or observation inside a frame.
+ * Hostile files: the constructor reads the file once in a child process
+ * (probeInChild) to find an entry MRPT 2.5 would segfault on, which then is
+ * an error where it appears; each entry is read under a CAllocationBudget
+ * (rawlogEntryBudget) sized by the decompressed bytes left (rawlogBytes). */
 class CRawlogReader {
   public:
     explicit CRawlogReader(const std::string& path, double minStdXY = 0.01,
@@ -40,9 +56,15 @@ class CRawlogReader {
     const std::string& path() const { return m_path; }
 
   private:
+    /** The probe's reader: no probe of its own, reports entries read. */
+    CRawlogReader(const std::string& path, double minStdXY, double minStdPhiDeg,
+                  const TProbeProgress* progress);
     std::string m_path;
     std::unique_ptr<mrpt::io::CFileGZInputStream> m_in;
     size_t m_entry = 0;
+    std::uint64_t m_bytes = 0;  ///< decompressed size (rawlogBytes)
+    const TProbeProgress* m_progress = nullptr;
+    std::optional<std::uint64_t> m_crashEntry;  ///< from the probe
     double m_minStdXY, m_minStdPhi;
     // observations-only state
     std::optional<TRawlogFrame> pendingFrame();

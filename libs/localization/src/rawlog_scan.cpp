@@ -1,0 +1,94 @@
+#include <risknav/localization/rawlog_scan.h>
+
+#include <mrpt/io/CFileGZInputStream.h>
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <stdexcept>
+#include <vector>
+
+namespace risknav::localization {
+std::uint64_t rawlogBytes(const std::string& path) {
+    mrpt::io::CFileGZInputStream in;
+    if (!in.open(path))
+        throw std::runtime_error(path + ": cannot open rawlog");
+    std::vector<unsigned char> block(1u << 20);
+    std::uint64_t bytes = 0;
+    for (;;) {
+        std::size_t n = 0;
+        try {
+            n = in.Read(block.data(), block.size());
+        } catch (const std::exception&) {
+            break;  // a broken gzip stream: what decoded is what MRPT will read
+        }
+        if (n == 0)
+            break;
+        bytes += n;
+    }
+    return bytes;
+}
+
+std::optional<std::uint64_t> probeInChild(const std::function<void(const TProbeProgress&)>& work) {
+    int fds[2];
+    if (pipe(fds) != 0)
+        throw std::runtime_error("cannot create a pipe for the rawlog probe");
+    const pid_t pid = fork();
+    if (pid < 0) {
+        close(fds[0]);
+        close(fds[1]);
+        throw std::runtime_error("cannot fork the rawlog probe");
+    }
+    if (pid == 0) {
+        close(fds[0]);
+        const int devnull = open("/dev/null", O_WRONLY);
+        if (devnull >= 0) {
+            dup2(devnull, STDOUT_FILENO);
+            dup2(devnull, STDERR_FILENO);
+        }
+        const int out = fds[1];
+        try {
+            work([out](std::uint64_t done) {
+                const char* p = reinterpret_cast<const char*>(&done);
+                std::size_t left = sizeof(done);
+                while (left > 0) {
+                    const ssize_t w = write(out, p, left);
+                    if (w < 0 && errno == EINTR)
+                        continue;
+                    if (w <= 0)
+                        _exit(0);  // the parent is gone
+                    p += w;
+                    left -= static_cast<std::size_t>(w);
+                }
+            });
+        } catch (...) {
+        }
+        _exit(0);
+    }
+    close(fds[1]);
+    std::uint64_t last = 0, value = 0;
+    std::size_t have = 0;
+    for (;;) {
+        const ssize_t r = read(fds[0], reinterpret_cast<char*>(&value) + have,
+                               sizeof(value) - have);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r <= 0)
+            break;
+        have += static_cast<std::size_t>(r);
+        if (have == sizeof(value)) {
+            last = value;
+            have = 0;
+        }
+    }
+    close(fds[0]);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
+        return std::nullopt;
+    return last;
+}
+}  // namespace risknav::localization
