@@ -3,6 +3,7 @@
 // along 2 km of robot paths (8000 samples) on a 100 x 100 m map of 5 cm
 // cells; sparse fit + evaluation on all 4 million cells.
 #include <risknav/afraid/kernel_regression.h>
+#include <risknav/localization/CRawlogReader.h>
 
 #include <benchmark/benchmark.h>
 
@@ -41,3 +42,28 @@ BENCHMARK(BM_KrrPredict_2000x2000)->Unit(benchmark::kMillisecond);
 }  // namespace
 
 BENCHMARK_MAIN();
+
+// The rawlog reader on the corridor dataset (2.3 MB, 3959 frames): opening it
+// = the size pass + the probe's full MRPT pass in a child (issue 9), then the
+// whole read; the difference is what hostile-input safety costs.
+const std::string kCorridor =
+    std::string(RISKNAV_SOURCE_DIR) + "/datasets/corridor-doors/corridor.rawlog";
+
+void BM_RawlogOpen_Corridor(benchmark::State& st) {
+    for (auto _ : st) {
+        risknav::localization::CRawlogReader r(kCorridor);
+        benchmark::DoNotOptimize(&r);
+    }
+}
+BENCHMARK(BM_RawlogOpen_Corridor)->Unit(benchmark::kMillisecond);
+
+void BM_RawlogReadAll_Corridor(benchmark::State& st) {
+    for (auto _ : st) {
+        risknav::localization::CRawlogReader r(kCorridor);
+        size_t n = 0;
+        while (r.next())
+            n++;
+        st.counters["frames"] = double(n);
+    }
+}
+BENCHMARK(BM_RawlogReadAll_Corridor)->Unit(benchmark::kMillisecond);
