@@ -34,7 +34,9 @@ CRawlogReader::CRawlogReader(const std::string& path, double minStdXY,
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw std::runtime_error(path + ": rawlog not found");
-    m_bytes = rawlogBytes(path);
+    const TRawlogSize size = rawlogBytes(path);
+    m_bytes = size.bytes;
+    m_broken = size.broken;
     m_in = std::make_unique<mrpt::io::CFileGZInputStream>();
     if (!m_in->open(path))
         throw std::runtime_error(path + ": cannot open rawlog");
@@ -87,6 +89,11 @@ std::optional<TRawlogFrame> CRawlogReader::next() {
             if (m_progress)
                 (*m_progress)(m_entry);
         } catch (const mrpt::serialization::CExceptionEOF&) {
+            if (m_broken)
+                throw std::runtime_error(m_path + ": corrupt rawlog at entry " +
+                                         std::to_string(m_entry) +
+                                         ": the gzip stream breaks after " +
+                                         std::to_string(m_bytes) + " bytes");
             if (eofAllowed)
                 return nullptr;
             throw std::runtime_error(m_path + ": truncated rawlog at entry " +

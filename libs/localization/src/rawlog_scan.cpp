@@ -11,24 +11,31 @@
 #include <vector>
 
 namespace risknav::localization {
-std::uint64_t rawlogBytes(const std::string& path) {
+TRawlogSize rawlogBytes(const std::string& path) {
     mrpt::io::CFileGZInputStream in;
     if (!in.open(path))
         throw std::runtime_error(path + ": cannot open rawlog");
     std::vector<unsigned char> block(1u << 20);
-    std::uint64_t bytes = 0;
+    TRawlogSize size;
     for (;;) {
         std::size_t n = 0;
         try {
             n = in.Read(block.data(), block.size());
         } catch (const std::exception&) {
-            break;  // a broken gzip stream: what decoded is what MRPT will read
+            size.broken = true;
+            break;
+        }
+        // MRPT passes gzread's -1 (a corrupt stream) on as a huge size_t:
+        // looping on it never ends (a fuzzer finding)
+        if (n > block.size()) {
+            size.broken = true;
+            break;
         }
         if (n == 0)
             break;
-        bytes += n;
+        size.bytes += n;
     }
-    return bytes;
+    return size;
 }
 
 std::optional<std::uint64_t> probeInChild(const std::function<void(const TProbeProgress&)>& work) {

@@ -313,7 +313,8 @@ TEST(CRawlogReader, CountsFromTheFileCannotAllocateBeyondIt) {
 
 TEST(CRawlogReader, TheFuzzersFindingsGiveOneClearError) {
     for (const std::string f : {"segv-null-deref-CActionRobotMovement2D.rawlog.gz",
-                                "oom-CObservation2DRangeScan-string-length.rawlog"}) {
+                                "oom-CObservation2DRangeScan-string-length.rawlog",
+                                "timeout-gzread-error-loops.rawlog.gz"}) {
         const std::string path =
             risknav::test::sourcePath("tests/fuzz/crashes/fuzz_rawlog/" + f);
         const auto [n, err] = readUntilError(path);

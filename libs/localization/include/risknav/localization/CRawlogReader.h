@@ -63,6 +63,7 @@ class CRawlogReader {
     std::unique_ptr<mrpt::io::CFileGZInputStream> m_in;
     size_t m_entry = 0;
     std::uint64_t m_bytes = 0;  ///< decompressed size (rawlogBytes)
+    bool m_broken = false;      ///< the gzip stream breaks after m_bytes
     const TProbeProgress* m_progress = nullptr;
     std::optional<std::uint64_t> m_crashEntry;  ///< from the probe
     double m_minStdXY, m_minStdPhi;

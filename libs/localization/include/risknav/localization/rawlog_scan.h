@@ -5,11 +5,19 @@
 #include <string>
 
 namespace risknav::localization {
-/** Decompressed size of a rawlog (plain or gzip), from one pass over its
- *  bytes: bounds what any entry can justify allocating. A broken gzip stream
- *  counts what decodes. Throws std::runtime_error naming the file if it
- *  cannot be opened. */
-std::uint64_t rawlogBytes(const std::string& path);
+/** What one pass over a rawlog's bytes tells before MRPT reads it. */
+struct TRawlogSize {
+    /** Decompressed bytes that decode: bounds what any entry can justify
+     *  allocating. */
+    std::uint64_t bytes = 0;
+    /** The gzip stream breaks after `bytes` (MRPT reads such a file to that
+     *  point and then reports a clean end of file). */
+    bool broken = false;
+};
+
+/** One pass over a rawlog (plain or gzip). Throws std::runtime_error naming
+ *  the file if it cannot be opened. */
+TRawlogSize rawlogBytes(const std::string& path);
 
 /** Progress callback of a probe: "this many units are done". */
 using TProbeProgress = std::function<void(std::uint64_t)>;

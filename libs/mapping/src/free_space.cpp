@@ -1,0 +1,55 @@
+#include <risknav/mapping/free_space.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace risknav::mapping {
+TFusedCell fuseCells(TCellClass a, TCellClass b) {
+    const auto freeWith = [](TCellClass x, TCellClass y) {
+        return x == TCellClass::Free &&
+               (y == TCellClass::Free || y == TCellClass::UndecidedObserved);
+    };
+    if (freeWith(a, b) || freeWith(b, a))
+        return TFusedCell::Free;
+    if (a == TCellClass::Obstacle || b == TCellClass::Obstacle)
+        return TFusedCell::Obstacle;
+    return TFusedCell::Undecided;
+}
+
+int TFreeSpaceMap::x2idx(double x) const { return int(std::floor((x - xMin) / resolution)); }
+int TFreeSpaceMap::y2idx(double y) const { return int(std::floor((y - yMin) / resolution)); }
+
+TFreeSpaceMap fuseGrids(const CLocalProbGrid& a, const CLocalProbGrid& b,
+                        double occupiedThreshold, double freeThreshold) {
+    if (a.size() != b.size() || a.resolution() != b.resolution() || a.xMin() != b.xMin() ||
+        a.yMin() != b.yMin())
+        throw std::invalid_argument("fuseGrids: the two grids do not share their cells");
+    TFreeSpaceMap m;
+    m.size = a.size();
+    m.resolution = a.resolution();
+    m.xMin = a.xMin();
+    m.yMin = a.yMin();
+    m.cells.resize(a.probabilities().size());
+    const auto& pa = a.probabilities();
+    const auto& pb = b.probabilities();
+    const auto& ca = a.counts();
+    const auto& cb = b.counts();
+    for (size_t k = 0; k < m.cells.size(); k++)
+        m.cells[k] = fuseCells(classifyCell(pa[k], ca[k], occupiedThreshold, freeThreshold),
+                               classifyCell(pb[k], cb[k], occupiedThreshold, freeThreshold));
+    return m;
+}
+
+mrpt::maps::COccupancyGridMap2D toMrptGrid(const TFreeSpaceMap& m) {
+    const double ext = m.size * m.resolution;
+    mrpt::maps::COccupancyGridMap2D g(float(m.xMin), float(m.xMin + ext), float(m.yMin),
+                                      float(m.yMin + ext), float(m.resolution));
+    const int w = int(g.getSizeX()), h = int(g.getSizeY());
+    for (int j = 0; j < h && j < m.size; j++)
+        for (int i = 0; i < w && i < m.size; i++) {
+            const TFusedCell c = m.cells[m.index(i, j)];
+            g.setCell(i, j, c == TFusedCell::Free ? 1.0f : c == TFusedCell::Obstacle ? 0.0f : 0.5f);
+        }
+    return g;
+}
+}  // namespace risknav::mapping

@@ -1,0 +1,171 @@
+// M1 mapping (Miura et al. 2006, section 2): Bayes update, N, classification,
+// fusion and the scrolling local grid.
+#include <risknav/mapping/CLocalProbGrid.h>
+#include <risknav/mapping/free_space.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace risknav::mapping;
+
+namespace {
+TSensorModel laserModel() {
+    TSensorModel m;
+    m.p_obs_given_obstacle = 0.7;
+    m.p_obs_given_free = 0.3;
+    m.range_uncertainty = 0.05;
+    return m;
+}
+
+/** A scan of `beams` rays over `fovDeg` from `robot` (sensor at the robot
+ * centre) against the vertical wall x = wallX (no return beyond maxRange). */
+mrpt::obs::CObservation2DRangeScan wallScan(const mrpt::math::TPose2D& robot, double wallX,
+                                            int beams = 181, double fovDeg = 180,
+                                            double maxRange = 8) {
+    mrpt::obs::CObservation2DRangeScan s;
+    s.aperture = float(fovDeg * M_PI / 180);
+    s.maxRange = float(maxRange);
+    s.rightToLeft = true;
+    s.resizeScan(size_t(beams));
+    for (int k = 0; k < beams; k++) {
+        const double a = robot.phi - 0.5 * s.aperture + k * s.aperture / (beams - 1);
+        const double c = std::cos(a);
+        const double r = c > 1e-9 ? (wallX - robot.x) / c : 1e9;
+        const bool hit = r > 0 && r < maxRange;
+        s.setScanRange(size_t(k), float(hit ? r : maxRange));
+        s.setScanRangeValidity(size_t(k), hit);
+    }
+    return s;
+}
+}  // namespace
+
+TEST(SensorModel, BayesUpdateByHand) {
+    TSensorModel m;  // 0.6 / 0.45
+    EXPECT_NEAR(bayesUpdate(0.5, true, m), 0.3 / (0.3 + 0.225), 1e-12);  // 0.5714
+    EXPECT_NEAR(bayesUpdate(0.5, false, m), 0.2 / (0.2 + 0.275), 1e-12);  // 0.4211
+    // two free readings = odds (0.4/0.55)^2
+    const double p2 = bayesUpdate(bayesUpdate(0.5, false, m), false, m);
+    const double odds = std::pow(0.4 / 0.55, 2);
+    EXPECT_NEAR(p2, odds / (1 + odds), 1e-12);
+    // an occupied reading after a free one returns to 0.5 only if the model is
+    // symmetric; this one is not
+    EXPECT_NE(bayesUpdate(bayesUpdate(0.5, false, m), true, m), 0.5);
+}
+
+TEST(SensorModel, NecessaryObservationsFromTheModel) {
+    EXPECT_EQ(necessaryObservations(TSensorModel{}, 0.2), 5);  // the paper's N
+    EXPECT_EQ(necessaryObservations(laserModel(), 0.2), 2);    // 0.3, then 0.155
+    TSensorModel weak;
+    weak.p_obs_given_obstacle = 0.55;
+    weak.p_obs_given_free = 0.45;  // odds x 0.818 per reading: 7 to pass 0.25
+    EXPECT_EQ(necessaryObservations(weak, 0.2), 7);
+    EXPECT_EQ(necessaryObservations(TSensorModel{}, 0.45), 1);
+    TSensorModel useless;
+    useless.p_obs_given_obstacle = 0.4;
+    useless.p_obs_given_free = 0.5;
+    EXPECT_THROW(necessaryObservations(useless, 0.2), std::invalid_argument);
+    EXPECT_THROW(useless.validate(), std::exception);
+}
+
+TEST(LocalGrid, Classification) {
+    EXPECT_EQ(classifyCell(0.71f, 3, 0.7, 0.2), TCellClass::Obstacle);
+    EXPECT_EQ(classifyCell(0.7f, 3, 0.7, 0.2), TCellClass::UndecidedObserved);
+    EXPECT_EQ(classifyCell(0.19f, 3, 0.7, 0.2), TCellClass::Free);
+    EXPECT_EQ(classifyCell(0.5f, 0, 0.7, 0.2), TCellClass::UndecidedUnobserved);
+    EXPECT_EQ(classifyCell(0.5f, 1, 0.7, 0.2), TCellClass::UndecidedObserved);
+}
+
+TEST(LocalGrid, FusionTruthTable) {
+    using C = TCellClass;
+    using F = TFusedCell;
+    const C all[] = {C::Obstacle, C::Free, C::UndecidedObserved, C::UndecidedUnobserved};
+    // rows a, columns b, in the order above
+    const F expected[4][4] = {
+        {F::Obstacle, F::Obstacle, F::Obstacle, F::Obstacle},
+        {F::Obstacle, F::Free, F::Free, F::Undecided},
+        {F::Obstacle, F::Free, F::Undecided, F::Undecided},
+        {F::Obstacle, F::Undecided, F::Undecided, F::Undecided},
+    };
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++)
+            EXPECT_EQ(fuseCells(all[a], all[b]), expected[a][b]) << a << " " << b;
+}
+
+TEST(LocalGrid, SectorModelFreeBeforeOccupiedAroundNothingBeyond) {
+    CLocalProbGrid g(200, 0.05);
+    const mrpt::math::TPose2D robot(0.02, 0.02, 0);
+    const auto scan = wallScan(robot, 2.0);
+    const auto m = laserModel();
+    g.integrateScan(robot, scan, m);
+    const int j = g.y2idx(0.02);
+    // straight ahead: R = 1.98 m, delta 0.05
+    EXPECT_NEAR(g.probability(g.x2idx(1.0), j), 0.3, 1e-6);   // free reading
+    EXPECT_NEAR(g.probability(g.x2idx(2.0), j), 0.7, 1e-6);   // occupied reading
+    EXPECT_NEAR(g.probability(g.x2idx(2.3), j), 0.5, 1e-6);   // beyond R_max: untouched
+    EXPECT_EQ(g.observations(g.x2idx(2.3), j), 0);
+    EXPECT_EQ(g.observations(g.x2idx(1.0), j), 1);           // one reading per scan
+    EXPECT_NEAR(g.probability(g.x2idx(-1.0), j), 0.5, 1e-6);  // behind a 180 deg sensor
+    // every cell within the field of view and nearer than the wall is read
+    for (int i = g.x2idx(0.3); i < g.x2idx(1.8); i++)
+        for (int jj = g.y2idx(-1.0); jj < g.y2idx(1.0); jj++)
+            EXPECT_EQ(g.observations(i, jj), 1) << i << " " << jj;
+}
+
+TEST(LocalGrid, EgoMotionKeepsAWallInPlace) {
+    // The robot drives and turns; the grid scrolls with it. After 40 cycles
+    // the obstacle cells are still exactly the wall x = 3 (one cell thick).
+    CLocalProbGrid g(200, 0.05);
+    const auto m = laserModel();
+    mrpt::math::TPose2D robot(0.01, 0.01, 0.0);
+    int scrolled = 0;
+    for (int k = 0; k < 40; k++) {
+        const auto sh = g.recenter(robot.x, robot.y);
+        scrolled += std::abs(sh.first) + std::abs(sh.second);
+        g.integrateScan(robot, wallScan(robot, 3.0), m);
+        robot.x += 0.037;
+        robot.y += 0.021 * std::sin(0.3 * k);
+        robot.phi = 0.4 * std::sin(0.2 * k);
+    }
+    EXPECT_GT(scrolled, 20);
+    int obstacles = 0;
+    for (int j = 0; j < g.size(); j++)
+        for (int i = 0; i < g.size(); i++)
+            if (classifyCell(g.probability(i, j), g.observations(i, j), 0.7, 0.2) ==
+                TCellClass::Obstacle) {
+                obstacles++;
+                EXPECT_NEAR(g.idx2x(i), 3.0, 0.05) << g.idx2y(j);
+            }
+    EXPECT_GT(obstacles, 60);  // > 3 m of wall
+    // the robot is in the centre cell
+    EXPECT_EQ(g.x2idx(robot.x - 0.037), g.size() / 2);
+}
+
+TEST(LocalGrid, RecenterMovesContentByWholeCells) {
+    CLocalProbGrid g(10, 0.5);  // [-2.5, 2.5)
+    g.setCell(g.x2idx(1.2), g.y2idx(-0.3), 0.9f, 4);
+    g.recenter(1.6, 0.1);
+    EXPECT_FLOAT_EQ(g.probability(g.x2idx(1.2), g.y2idx(-0.3)), 0.9f);
+    EXPECT_EQ(g.observations(g.x2idx(1.2), g.y2idx(-0.3)), 4);
+    EXPECT_EQ(g.x2idx(1.6), 5);
+    g.recenter(-20, 0);  // everything scrolls out
+    for (float p : g.probabilities())
+        EXPECT_FLOAT_EQ(p, 0.5f);
+}
+
+TEST(LocalGrid, ProbabilitiesStayClampedSoANewObjectShowsQuickly) {
+    CLocalProbGrid g(100, 0.05);
+    const auto m = laserModel();
+    const mrpt::math::TPose2D robot(0.025, 0.025, 0);  // a cell centre
+    for (int k = 0; k < 200; k++)
+        g.integrateScan(robot, wallScan(robot, 100.0, 181, 180, 2), m);  // all free
+    const int i = g.x2idx(1.625), j = g.y2idx(0.025);
+    EXPECT_FLOAT_EQ(g.probability(i, j), float(CLocalProbGrid::kProbabilityMin));
+    int readings = 0;
+    while (readings < 50 &&
+           classifyCell(g.probability(i, j), 1, 0.7, 0.2) != TCellClass::Obstacle) {
+        g.integrateScan(robot, wallScan(robot, 1.625), m);  // a wall through that cell
+        readings++;
+    }
+    EXPECT_LE(readings, 5);
+}
