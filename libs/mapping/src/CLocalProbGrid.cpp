@@ -10,15 +10,20 @@ namespace risknav::mapping {
 CLocalProbGrid::CLocalProbGrid(int size, double resolution, double cx, double cy)
     : m_n(size), m_res(resolution) {
     if (size <= 0 || size > 4000 || !(resolution > 0))
-        throw std::invalid_argument("local grid: size must be in 1..4000, resolution > 0");
+        throw std::invalid_argument(
+            "local grid: size must be in 1..4000, resolution > 0");
     m_x0 = cx - 0.5 * size * resolution;
     m_y0 = cy - 0.5 * size * resolution;
     m_p.assign(size_t(size) * size, 0.5f);
     m_count.assign(size_t(size) * size, 0);
 }
 
-int CLocalProbGrid::x2idx(double x) const { return int(std::floor((x - m_x0) / m_res)); }
-int CLocalProbGrid::y2idx(double y) const { return int(std::floor((y - m_y0) / m_res)); }
+int CLocalProbGrid::x2idx(double x) const {
+    return int(std::floor((x - m_x0) / m_res));
+}
+int CLocalProbGrid::y2idx(double y) const {
+    return int(std::floor((y - m_y0) / m_res));
+}
 
 std::pair<int, int> CLocalProbGrid::recenter(double x, double y) {
     const int di = x2idx(x) - m_n / 2, dj = y2idx(y) - m_n / 2;
@@ -62,8 +67,10 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
     const double reach = maxRange + m.delta(maxRange);
     // MRPT's ray order: right to left, or mirrored.
     const double sign = scan.rightToLeft ? 1.0 : -1.0;
-    const int i0 = std::max(0, x2idx(sx - reach)), i1 = std::min(m_n - 1, x2idx(sx + reach));
-    const int j0 = std::max(0, y2idx(sy - reach)), j1 = std::min(m_n - 1, y2idx(sy + reach));
+    const int i0 = std::max(0, x2idx(sx - reach)),
+              i1 = std::min(m_n - 1, x2idx(sx + reach));
+    const int j0 = std::max(0, y2idx(sy - reach)),
+              j1 = std::min(m_n - 1, y2idx(sy + reach));
     for (int j = j0; j <= j1; j++) {
         const double dy = idx2y(j) - sy;
         for (int i = i0; i <= i1; i++) {
@@ -112,6 +119,7 @@ TCellClass classifyCell(float p, uint16_t observations, double occupiedThreshold
         return TCellClass::Obstacle;
     if (p < freeThreshold)
         return TCellClass::Free;
-    return observations > 0 ? TCellClass::UndecidedObserved : TCellClass::UndecidedUnobserved;
+    return observations > 0 ? TCellClass::UndecidedObserved
+                            : TCellClass::UndecidedUnobserved;
 }
 }  // namespace risknav::mapping

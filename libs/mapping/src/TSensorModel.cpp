@@ -38,7 +38,8 @@ void TSensorModel::validate() const {
 }
 
 double bayesUpdate(double p, bool occupiedReading, const TSensorModel& m) {
-    const double le = occupiedReading ? m.p_obs_given_obstacle : 1.0 - m.p_obs_given_obstacle;
+    const double le =
+        occupiedReading ? m.p_obs_given_obstacle : 1.0 - m.p_obs_given_obstacle;
     const double lf = occupiedReading ? m.p_obs_given_free : 1.0 - m.p_obs_given_free;
     return le * p / (le * p + lf * (1.0 - p));
 }

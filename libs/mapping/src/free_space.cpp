@@ -16,13 +16,17 @@ TFusedCell fuseCells(TCellClass a, TCellClass b) {
     return TFusedCell::Undecided;
 }
 
-int TFreeSpaceMap::x2idx(double x) const { return int(std::floor((x - xMin) / resolution)); }
-int TFreeSpaceMap::y2idx(double y) const { return int(std::floor((y - yMin) / resolution)); }
+int TFreeSpaceMap::x2idx(double x) const {
+    return int(std::floor((x - xMin) / resolution));
+}
+int TFreeSpaceMap::y2idx(double y) const {
+    return int(std::floor((y - yMin) / resolution));
+}
 
 TFreeSpaceMap fuseGrids(const CLocalProbGrid& a, const CLocalProbGrid& b,
                         double occupiedThreshold, double freeThreshold) {
-    if (a.size() != b.size() || a.resolution() != b.resolution() || a.xMin() != b.xMin() ||
-        a.yMin() != b.yMin())
+    if (a.size() != b.size() || a.resolution() != b.resolution() ||
+        a.xMin() != b.xMin() || a.yMin() != b.yMin())
         throw std::invalid_argument("fuseGrids: the two grids do not share their cells");
     TFreeSpaceMap m;
     m.size = a.size();
@@ -35,8 +39,9 @@ TFreeSpaceMap fuseGrids(const CLocalProbGrid& a, const CLocalProbGrid& b,
     const auto& ca = a.counts();
     const auto& cb = b.counts();
     for (size_t k = 0; k < m.cells.size(); k++)
-        m.cells[k] = fuseCells(classifyCell(pa[k], ca[k], occupiedThreshold, freeThreshold),
-                               classifyCell(pb[k], cb[k], occupiedThreshold, freeThreshold));
+        m.cells[k] =
+            fuseCells(classifyCell(pa[k], ca[k], occupiedThreshold, freeThreshold),
+                      classifyCell(pb[k], cb[k], occupiedThreshold, freeThreshold));
     return m;
 }
 
@@ -48,7 +53,10 @@ mrpt::maps::COccupancyGridMap2D toMrptGrid(const TFreeSpaceMap& m) {
     for (int j = 0; j < h && j < m.size; j++)
         for (int i = 0; i < w && i < m.size; i++) {
             const TFusedCell c = m.cells[m.index(i, j)];
-            g.setCell(i, j, c == TFusedCell::Free ? 1.0f : c == TFusedCell::Obstacle ? 0.0f : 0.5f);
+            g.setCell(i, j,
+                      c == TFusedCell::Free       ? 1.0f
+                      : c == TFusedCell::Obstacle ? 0.0f
+                                                  : 0.5f);
         }
     return g;
 }

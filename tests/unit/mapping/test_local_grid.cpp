@@ -20,9 +20,9 @@ TSensorModel laserModel() {
 
 /** A scan of `beams` rays over `fovDeg` from `robot` (sensor at the robot
  * centre) against the vertical wall x = wallX (no return beyond maxRange). */
-mrpt::obs::CObservation2DRangeScan wallScan(const mrpt::math::TPose2D& robot, double wallX,
-                                            int beams = 181, double fovDeg = 180,
-                                            double maxRange = 8) {
+mrpt::obs::CObservation2DRangeScan wallScan(const mrpt::math::TPose2D& robot,
+                                            double wallX, int beams = 181,
+                                            double fovDeg = 180, double maxRange = 8) {
     mrpt::obs::CObservation2DRangeScan s;
     s.aperture = float(fovDeg * M_PI / 180);
     s.maxRange = float(maxRange);
@@ -41,8 +41,8 @@ mrpt::obs::CObservation2DRangeScan wallScan(const mrpt::math::TPose2D& robot, do
 }  // namespace
 
 TEST(SensorModel, BayesUpdateByHand) {
-    TSensorModel m;  // 0.6 / 0.45
-    EXPECT_NEAR(bayesUpdate(0.5, true, m), 0.3 / (0.3 + 0.225), 1e-12);  // 0.5714
+    TSensorModel m;                                                       // 0.6 / 0.45
+    EXPECT_NEAR(bayesUpdate(0.5, true, m), 0.3 / (0.3 + 0.225), 1e-12);   // 0.5714
     EXPECT_NEAR(bayesUpdate(0.5, false, m), 0.2 / (0.2 + 0.275), 1e-12);  // 0.4211
     // two free readings = odds (0.4/0.55)^2
     const double p2 = bayesUpdate(bayesUpdate(0.5, false, m), false, m);
@@ -100,11 +100,11 @@ TEST(LocalGrid, SectorModelFreeBeforeOccupiedAroundNothingBeyond) {
     g.integrateScan(robot, scan, m);
     const int j = g.y2idx(0.02);
     // straight ahead: R = 1.98 m, delta 0.05
-    EXPECT_NEAR(g.probability(g.x2idx(1.0), j), 0.3, 1e-6);   // free reading
-    EXPECT_NEAR(g.probability(g.x2idx(2.0), j), 0.7, 1e-6);   // occupied reading
-    EXPECT_NEAR(g.probability(g.x2idx(2.3), j), 0.5, 1e-6);   // beyond R_max: untouched
+    EXPECT_NEAR(g.probability(g.x2idx(1.0), j), 0.3, 1e-6);  // free reading
+    EXPECT_NEAR(g.probability(g.x2idx(2.0), j), 0.7, 1e-6);  // occupied reading
+    EXPECT_NEAR(g.probability(g.x2idx(2.3), j), 0.5, 1e-6);  // beyond R_max: untouched
     EXPECT_EQ(g.observations(g.x2idx(2.3), j), 0);
-    EXPECT_EQ(g.observations(g.x2idx(1.0), j), 1);           // one reading per scan
+    EXPECT_EQ(g.observations(g.x2idx(1.0), j), 1);            // one reading per scan
     EXPECT_NEAR(g.probability(g.x2idx(-1.0), j), 0.5, 1e-6);  // behind a 180 deg sensor
     // every cell within the field of view and nearer than the wall is read
     for (int i = g.x2idx(0.3); i < g.x2idx(1.8); i++)

@@ -69,7 +69,8 @@ class CLocalProbGrid {
      * without a return (invalid) reads free up to maxRange. Each cell read
      * counts one observation. */
     void integrateScan(const mrpt::math::TPose2D& robot,
-                       const mrpt::obs::CObservation2DRangeScan& scan, const TSensorModel& m);
+                       const mrpt::obs::CObservation2DRangeScan& scan,
+                       const TSensorModel& m);
 
     float probability(int i, int j) const { return m_p[index(i, j)]; }
     uint16_t observations(int i, int j) const { return m_count[index(i, j)]; }

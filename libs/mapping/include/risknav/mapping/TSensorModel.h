@@ -13,9 +13,10 @@ namespace risknav::mapping {
  * [MapRange2] in risknav-explore). */
 struct TSensorModel : public common::CValidatedOptions {
     // Defaults: a noisy stereo-like sensor; they give N = 5 (the paper's N).
-    double p_obs_given_obstacle = 0.6;  ///< P(O|E): a cell with an obstacle reads occupied
-    double p_obs_given_free = 0.45;     ///< P(O|~E): a free cell reads occupied
-    double range_uncertainty = 0.05;    ///< [m] delta at R = 0
+    double p_obs_given_obstacle =
+        0.6;                          ///< P(O|E): a cell with an obstacle reads occupied
+    double p_obs_given_free = 0.45;   ///< P(O|~E): a free cell reads occupied
+    double range_uncertainty = 0.05;  ///< [m] delta at R = 0
     double range_uncertainty_quad = 0;  ///< [1/m] delta grows by this * R^2
     std::string section = "MapLaser";   ///< for messages
 
@@ -42,5 +43,6 @@ double bayesUpdate(double p, bool occupiedReading, const TSensorModel& m);
  * analysis): free readings applied to a cell from P = pStart until P falls
  * below freeThreshold. Throws std::invalid_argument if the model never gets
  * there (P(O|E) <= P(O|~E)) or needs more than 1000. */
-int necessaryObservations(const TSensorModel& m, double freeThreshold, double pStart = 0.5);
+int necessaryObservations(const TSensorModel& m, double freeThreshold,
+                          double pStart = 0.5);
 }  // namespace risknav::mapping

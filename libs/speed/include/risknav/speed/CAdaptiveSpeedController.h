@@ -1,0 +1,77 @@
+#pragma once
+#include <risknav/speed/IPathPlanner.h>
+#include <risknav/speed/TSpeedControlOptions.h>
+
+#include <mrpt/math/TPose2D.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace risknav::speed {
+/** Why a cycle's speed is what it is. */
+enum class TSpeedReason {
+    None,         ///< the fastest candidate
+    Narrow,       ///< a narrow passage (gap rule, section 4)
+    Undecided,    ///< the distance to an undecided region (section 3)
+    Unreachable,  ///< no path and no frontier: the robot stops
+};
+const char* reasonName(TSpeedReason r);
+
+/** One cycle's decision, everything the outputs show. */
+struct TSpeedDecision {
+    double speed = 0;     ///< [m/s] 0 = stop
+    int speedIndex = -1;  ///< into the candidate list, -1 = stop
+    TSpeedReason reason = TSpeedReason::None;
+    std::vector<TPlannedPath> perSpeed;  ///< the plan of each candidate speed
+    int pathIndex = -1;                  ///< whose plan the robot follows
+    TPlannedPath path;                   ///< that plan
+    std::vector<size_t> safeByGap;       ///< section 4.1
+    std::vector<size_t> allowed;         ///< after section 4.2 (faster on the path)
+    double dUndecided = 0;               ///< [m] along the path, +inf = none
+    mrpt::math::TPoint2D target;         ///< the destination planned to
+    bool temporaryTarget = false;        ///< target on the free/undecided boundary
+    bool marginBroken = false;           ///< fixed mode: no path with its own margin
+};
+
+/** The adaptive speed controller of Miura, Negishi, Shirai 2006 (000)
+ * sections 3-5 (flow of Fig. 13), PAPER_NOTES M1:
+ *  1. destination: the goal if it lies in known free space reachable by the
+ *     slowest speed; else a temporary destination on the free/undecided
+ *     boundary nearest the goal (section 3.3);
+ *  2. a path per candidate speed, obstacles grown by the robot radius + the
+ *     speed's margin (planner behind IPathPlanner);
+ *  3. the narrow-space rule on their cost-to-go (safeSpeedsByGap): the
+ *     fastest safe speed owns the path;
+ *  4. a faster speed is allowed too if its margin holds along the next
+ *     lookahead_cycles cycles of that path (section 4.2);
+ *  5. the fastest allowed speed with d / (v T) >= N (section 5), d measured
+ *     along the path to where it comes within robot radius + margin (+ one
+ *     cell) of a frontier cell; none: stop (reason Undecided).
+ * Fixed mode (a comparison baseline): one speed, its own margin, no
+ * undecided rule; with no path at its margin it plans with the robot radius
+ * only and says so (marginBroken). */
+class CAdaptiveSpeedController {
+  public:
+    CAdaptiveSpeedController(const TSpeedControlOptions& o, double robotRadius,
+                             int necessaryObservations,
+                             std::shared_ptr<const IPathPlanner> planner = nullptr);
+    /** fixedIndex < 0: adaptive; else fixed at that candidate speed. */
+    TSpeedDecision decide(const TPlanningField& field, const mrpt::math::TPose2D& robot,
+                          const mrpt::math::TPoint2D& goal, int fixedIndex = -1) const;
+    const TSpeedControlOptions& options() const { return m_o; }
+    int necessaryObservations() const { return m_N; }
+
+    /** Step 1 alone: the destination to plan to, and whether it is temporary;
+     * false when there is neither a reachable goal nor a reachable frontier. */
+    bool chooseTarget(const TPlanningField& field, const mrpt::math::TPoint2D& start,
+                      const mrpt::math::TPoint2D& goal, mrpt::math::TPoint2D& target,
+                      bool& temporary) const;
+
+  private:
+    TSpeedControlOptions m_o;
+    double m_radius;
+    int m_N;
+    std::shared_ptr<const IPathPlanner> m_planner;
+};
+}  // namespace risknav::speed

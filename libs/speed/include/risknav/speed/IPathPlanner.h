@@ -1,0 +1,64 @@
+#pragma once
+#include <risknav/speed/TPlanningField.h>
+
+#include <mrpt/math/TPoint2D.h>
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace risknav::speed {
+/** A path of one candidate speed. */
+struct TPlannedPath {
+    std::vector<mrpt::math::TPoint2D> points;  ///< from the robot on (ego frame)
+    double length = 0;                         ///< [m] along the points
+    bool reached = false;                      ///< ends at the destination
+    /** Cost-to-go (PAPER_NOTES M1): length + the straight-line distance left
+     * from the path's end to the destination; +inf when not reached. */
+    double costToGo = std::numeric_limits<double>::infinity();
+};
+
+/** The planner behind the speed controller ((000) section 3.3: "any planner
+ * works"): a path from start to within `goalTolerance` of the goal whose
+ * every point keeps a clearance of at least `inflation` (robot size + the
+ * speed's margin) from non-free cells. A complete planner: when the goal
+ * cannot be reached, costToGo is +inf (the path shown ends at the reachable
+ * point nearest the goal, reached = false). A robot already closer than `inflation` to a
+ * non-free cell has no path at that inflation (costToGo = +inf: the speed's margin is
+ * broken now), unless `escape`: then, near the start, it may move with the clearance it
+ * has (so that the slowest speed can always get out). */
+class IPathPlanner {
+  public:
+    virtual ~IPathPlanner() = default;
+    virtual TPlannedPath plan(const TPlanningField& field,
+                              const mrpt::math::TPoint2D& start,
+                              const mrpt::math::TPoint2D& goal, double inflation,
+                              double goalTolerance, bool escape) const = 0;
+    virtual std::string name() const = 0;
+};
+
+/** A* on the grid's cells, 8-connected, octile heuristic (exact for the
+ * cost of its moves). */
+class CGridPathPlanner : public IPathPlanner {
+  public:
+    TPlannedPath plan(const TPlanningField& field, const mrpt::math::TPoint2D& start,
+                      const mrpt::math::TPoint2D& goal, double inflation,
+                      double goalTolerance, bool escape) const override;
+    std::string name() const override { return "grid_astar"; }
+};
+
+/** d of (000) section 3: the along-path distance [m] from the path's start
+ * to its first point where the front of the robot's margin disc (radius
+ * `reach` = robot radius + the speed's margin) touches the unknown: one of
+ * five probes on the front half circle (0, +-45, +-90 deg from the path's
+ * direction) lies within one cell of a frontier cell. Only the front: the
+ * unknown behind a robot that has not looked back yet is not where it is
+ * going. +inf if no point does. */
+double distanceToUndecided(const TPlannedPath& path, const TPlanningField& field,
+                           double reach);
+
+/** Whether every point of the path within `distance` [m] of its start keeps
+ * a clearance of at least `inflation` ((000) section 4.2 check). */
+bool clearanceHoldsAhead(const TPlannedPath& path, const TPlanningField& field,
+                         double inflation, double distance);
+}  // namespace risknav::speed

@@ -1,0 +1,33 @@
+#pragma once
+#include <risknav/common/CValidatedOptions.h>
+
+#include <string>
+#include <vector>
+
+namespace risknav::speed {
+/** [SpeedControl]: the adaptive speed controller of Miura et al. 2006 (000),
+ * PAPER_NOTES M1. */
+struct TSpeedControlOptions : public common::CValidatedOptions {
+    /** Candidate speeds [m/s], fastest first, and the motion-uncertainty
+     * margin of each [m] ((000) section 6: 1.1 / 0.7 / 0.35 / 0.2 m/s with
+     * 30 / 20 / 10 / 5 cm). The robot-size margin (its radius) comes on top. */
+    std::vector<double> speeds = {1.1, 0.7, 0.35, 0.2};
+    std::vector<double> margins = {0.30, 0.20, 0.10, 0.05};
+    /** [m] a jump in cost-to-go between consecutive speeds above this is a
+     * narrow passage (section 4.1). */
+    double gap_threshold = 1.0;
+    double cycle_time = 0.3;  ///< T [s], one observation and one decision
+    int lookahead_cycles =
+        2;  ///< section 4.2: a faster speed must keep its margin this long
+    double occupied_threshold = 0.7;  ///< section 2 classification
+    double free_threshold = 0.2;
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                            const std::string& section) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                          const std::string& section) const override;
+    /** Speeds > 0 strictly decreasing, margins >= 0 one per speed and not
+     * increasing (a slower speed cannot need a larger margin), T > 0, ... */
+    void validate() const override;
+    std::string section = "SpeedControl";
+};
+}  // namespace risknav::speed

@@ -1,0 +1,189 @@
+#include <risknav/speed/CAdaptiveSpeedController.h>
+#include <risknav/speed/speed_rules.h>
+
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <stdexcept>
+
+namespace risknav::speed {
+const char* reasonName(TSpeedReason r) {
+    switch (r) {
+        case TSpeedReason::None:
+            return "none";
+        case TSpeedReason::Narrow:
+            return "narrow";
+        case TSpeedReason::Undecided:
+            return "undecided";
+        case TSpeedReason::Unreachable:
+            return "unreachable";
+    }
+    return "?";
+}
+
+CAdaptiveSpeedController::CAdaptiveSpeedController(
+    const TSpeedControlOptions& o, double robotRadius, int necessaryObservations,
+    std::shared_ptr<const IPathPlanner> planner)
+    : m_o(o), m_radius(robotRadius), m_N(necessaryObservations), m_planner(planner) {
+    m_o.validate();
+    if (!(robotRadius > 0) || necessaryObservations < 1)
+        throw std::invalid_argument("speed controller: radius > 0 and N >= 1 needed");
+    if (!m_planner)
+        m_planner = std::make_shared<CGridPathPlanner>();
+}
+
+bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
+                                            const mrpt::math::TPoint2D& start,
+                                            const mrpt::math::TPoint2D& goal,
+                                            mrpt::math::TPoint2D& target,
+                                            bool& temporary) const {
+    const auto& m = field.map;
+    const double res = m.resolution;
+    const double inflation = m_radius + m_o.margins.back();
+    const int si = m.x2idx(start.x), sj = m.y2idx(start.y);
+    if (!m.inside(si, sj))
+        return false;
+    // the cells the slowest speed can reach (the planner's escape rule included)
+    const double startClear = field.clearance[m.index(si, sj)];
+    const double escapeRadius = inflation + 2 * res;
+    std::vector<uint8_t> seen(m.cells.size(), 0);
+    std::deque<std::pair<int, int>> q;
+    q.emplace_back(si, sj);
+    seen[m.index(si, sj)] = 1;
+    const int gi = m.x2idx(goal.x), gj = m.y2idx(goal.y);
+    bool goalReached = false;
+    double bestDist = std::numeric_limits<double>::infinity();
+    const double band = inflation + 2 * res;
+    while (!q.empty()) {
+        const auto [i, j] = q.front();
+        q.pop_front();
+        if (i == gi && j == gj)
+            goalReached = true;
+        const size_t k = m.index(i, j);
+        if (field.frontierDist[k] <= band) {
+            const double d = std::hypot(m.idx2x(i) - goal.x, m.idx2y(j) - goal.y);
+            if (d < bestDist) {
+                bestDist = d;
+                target = {m.idx2x(i), m.idx2y(j)};
+            }
+        }
+        for (int dj = -1; dj <= 1; dj++)
+            for (int di = -1; di <= 1; di++) {
+                const int ni = i + di, nj = j + dj;
+                if (!m.inside(ni, nj) || seen[m.index(ni, nj)])
+                    continue;
+                const double c = field.clearance[m.index(ni, nj)];
+                const bool ok = c >= inflation ||
+                                (c > 0 && c >= startClear &&
+                                 std::hypot(ni - si, nj - sj) * res <= escapeRadius);
+                if (!ok)
+                    continue;
+                seen[m.index(ni, nj)] = 1;
+                q.emplace_back(ni, nj);
+            }
+    }
+    if (goalReached && field.clearance[m.index(gi, gj)] >= inflation) {
+        target = goal;
+        temporary = false;
+        return true;
+    }
+    temporary = true;
+    return std::isfinite(bestDist);
+}
+
+TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
+                                                const mrpt::math::TPose2D& robot,
+                                                const mrpt::math::TPoint2D& goal,
+                                                int fixedIndex) const {
+    TSpeedDecision d;
+    const mrpt::math::TPoint2D start(robot.x, robot.y);
+    const size_t nSpeeds = m_o.speeds.size();
+    if (fixedIndex >= int(nSpeeds))
+        throw std::invalid_argument("speed controller: no such fixed speed");
+    if (!chooseTarget(field, start, goal, d.target, d.temporaryTarget)) {
+        d.reason = TSpeedReason::Unreachable;
+        return d;
+    }
+    const double res = field.map.resolution;
+    auto inflation = [&](size_t k) { return m_radius + m_o.margins[k]; };
+    // d for speed k on path p: its margin disc's front meets the unknown; a
+    // path to a temporary target ends at the unknown anyway
+    auto undecidedDistance = [&](const TPlannedPath& p, size_t k) {
+        double du = distanceToUndecided(p, field, inflation(k));
+        if (d.temporaryTarget)
+            du = std::min(du, p.length);
+        return du;
+    };
+    const size_t slowest = nSpeeds - 1;
+    // a faster speed ends where its larger margin lets it: the target was
+    // placed for the slowest one
+    auto tolerance = [&](size_t k) {
+        return inflation(k) - inflation(slowest) + 2 * res;
+    };
+
+    if (fixedIndex >= 0) {
+        const size_t k = size_t(fixedIndex);
+        d.perSpeed.assign(nSpeeds, TPlannedPath{});
+        d.perSpeed[k] =
+            m_planner->plan(field, start, d.target, inflation(k), tolerance(k), true);
+        d.path = d.perSpeed[k];
+        if (!d.path.reached) {
+            // the fixed robot has no path with its margin: it goes with its size only
+            const TPlannedPath tight =
+                m_planner->plan(field, start, d.target, m_radius, tolerance(k), true);
+            if (tight.reached) {
+                d.path = tight;
+                d.marginBroken = true;
+            }
+        }
+        d.pathIndex = int(k);
+        d.dUndecided = undecidedDistance(d.path, k);
+        if (d.path.length < 0.5 * res && !d.path.reached) {
+            d.reason = TSpeedReason::Unreachable;
+            return d;
+        }
+        d.speed = m_o.speeds[k];
+        d.speedIndex = int(k);
+        d.reason = TSpeedReason::None;
+        return d;
+    }
+
+    std::vector<double> costs(nSpeeds);
+    for (size_t k = 0; k < nSpeeds; k++) {
+        d.perSpeed.push_back(m_planner->plan(field, start, d.target, inflation(k),
+                                             tolerance(k), k == slowest));
+        costs[k] = d.perSpeed[k].costToGo;
+    }
+    d.safeByGap = safeSpeedsByGap(costs, m_o.gap_threshold);
+    const size_t owner = d.safeByGap.front();  // the fastest safe speed owns the path
+    d.pathIndex = int(owner);
+    d.path = d.perSpeed[owner];
+    if (d.path.length < 0.5 * res && !d.path.reached) {
+        d.reason = TSpeedReason::Unreachable;
+        return d;
+    }
+    // section 4.2: faster speeds whose margin holds along the next cycles
+    for (size_t k = 0; k < owner; k++)
+        if (clearanceHoldsAhead(d.path, field, inflation(k),
+                                m_o.lookahead_cycles * m_o.speeds[k] * m_o.cycle_time))
+            d.allowed.push_back(k);
+    for (size_t k : d.safeByGap)
+        d.allowed.push_back(k);
+    d.dUndecided = undecidedDistance(d.path, owner);
+    bool undecidedCut = false;
+    for (size_t k : d.allowed) {  // fastest first
+        if (undecidedRuleHolds(undecidedDistance(d.path, k), m_o.speeds[k],
+                               m_o.cycle_time, m_N)) {
+            d.speed = m_o.speeds[k];
+            d.speedIndex = int(k);
+            d.reason = k == 0         ? TSpeedReason::None
+                       : undecidedCut ? TSpeedReason::Undecided
+                                      : TSpeedReason::Narrow;
+            return d;
+        }
+        undecidedCut = true;
+    }
+    d.reason = TSpeedReason::Undecided;  // even the slowest would reach it too soon
+    return d;
+}
+}  // namespace risknav::speed

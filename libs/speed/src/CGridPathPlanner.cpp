@@ -1,0 +1,148 @@
+#include <risknav/speed/IPathPlanner.h>
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+
+namespace risknav::speed {
+TPlannedPath CGridPathPlanner::plan(const TPlanningField& field,
+                                    const mrpt::math::TPoint2D& start,
+                                    const mrpt::math::TPoint2D& goal, double inflation,
+                                    double goalTolerance, bool escape) const {
+    const auto& m = field.map;
+    const int n = m.size;
+    const double res = m.resolution;
+    TPlannedPath out;
+    const int si = m.x2idx(start.x), sj = m.y2idx(start.y);
+    if (!m.inside(si, sj)) {
+        out.points = {start};
+        out.costToGo = std::hypot(goal.x - start.x, goal.y - start.y);
+        return out;
+    }
+    const int gi = m.x2idx(goal.x), gj = m.y2idx(goal.y);
+    const size_t s = m.index(si, sj);
+    // a robot inside its own margin may leave with the clearance it has
+    const double startClear = field.clearance[s];
+    if (startClear < inflation && !escape) {
+        out.points = {start};
+        return out;  // costToGo stays +inf
+    }
+    const double escapeRadius = inflation + 2 * res;
+    auto traversable = [&](int i, int j) {
+        const double c = field.clearance[m.index(i, j)];
+        if (c >= inflation)
+            return true;
+        return escape && c > 0 && c >= startClear &&
+               std::hypot(i - si, j - sj) * res <= escapeRadius;
+    };
+    const double kDiag = std::sqrt(2.0);
+    auto heuristic = [&](int i, int j) {
+        const int dx = std::abs(i - gi), dy = std::abs(j - gj);
+        // admissible for the goal region (a disc of goalTolerance)
+        return std::max(0.0, (std::max(dx, dy) + (kDiag - 1) * std::min(dx, dy)) * res -
+                                 goalTolerance);
+    };
+    std::vector<float> g(size_t(n) * n, std::numeric_limits<float>::infinity());
+    std::vector<int32_t> parent(size_t(n) * n, -1);
+    std::vector<uint8_t> closed(size_t(n) * n, 0);
+    using TEntry = std::pair<double, int32_t>;
+    std::priority_queue<TEntry, std::vector<TEntry>, std::greater<>> open;
+    g[s] = 0;
+    open.push({heuristic(si, sj), int32_t(s)});
+    int32_t best = int32_t(s);
+    double bestDist = std::hypot(m.idx2x(si) - goal.x, m.idx2y(sj) - goal.y);
+    const bool goalInside = m.inside(gi, gj);
+    bool found = false;
+    while (!open.empty()) {
+        const auto [f, k] = open.top();
+        open.pop();
+        if (closed[size_t(k)])
+            continue;
+        closed[size_t(k)] = 1;
+        const int i = k % n, j = k / n;
+        const double dGoal = std::hypot(m.idx2x(i) - goal.x, m.idx2y(j) - goal.y);
+        if (dGoal < bestDist - 1e-12) {
+            bestDist = dGoal;
+            best = k;
+        }
+        if ((goalInside && i == gi && j == gj) || dGoal <= goalTolerance) {
+            found = true;
+            best = k;
+            break;
+        }
+        for (int dj = -1; dj <= 1; dj++)
+            for (int di = -1; di <= 1; di++) {
+                if (!di && !dj)
+                    continue;
+                const int ni = i + di, nj = j + dj;
+                if (!m.inside(ni, nj) || !traversable(ni, nj))
+                    continue;
+                const size_t nk = m.index(ni, nj);
+                if (closed[nk])
+                    continue;
+                const double ng = g[size_t(k)] + (di && dj ? kDiag : 1.0) * res;
+                if (ng < g[nk]) {
+                    g[nk] = float(ng);
+                    parent[nk] = k;
+                    open.push({ng + heuristic(ni, nj), int32_t(nk)});
+                }
+            }
+    }
+    std::vector<mrpt::math::TPoint2D> rev;
+    for (int32_t k = best; k != int32_t(s) && k >= 0; k = parent[size_t(k)])
+        rev.emplace_back(m.idx2x(k % n), m.idx2y(k / n));
+    out.points.push_back(start);
+    out.points.insert(out.points.end(), rev.rbegin(), rev.rend());
+    if (found && goalInside && m.x2idx(out.points.back().x) == gi &&
+        m.y2idx(out.points.back().y) == gj)
+        out.points.back() = goal;
+    for (size_t k = 1; k < out.points.size(); k++)
+        out.length += std::hypot(out.points[k].x - out.points[k - 1].x,
+                                 out.points[k].y - out.points[k - 1].y);
+    out.reached =
+        found || std::hypot(start.x - goal.x, start.y - goal.y) <= goalTolerance;
+    const auto& e = out.points.back();
+    out.costToGo = out.reached ? out.length + std::hypot(e.x - goal.x, e.y - goal.y)
+                               : std::numeric_limits<double>::infinity();
+    return out;
+}
+
+double distanceToUndecided(const TPlannedPath& path, const TPlanningField& field,
+                           double reach) {
+    const auto& pts = path.points;
+    const double res = field.map.resolution;
+    double along = 0;
+    for (size_t k = 0; k < pts.size(); k++) {
+        if (k > 0)
+            along += std::hypot(pts[k].x - pts[k - 1].x, pts[k].y - pts[k - 1].y);
+        // the direction of travel here: towards a point a few cells on
+        const size_t a = k + 1 < pts.size() ? k : (k > 0 ? k - 1 : k);
+        const size_t b = std::min(pts.size() - 1, a + 3);
+        if (a == b)
+            break;
+        const double h = std::atan2(pts[b].y - pts[a].y, pts[b].x - pts[a].x);
+        for (const double off : {0.0, M_PI / 4, -M_PI / 4, M_PI / 2, -M_PI / 2}) {
+            const double px = pts[k].x + reach * std::cos(h + off);
+            const double py = pts[k].y + reach * std::sin(h + off);
+            if (field.frontierDistAt(px, py) <= res)
+                return along;
+        }
+    }
+    return std::numeric_limits<double>::infinity();
+}
+
+bool clearanceHoldsAhead(const TPlannedPath& path, const TPlanningField& field,
+                         double inflation, double distance) {
+    double along = 0;
+    for (size_t k = 0; k < path.points.size(); k++) {
+        if (k > 0)
+            along += std::hypot(path.points[k].x - path.points[k - 1].x,
+                                path.points[k].y - path.points[k - 1].y);
+        if (along > distance)
+            break;
+        if (field.clearanceAt(path.points[k].x, path.points[k].y) < inflation)
+            return false;
+    }
+    return true;
+}
+}  // namespace risknav::speed

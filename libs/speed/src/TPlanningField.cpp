@@ -1,0 +1,74 @@
+#include <risknav/speed/TPlanningField.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <limits>
+
+namespace risknav::speed {
+using mapping::TFusedCell;
+
+namespace {
+/** Distance [m] from every cell to the nearest cell where `source` is set,
+ * measured to that cell's near edge (centre distance - half a cell: a robot
+ * disc at a cell centre with radius below this does not touch it);
+ * `borderIsSource`: the ring outside the grid counts as a source. */
+std::vector<float> distanceTo(const std::vector<uint8_t>& source, int n, double res,
+                              bool borderIsSource) {
+    const int pad = borderIsSource ? 1 : 0;
+    // OpenCV measures to the nearest zero pixel
+    cv::Mat m(n + 2 * pad, n + 2 * pad, CV_8U, cv::Scalar(borderIsSource ? 0 : 255));
+    bool any = borderIsSource;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            const bool s = source[size_t(j) * n + i] != 0;
+            any = any || s;
+            m.at<uint8_t>(j + pad, i + pad) = s ? 0 : 255;
+        }
+    std::vector<float> out(size_t(n) * n, std::numeric_limits<float>::infinity());
+    if (!any)
+        return out;
+    cv::Mat d;
+    cv::distanceTransform(m, d, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++)
+            out[size_t(j) * n + i] =
+                float(std::max(0.0, (d.at<float>(j + pad, i + pad) - 0.5) * res));
+    return out;
+}
+}  // namespace
+
+double TPlanningField::clearanceAt(double x, double y) const {
+    const int i = map.x2idx(x), j = map.y2idx(y);
+    return map.inside(i, j) ? clearance[map.index(i, j)] : 0.0;
+}
+
+double TPlanningField::frontierDistAt(double x, double y) const {
+    const int i = map.x2idx(x), j = map.y2idx(y);
+    return map.inside(i, j) ? frontierDist[map.index(i, j)] : 0.0;
+}
+
+TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map) {
+    TPlanningField f;
+    f.map = map;
+    const int n = map.size;
+    std::vector<uint8_t> blocked(map.cells.size()), frontier(map.cells.size(), 0);
+    for (size_t k = 0; k < map.cells.size(); k++)
+        blocked[k] = map.cells[k] != TFusedCell::Free;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            if (map.cells[map.index(i, j)] != TFusedCell::Undecided)
+                continue;
+            const int di[] = {1, -1, 0, 0}, dj[] = {0, 0, 1, -1};
+            for (int k = 0; k < 4; k++)
+                if (map.inside(i + di[k], j + dj[k]) &&
+                    map.cells[map.index(i + di[k], j + dj[k])] == TFusedCell::Free) {
+                    frontier[map.index(i, j)] = 1;
+                    break;
+                }
+        }
+    f.clearance = distanceTo(blocked, n, map.resolution, true);
+    f.frontierDist = distanceTo(frontier, n, map.resolution, false);
+    return f;
+}
+}  // namespace risknav::speed

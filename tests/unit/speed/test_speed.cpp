@@ -1,0 +1,233 @@
+// M1 speed control (Miura et al. 2006, sections 3-5).
+#include <risknav/speed/CAdaptiveSpeedController.h>
+#include <risknav/speed/speed_rules.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <queue>
+#include <random>
+
+using namespace risknav::speed;
+using mrpt::math::TPoint2D;
+using risknav::mapping::TFreeSpaceMap;
+using risknav::mapping::TFusedCell;
+
+namespace {
+/** n x n cells of 5 cm centred on the origin, all free. */
+TFreeSpaceMap openMap(int n = 200) {
+    TFreeSpaceMap m;
+    m.size = n;
+    m.resolution = 0.05;
+    m.xMin = m.yMin = -0.5 * n * m.resolution;
+    m.cells.assign(size_t(n) * n, TFusedCell::Free);
+    return m;
+}
+void fillRect(TFreeSpaceMap& m, double x0, double y0, double x1, double y1,
+              TFusedCell c) {
+    for (int j = 0; j < m.size; j++)
+        for (int i = 0; i < m.size; i++)
+            if (m.idx2x(i) >= x0 && m.idx2x(i) <= x1 && m.idx2y(j) >= y0 &&
+                m.idx2y(j) <= y1)
+                m.cells[m.index(i, j)] = c;
+}
+/** A wall across the whole map at x in [0, 0.1] with a gap of `gap` m
+ * centred on y = 0. */
+TFreeSpaceMap wallWithGap(double gap) {
+    auto m = openMap();
+    fillRect(m, 0.0, -10, 0.1, -gap / 2, TFusedCell::Obstacle);
+    fillRect(m, 0.0, gap / 2, 0.1, 10, TFusedCell::Obstacle);
+    return m;
+}
+}  // namespace
+
+TEST(GapRule, PaperFig12SlowAndMediumPassFastCannot) {
+    // fast detours (complete planner): its cost-to-go jumps; medium owns the path
+    EXPECT_EQ(safeSpeedsByGap({14.0, 10.0, 10.1}, 1.0), (std::vector<size_t>{1, 2}));
+    // fast stops short of the passage (the paper's planner): path 4 m + 6 m left
+    EXPECT_EQ(safeSpeedsByGap({4.0 + 6.0 + 3.0, 10.0, 10.1}, 1.0),
+              (std::vector<size_t>{1, 2}));
+    // no jump: all safe
+    EXPECT_EQ(safeSpeedsByGap({10.2, 10.1, 10.0, 10.0}, 1.0),
+              (std::vector<size_t>{0, 1, 2, 3}));
+    // the first jump from below splits: two jumps, only the lowest group is safe
+    EXPECT_EQ(safeSpeedsByGap({30.0, 20.0, 10.0, 10.2}, 1.0),
+              (std::vector<size_t>{2, 3}));
+    // no path at all for the fast ones
+    const double inf = std::numeric_limits<double>::infinity();
+    EXPECT_EQ(safeSpeedsByGap({inf, inf, 10.0, 10.0}, 1.0), (std::vector<size_t>{2, 3}));
+    EXPECT_EQ(safeSpeedsByGap({inf, inf}, 1.0), (std::vector<size_t>{0, 1}));
+    // equal to the threshold is not a jump
+    EXPECT_EQ(safeSpeedsByGap({11.0, 10.0}, 1.0), (std::vector<size_t>{0, 1}));
+}
+
+TEST(UndecidedRule, DOverVTAtLeastN) {
+    // N = 5, T = 0.3: at 1.1 m/s the region must be >= 1.65 m away
+    EXPECT_TRUE(undecidedRuleHolds(1.65, 1.1, 0.3, 5));
+    EXPECT_FALSE(undecidedRuleHolds(1.64, 1.1, 0.3, 5));
+    EXPECT_TRUE(undecidedRuleHolds(0.3, 0.2, 0.3, 5));
+    EXPECT_FALSE(undecidedRuleHolds(0.29, 0.2, 0.3, 5));
+    EXPECT_TRUE(undecidedRuleHolds(std::numeric_limits<double>::infinity(), 1.1, 0.3, 5));
+}
+
+TEST(GridPathPlanner, AStarLengthEqualsDijkstraOnRandomMaps) {
+    std::mt19937 rng(3);
+    const CGridPathPlanner planner;
+    for (int trial = 0; trial < 20; trial++) {
+        auto m = openMap(40);
+        std::uniform_real_distribution<double> u(-0.9, 0.9);
+        for (int b = 0; b < 12; b++) {
+            const double x = u(rng), y = u(rng);
+            fillRect(m, x, y, x + 0.2, y + 0.05, TFusedCell::Obstacle);
+        }
+        const auto f = computePlanningField(m);
+        const TPoint2D s(-0.875, -0.875), g(0.875, 0.875);
+        const double infl = 0.06;
+        const auto p = planner.plan(f, s, g, infl, 0.0, false);
+        // Dijkstra over the same cells and moves
+        const int n = m.size;
+        std::vector<double> dist(size_t(n) * n, 1e18);
+        using E = std::pair<double, int>;
+        std::priority_queue<E, std::vector<E>, std::greater<>> q;
+        const int si = m.x2idx(s.x), sj = m.y2idx(s.y), gi = m.x2idx(g.x),
+                  gj = m.y2idx(g.y);
+        dist[m.index(si, sj)] = 0;
+        q.push({0, int(m.index(si, sj))});
+        while (!q.empty()) {
+            auto [dd, k] = q.top();
+            q.pop();
+            if (dd > dist[size_t(k)])
+                continue;
+            const int i = k % n, j = k / n;
+            for (int dj = -1; dj <= 1; dj++)
+                for (int di = -1; di <= 1; di++) {
+                    if ((!di && !dj) || !m.inside(i + di, j + dj))
+                        continue;
+                    const size_t nk = m.index(i + di, j + dj);
+                    if (f.clearance[nk] < infl)
+                        continue;
+                    const double nd =
+                        dd + (di && dj ? std::sqrt(2.0) : 1.0) * m.resolution;
+                    if (nd < dist[nk]) {
+                        dist[nk] = nd;
+                        q.push({nd, int(nk)});
+                    }
+                }
+        }
+        const double best = dist[m.index(gi, gj)];
+        if (best > 1e17) {
+            EXPECT_FALSE(p.reached) << trial;
+            continue;
+        }
+        ASSERT_TRUE(p.reached) << trial;
+        // the planner's ends are the exact start/goal points, not cell centres
+        EXPECT_NEAR(p.length, best, 1e-6) << trial;
+        for (const auto& pt : p.points)
+            EXPECT_GE(f.clearanceAt(pt.x, pt.y), infl - 1e-9);
+    }
+}
+
+TEST(SpeedController, ANarrowPassageForTheSlowestTwoPicksTheSecondSlowest) {
+    // 0.8 m gap, robot radius 0.25: inflations 0.55 / 0.45 / 0.35 / 0.30;
+    // only the last two fit (0.4 m half-gap). Known free map: no undecided.
+    const auto f = computePlanningField(wallWithGap(0.8));
+    TSpeedControlOptions o;
+    const CAdaptiveSpeedController c(o, 0.25, 5);
+    // just before the gap: only the slow group, and speed 2 owns the path
+    auto d = c.decide(f, mrpt::math::TPose2D(-0.4, 0.0, 0), TPoint2D(2.0, 0.0));
+    EXPECT_FALSE(d.temporaryTarget);
+    EXPECT_EQ(d.safeByGap, (std::vector<size_t>{2, 3}));
+    EXPECT_EQ(d.speedIndex, 2);
+    EXPECT_EQ(d.reason, TSpeedReason::Narrow);
+    EXPECT_TRUE(d.perSpeed[2].reached);
+    EXPECT_FALSE(d.perSpeed[0].reached);  // the wall spans the map: no detour
+    // 3 m before it, the fast speed keeps its margin for the next two cycles
+    // on that path (section 4.2) and may go fast for now
+    d = c.decide(f, mrpt::math::TPose2D(-3.0, 0.0, 0), TPoint2D(2.0, 0.0));
+    EXPECT_EQ(d.pathIndex, 2);
+    EXPECT_EQ(d.speedIndex, 0);
+    // a wide gap: no narrow passage at all
+    const auto wide = computePlanningField(wallWithGap(2.0));
+    d = c.decide(wide, mrpt::math::TPose2D(-0.4, 0.0, 0), TPoint2D(2.0, 0.0));
+    EXPECT_EQ(d.safeByGap.size(), 4u);
+    EXPECT_EQ(d.speedIndex, 0);
+    EXPECT_EQ(d.reason, TSpeedReason::None);
+}
+
+TEST(SpeedController, UndecidedRegionAheadLimitsTheSpeedAndTheTargetIsOnItsBoundary) {
+    // the world beyond x = 1 is unknown; the goal lies in it
+    auto m = openMap();
+    fillRect(m, 1.0, -10, 10, 10, TFusedCell::Undecided);
+    const auto f = computePlanningField(m);
+    const CAdaptiveSpeedController c(TSpeedControlOptions{}, 0.25, 5);
+    for (const double x0 : {-3.5, -2.0, -0.5, 0.2}) {
+        const auto d = c.decide(f, mrpt::math::TPose2D(x0, 0.0, 0), TPoint2D(4.0, 0.0));
+        EXPECT_TRUE(d.temporaryTarget);
+        EXPECT_NEAR(d.target.y, 0.0, 0.06);
+        // kept off the unknown by the slowest inflation (0.30), near it
+        EXPECT_LE(d.target.x, 1.0 - 0.30);
+        EXPECT_GE(d.target.x, 1.0 - 0.30 - 0.15);
+        // the fastest speed whose own d (front of its margin disc at the
+        // unknown) is >= N v T: d_k = x_front - x0 with x_front = 1 - r - m_k
+        int expect = -1;
+        for (size_t k = 0; k < 4; k++) {
+            const double dk =
+                std::min(1.0 - 0.25 - c.options().margins[k] - x0, d.path.length);
+            if (dk >= 5 * c.options().speeds[k] * 0.3 + 0.05) {
+                expect = int(k);
+                break;
+            }
+        }
+        if (expect >= 0) {
+            EXPECT_EQ(d.speedIndex, expect) << x0 << " d " << d.dUndecided;
+        }
+        if (expect > 0) {
+            EXPECT_EQ(d.reason, TSpeedReason::Undecided) << x0;
+        }
+    }
+    // far away: fast; close: slow or stop
+    EXPECT_EQ(c.decide(f, mrpt::math::TPose2D(-3.5, 0, 0), TPoint2D(4, 0)).speedIndex, 0);
+    EXPECT_GE(c.decide(f, mrpt::math::TPose2D(0.0, 0, 0), TPoint2D(4, 0)).speedIndex, 2);
+}
+
+TEST(SpeedController, WalledInIsUnreachableAndStops) {
+    auto m = openMap();
+    fillRect(m, -1, -1, 1, -0.9, TFusedCell::Obstacle);
+    fillRect(m, -1, 0.9, 1, 1, TFusedCell::Obstacle);
+    fillRect(m, -1, -1, -0.9, 1, TFusedCell::Obstacle);
+    fillRect(m, 0.9, -1, 1, 1, TFusedCell::Obstacle);
+    const auto f = computePlanningField(m);
+    const CAdaptiveSpeedController c(TSpeedControlOptions{}, 0.25, 5);
+    const auto d = c.decide(f, mrpt::math::TPose2D(0, 0, 0), TPoint2D(3, 3));
+    EXPECT_EQ(d.reason, TSpeedReason::Unreachable);
+    EXPECT_EQ(d.speed, 0.0);
+    // fixed modes stop too
+    EXPECT_EQ(c.decide(f, mrpt::math::TPose2D(0, 0, 0), TPoint2D(3, 3), 0).speed, 0.0);
+}
+
+TEST(SpeedController, FixedFastBreaksItsMarginInTheNarrowPassage) {
+    const auto f = computePlanningField(wallWithGap(0.8));
+    const CAdaptiveSpeedController c(TSpeedControlOptions{}, 0.25, 5);
+    const auto d = c.decide(f, mrpt::math::TPose2D(-0.4, 0, 0), TPoint2D(2, 0), 0);
+    EXPECT_EQ(d.speed, 1.1);
+    EXPECT_TRUE(d.marginBroken);
+    EXPECT_TRUE(d.path.reached);
+    const auto slow = c.decide(f, mrpt::math::TPose2D(-0.4, 0, 0), TPoint2D(2, 0), 3);
+    EXPECT_FALSE(slow.marginBroken);
+}
+
+TEST(SpeedControlOptions, BadListsAreRefused) {
+    TSpeedControlOptions o;
+    o.speeds = {0.7, 1.1, 0.35, 0.2};
+    EXPECT_THROW(o.validate(), std::exception);
+    o = TSpeedControlOptions{};
+    o.margins = {0.3, 0.2, -0.1, 0.05};
+    EXPECT_THROW(o.validate(), std::exception);
+    o = TSpeedControlOptions{};
+    o.margins = {0.3, 0.2};
+    EXPECT_THROW(o.validate(), std::exception);
+    o = TSpeedControlOptions{};
+    o.cycle_time = 0;
+    EXPECT_THROW(o.validate(), std::exception);
+    EXPECT_NO_THROW(TSpeedControlOptions{}.validate());
+}
