@@ -155,6 +155,8 @@ cv::Mat CPlotImage::render() const {
     {
         int lx = left, ly = area.y + area.height + 62;
         for (const auto& se : m_series) {
+            if (se.label.empty())
+                continue;  // a continuation of a labelled series
             int base = 0;
             const int w =
                 34 + cv::getTextSize(se.label, kFont, 0.42, 1, &base).width + 24;

@@ -74,7 +74,7 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
                     continue;
                 const double c = field.clearance[m.index(ni, nj)];
                 const bool ok = c >= inflation ||
-                                (c > 0 && c >= startClear &&
+                                (c > 0 && c >= startClear - 0.5 * res &&
                                  std::hypot(ni - si, nj - sj) * res <= escapeRadius);
                 if (!ok)
                     continue;

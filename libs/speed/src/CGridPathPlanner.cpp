@@ -32,7 +32,7 @@ TPlannedPath CGridPathPlanner::plan(const TPlanningField& field,
         const double c = field.clearance[m.index(i, j)];
         if (c >= inflation)
             return true;
-        return escape && c > 0 && c >= startClear &&
+        return escape && c > 0 && c >= startClear - 0.5 * res &&
                std::hypot(i - si, j - sj) * res <= escapeRadius;
     };
     const double kDiag = std::sqrt(2.0);
@@ -110,7 +110,6 @@ TPlannedPath CGridPathPlanner::plan(const TPlanningField& field,
 double distanceToUndecided(const TPlannedPath& path, const TPlanningField& field,
                            double reach) {
     const auto& pts = path.points;
-    const double res = field.map.resolution;
     double along = 0;
     for (size_t k = 0; k < pts.size(); k++) {
         if (k > 0)
@@ -121,10 +120,11 @@ double distanceToUndecided(const TPlannedPath& path, const TPlanningField& field
         if (a == b)
             break;
         const double h = std::atan2(pts[b].y - pts[a].y, pts[b].x - pts[a].x);
-        for (const double off : {0.0, M_PI / 4, -M_PI / 4, M_PI / 2, -M_PI / 2}) {
+        for (const double off : {0.0, M_PI / 8, -M_PI / 8, M_PI / 4, -M_PI / 4}) {
             const double px = pts[k].x + reach * std::cos(h + off);
             const double py = pts[k].y + reach * std::sin(h + off);
-            if (field.frontierDistAt(px, py) <= res)
+            if (field.map.at(field.map.x2idx(px), field.map.y2idx(py)) ==
+                mapping::TFusedCell::Undecided)
                 return along;
         }
     }

@@ -18,6 +18,8 @@ class CPlotImage {
     void setYLabel(const std::string& l) { m_ylabel = l; }
     /** Log-scale y: non-positive values are drawn at the bottom of the axis. */
     void setLogY(bool on) { m_logY = on; }
+    /** A series; an empty label keeps it out of the legend (e.g. further
+     * segments of a series drawn in pieces). */
     void addSeries(const std::string& label, const std::vector<double>& x,
                    const std::vector<double>& y, TRgb colour, int thickness = 2,
                    bool dashed = false);

@@ -26,7 +26,8 @@ struct TPlannedPath {
  * point nearest the goal, reached = false). A robot already closer than `inflation` to a
  * non-free cell has no path at that inflation (costToGo = +inf: the speed's margin is
  * broken now), unless `escape`: then, near the start, it may move with the clearance it
- * has (so that the slowest speed can always get out). */
+ * has (never nearer a non-free cell than the start, up to half a cell of
+ * rounding), so that the slowest speed can get out. */
 class IPathPlanner {
   public:
     virtual ~IPathPlanner() = default;
@@ -50,10 +51,11 @@ class CGridPathPlanner : public IPathPlanner {
 /** d of (000) section 3: the along-path distance [m] from the path's start
  * to its first point where the front of the robot's margin disc (radius
  * `reach` = robot radius + the speed's margin) touches the unknown: one of
- * five probes on the front half circle (0, +-45, +-90 deg from the path's
- * direction) lies within one cell of a frontier cell. Only the front: the
- * unknown behind a robot that has not looked back yet is not where it is
- * going. +inf if no point does. */
+ * five probes on the front of that circle (0, +-22.5, +-45 deg from the
+ * path's direction) lies on an undecided cell. Only the front:
+ * the unknown behind and beside a robot that has not looked there yet (a
+ * laser mounted ahead of the centre never sees beside the robot at the
+ * start) is not where it is going. +inf if no point does. */
 double distanceToUndecided(const TPlannedPath& path, const TPlanningField& field,
                            double reach);
 

@@ -1,0 +1,106 @@
+#pragma once
+#include <risknav/common/CIniConfig.h>
+#include <risknav/mapping/CLocalProbGrid.h>
+#include <risknav/sim/CSafetyMonitor.h>
+#include <risknav/sim/CSimWorld.h>
+#include <risknav/sim/CStoppingDistanceLimiter.h>
+#include <risknav/speed/CAdaptiveSpeedController.h>
+#include <risknav/speed/TExploreOptions.h>
+
+#include <mrpt/math/TPose2D.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace risknav::speed {
+/** Marks the undecided cells under a robot disc at p as free (obstacle
+ * cells stay: a sensed obstacle there is a collision to see, not to hide). */
+void markFootprintFree(mapping::TFreeSpaceMap& m, const mrpt::math::TPose2D& p,
+                       double radius);
+
+/** The stopping rule along the path the robot follows (Choi et al. (002)
+ * eqs. 1-4, as CStoppingDistanceLimiter, but on the planned path instead of
+ * a straight corridor, which a turning path leaves): a sensed point (ego
+ * frame) closer than radius + lateralMargin to a path point within
+ * radius + d_stop(v) + margin along the path. */
+bool pathBlocked(const TPlannedPath& path,
+                 const std::vector<mrpt::math::TPoint2D>& sensed, double v,
+                 const common::TRobotOptions& robot, double margin, double lateralMargin);
+
+/** One control cycle of a mode, as cycles.csv shows it. */
+struct TCycleRecord {
+    int cycle = 0;
+    double t = 0;
+    mrpt::math::TPose2D truePose, egoPose;
+    double distance = 0;   ///< [m] travelled so far (true)
+    double chosen = 0;     ///< [m/s] the controller's speed
+    double commanded = 0;  ///< [m/s] after the stopping rule
+    std::string reason;    ///< none | narrow | undecided | unreachable | obstacle
+    double dUndecided = 0;
+    std::vector<double> costToGo;  ///< per candidate speed (+inf: no path)
+    int destination = 0;
+    bool temporaryTarget = false, marginBroken = false;
+    double computeMs = 0;  ///< mapping + fusion + planning + selection
+};
+
+/** A snapshot of the adaptive mode where its speed changes ((000) Fig. 16). */
+struct TSnapshot {
+    int cycle = 0;
+    mapping::TFreeSpaceMap map;
+    TSpeedDecision decision;
+    mrpt::math::TPose2D egoPose;
+    double inflationFastest = 0;
+};
+
+/** One mode's run. */
+struct TModeResult {
+    std::string name;  ///< "adaptive" or "fixed_<v>"
+    int fixedIndex = -1;
+    std::vector<TCycleRecord> cycles;
+    std::vector<mrpt::math::TPose2D> observations;  ///< true pose per cycle
+    std::vector<TSnapshot> snapshots;
+    std::vector<std::string> destinationStatus;  ///< reached | unreachable | not_reached
+    std::vector<double> destinationError;        ///< [m] true distance when reached
+    double time = 0, distance = 0;
+    int collisions = 0, collisionsStatic = 0, nearMisses = 0, marginBrokenCycles = 0;
+    double minClearance = 0;          ///< [m] robot edge to the map
+    std::vector<double> timeAtSpeed;  ///< [s] per candidate speed (commanded)
+    double timeStopped = 0;
+    bool allReached() const;
+};
+
+/** risknav-explore's loop (Miura et al. 2006, section 5, Fig. 13): a robot
+ * that does not know the world visits destinations; each cycle of T it
+ * senses (laser + RANGE2), moves its two local grids by the ego-motion,
+ * updates, classifies and fuses them, and lets the adaptive controller (or a
+ * fixed speed) choose a speed and path; a pure-pursuit follower steers along
+ * the path for the cycle, and the stopping rule (sensed obstacles within the
+ * stopping distance) may brake. The world (map, people, clutter) is only
+ * used to simulate the sensors and to judge collisions. */
+class CExplorer {
+  public:
+    sim::CSimWorld world;
+    TExploreOptions explore;
+    TSpeedControlOptions speed;
+    mapping::TSensorModel laserModel, range2Model;
+    sim::CStoppingDistanceLimiter stopRule;
+
+    /** Loads [Explore], [SpeedControl], [MapLaser], [MapRange2],
+     * [StoppingRule] and the world's sections; refuses unknown sections and
+     * keys, destinations outside the map or inside an obstacle. */
+    void loadFromConfigFile(const common::CIniConfig& c, std::optional<uint64_t> seed);
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c) const;
+
+    /** N of the configured models (the largest of the two sensors: the fused
+     * map needs the slower one to confirm free space; see necessaryObservations). */
+    int necessaryObservations() const;
+
+    /** Runs one mode (fixedIndex -1: adaptive) from the start, same seed. */
+    TModeResult runMode(int fixedIndex,
+                        const std::function<void(double)>& progress = nullptr);
+
+  private:
+    mrpt::math::TPose2D egoPose() const;
+};
+}  // namespace risknav::speed

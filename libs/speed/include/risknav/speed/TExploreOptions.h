@@ -1,0 +1,36 @@
+#pragma once
+#include <risknav/common/CValidatedOptions.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace risknav::speed {
+/** [Explore] of risknav-explore: the run, not the method. */
+struct TExploreOptions : public common::CValidatedOptions {
+    std::vector<double> start = {};         ///< x y heading_deg (world frame)
+    std::vector<double> destinations = {};  ///< x y pairs, visited in order (world frame)
+    /** Modes of one run: "adaptive" and / or "fixed" (one run per candidate
+     * speed), compared in the outputs. */
+    std::vector<std::string> modes = {"adaptive", "fixed"};
+    std::string ego_motion = "odometry";  ///< odometry | ground_truth
+    double local_map_size = 10.0;         ///< [m] side of the robot-centred grids
+    double local_map_resolution = 0.05;   ///< [m]
+    double sim_dt = 0.05;                 ///< [s] physics step inside a cycle
+    double time_limit = 300;              ///< [s] simulated, per mode
+    double goal_tolerance = 0.3;          ///< [m] a destination counts as reached
+    double unreachable_after =
+        5;  ///< [s] of "unreachable" before a destination is given up
+    /** Turn once on the spot before setting off (beyond the paper: a laser
+     * mounted ahead of the centre has not seen beside and behind the robot). */
+    bool look_around = true;
+    int max_snapshots = 40;  ///< snapshots/ of the adaptive mode (0 = none)
+    uint64_t seed = 1;
+    std::string section = "Explore";
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                            const std::string& section) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                          const std::string& section) const override;
+    void validate() const override;
+};
+}  // namespace risknav::speed

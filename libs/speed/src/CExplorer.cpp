@@ -1,0 +1,356 @@
+#include <risknav/common/CBadInputError.h>
+#include <risknav/common/config_read.h>
+#include <risknav/common/stopping.h>
+#include <risknav/mapping/free_space.h>
+#include <risknav/mapping/scan_points.h>
+#include <risknav/speed/CExplorer.h>
+
+#include <mrpt/math/wrap2pi.h>
+#include <mrpt/poses/CPoint2D.h>
+#include <mrpt/poses/CPose2D.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+
+using namespace risknav::common;
+using mrpt::math::TPoint2D;
+using mrpt::math::TPose2D;
+
+namespace risknav::speed {
+bool TModeResult::allReached() const {
+    return std::all_of(destinationStatus.begin(), destinationStatus.end(),
+                       [](const std::string& s) { return s == "reached"; });
+}
+
+void CExplorer::loadFromConfigFile(const CIniConfig& c, std::optional<uint64_t> seed) {
+    static const std::set<std::string> known = {
+        "Explore", "SpeedControl", "MapLaser", "MapRange2", "StoppingRule",
+        "World",   "Robot",        "Odometry", "Laser",     "RangeSensor2"};
+    for (const auto& s : c.sections())
+        if (!known.count(s) && !sim::CAgentsSim::ownsSection(s))
+            throw CBadInputError(
+                c.path() + ": unknown section [" + s +
+                "] (known: Explore, SpeedControl, MapLaser, MapRange2, "
+                "StoppingRule, World, Robot, Odometry, Laser, RangeSensor2, "
+                "CorridorWalkerN, DoorPedestrianN, ClutterN)");
+    for (const char* s : {"Explore", "World"})
+        if (!c.sectionExists(s))
+            throw CBadInputError(c.path() + ": missing section [" + s + "]");
+    loadOptions(explore, c, "Explore");
+    if (seed)
+        explore.seed = *seed;
+    loadOptions(speed, c, "SpeedControl");
+    laserModel.p_obs_given_obstacle = 0.7;  // a laser's defaults (N = 2)
+    laserModel.p_obs_given_free = 0.3;
+    loadOptions(laserModel, c, "MapLaser");
+    loadOptions(range2Model, c, "MapRange2");
+    loadOptions(stopRule.options, c, "StoppingRule");
+    world.loadFromConfigFile(c);
+    c.throwOnUnreadKeys();
+    // what the world says about the run
+    if (speed.speeds.front() > world.robot.max_v + 1e-12)
+        throwBadKey(
+            c, "SpeedControl", "speeds", numberText(speed.speeds.front()),
+            "the fastest speed exceeds [Robot] max_v = " + numberText(world.robot.max_v));
+    const auto& g = world.grid();
+    auto check = [&](const std::string& key, double x, double y) {
+        char b[200];
+        if (x < g.getXMin() || x > g.getXMax() || y < g.getYMin() || y > g.getYMax()) {
+            std::snprintf(b, sizeof(b),
+                          "(%.2f, %.2f) is outside the world [%.1f, %.1f] x [%.1f, %.1f]",
+                          x, y, g.getXMin(), g.getXMax(), g.getYMin(), g.getYMax());
+            throwBadKey(c, "Explore", key, readString(c, "Explore", key, ""), b);
+        }
+        if (world.clearance(x, y) < world.robot.radius) {
+            std::snprintf(b, sizeof(b),
+                          "(%.2f, %.2f) is inside an obstacle (clearance %.2f m < robot "
+                          "radius %.2f m)",
+                          x, y, world.clearance(x, y), world.robot.radius);
+            throwBadKey(c, "Explore", key, readString(c, "Explore", key, ""), b);
+        }
+    };
+    check("start", explore.start[0], explore.start[1]);
+    for (size_t k = 0; k + 1 < explore.destinations.size(); k += 2)
+        check("destinations", explore.destinations[k], explore.destinations[k + 1]);
+    necessaryObservations();  // the models are validated; N exists
+}
+
+void CExplorer::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
+    explore.saveToConfigFile(c, "Explore");
+    speed.saveToConfigFile(c, "SpeedControl");
+    laserModel.saveToConfigFile(c, "MapLaser");
+    range2Model.saveToConfigFile(c, "MapRange2");
+    stopRule.options.saveToConfigFile(c, "StoppingRule");
+    world.saveToConfigFile(c);
+}
+
+int CExplorer::necessaryObservations() const {
+    int n = mapping::necessaryObservations(laserModel, speed.free_threshold);
+    if (world.range2.options.enabled)
+        n = std::max(n,
+                     mapping::necessaryObservations(range2Model, speed.free_threshold));
+    return n;
+}
+
+TPose2D CExplorer::egoPose() const {
+    return explore.ego_motion == "ground_truth" ? world.truePose()
+                                                : world.odometricPose();
+}
+
+void markFootprintFree(mapping::TFreeSpaceMap& m, const TPose2D& p, double radius) {
+    const int r = int(std::ceil(radius / m.resolution));
+    const int ci = m.x2idx(p.x), cj = m.y2idx(p.y);
+    for (int j = cj - r; j <= cj + r; j++)
+        for (int i = ci - r; i <= ci + r; i++)
+            if (m.inside(i, j) &&
+                std::hypot(m.idx2x(i) - p.x, m.idx2y(j) - p.y) <= radius &&
+                m.cells[m.index(i, j)] == mapping::TFusedCell::Undecided)
+                m.cells[m.index(i, j)] = mapping::TFusedCell::Free;
+}
+
+bool pathBlocked(const TPlannedPath& path, const std::vector<TPoint2D>& sensed, double v,
+                 const TRobotOptions& robot, double margin, double lateralMargin) {
+    const double reach =
+        robot.radius + stoppingDistance(v, robot.t_delay, robot.decel) + margin;
+    const double halfW = robot.radius + lateralMargin;
+    double along = 0;
+    for (size_t k = 0; k < path.points.size(); k++) {
+        if (k > 0)
+            along += std::hypot(path.points[k].x - path.points[k - 1].x,
+                                path.points[k].y - path.points[k - 1].y);
+        if (along > reach)
+            break;
+        for (const auto& q : sensed)
+            if (std::hypot(q.x - path.points[k].x, q.y - path.points[k].y) < halfW)
+                return true;
+    }
+    return false;
+}
+
+namespace {
+/** Pure pursuit along the path at speed v; v = 0 (or a sharp turn) turns in
+ * place towards the path, so that the robot looks where it will go. */
+std::pair<double, double> follow(const TPlannedPath& path, const TPose2D& p, double v,
+                                 double maxW) {
+    const auto& pts = path.points;
+    if (pts.size() < 2)
+        return {0.0, 0.0};
+    size_t c = 0;
+    double best = 1e18;
+    for (size_t k = 0; k < pts.size(); k++) {
+        const double d = std::hypot(pts[k].x - p.x, pts[k].y - p.y);
+        if (d < best) {
+            best = d;
+            c = k;
+        }
+    }
+    const double L = std::max(0.35, 0.8 * v + 0.2);
+    size_t t = c;
+    while (t + 1 < pts.size() && std::hypot(pts[t].x - p.x, pts[t].y - p.y) < L)
+        t++;
+    const double alpha =
+        mrpt::math::wrapToPi(std::atan2(pts[t].y - p.y, pts[t].x - p.x) - p.phi);
+    if (v <= 0 || std::abs(alpha) > 1.0)
+        return {0.0, std::clamp(1.5 * alpha, -maxW, maxW)};
+    const double dist = std::max(L, 1e-3);
+    return {v, std::clamp(2 * v * std::sin(alpha) / dist, -maxW, maxW)};
+}
+}  // namespace
+
+TModeResult CExplorer::runMode(int fixedIndex,
+                               const std::function<void(double)>& progress) {
+    TModeResult r;
+    r.fixedIndex = fixedIndex;
+    if (fixedIndex < 0) {
+        r.name = "adaptive";
+    } else {
+        r.name = "fixed_" + numberText(speed.speeds[size_t(fixedIndex)]);
+    }
+    const TPose2D start(explore.start[0], explore.start[1],
+                        explore.start[2] * M_PI / 180);
+    world.reset(start, explore.seed);
+    const double T = speed.cycle_time;
+    const int n = int(std::lround(explore.local_map_size / explore.local_map_resolution));
+    const TPose2D ego0 = egoPose();
+    mapping::CLocalProbGrid laserGrid(n, explore.local_map_resolution, ego0.x, ego0.y);
+    mapping::CLocalProbGrid range2Grid(n, explore.local_map_resolution, ego0.x, ego0.y);
+    // destinations in the ego frame: ego = ego0 + (start^-1 + world point)
+    const mrpt::poses::CPose2D e0(ego0), s0(start);
+    std::vector<TPoint2D> goalsWorld, goalsEgo;
+    for (size_t k = 0; k + 1 < explore.destinations.size(); k += 2) {
+        goalsWorld.emplace_back(explore.destinations[k], explore.destinations[k + 1]);
+        const mrpt::poses::CPoint2D local =
+            mrpt::poses::CPoint2D(goalsWorld.back().x, goalsWorld.back().y) - s0;
+        const auto ge = e0 + local;
+        goalsEgo.emplace_back(ge.x(), ge.y());
+    }
+    r.destinationStatus.assign(goalsWorld.size(), "not_reached");
+    r.destinationError.assign(goalsWorld.size(), 0.0);
+    r.timeAtSpeed.assign(speed.speeds.size(), 0.0);
+    const CAdaptiveSpeedController ctrl(speed, world.robot.radius,
+                                        necessaryObservations());
+    sim::CSafetyMonitor safety;
+    safety.reset();
+    size_t dest = 0;
+    double unreachableSince = -1;
+    int lastSpeedIndex = -2;
+    int undecidedStall = 0;
+    TPose2D prevTrue = world.truePose();
+    const int steps = std::max(1, int(std::lround(T / explore.sim_dt)));
+    const double lookAroundW = 0.8 * world.robot.max_w_deg * M_PI / 180;
+    // one turn, plus a second for the turn-rate ramp
+    const double lookAroundEnd = 2 * M_PI / lookAroundW + 1.0;
+    const double dt = T / steps;
+    for (int cycle = 0; world.time() < explore.time_limit && dest < goalsEgo.size();
+         cycle++) {
+        const auto scans = world.sense();
+        const TPose2D ego = egoPose();
+        const auto t0 = std::chrono::steady_clock::now();
+        laserGrid.recenter(ego.x, ego.y);
+        range2Grid.recenter(ego.x, ego.y);
+        if (scans.laser)
+            laserGrid.integrateScan(ego, *scans.laser, laserModel);
+        if (scans.range2)
+            range2Grid.integrateScan(ego, *scans.range2, range2Model);
+        auto fused = mapping::fuseGrids(
+            laserGrid, world.range2.options.enabled ? range2Grid : laserGrid,
+            speed.occupied_threshold, speed.free_threshold);
+        // Beyond the paper: the robot's own footprint is free (it stands
+        // there), though no sensor sees under it (the laser is mounted ahead
+        // of the centre); otherwise the robot would start in "unknown" space.
+        markFootprintFree(fused, ego, world.robot.radius);
+        const auto field = computePlanningField(fused);
+        while (dest < goalsEgo.size() &&
+               std::hypot(goalsEgo[dest].x - ego.x, goalsEgo[dest].y - ego.y) <
+                   explore.goal_tolerance) {
+            const TPose2D tp = world.truePose();
+            r.destinationStatus[dest] = "reached";
+            r.destinationError[dest] =
+                std::hypot(goalsWorld[dest].x - tp.x, goalsWorld[dest].y - tp.y);
+            dest++;
+            unreachableSince = -1;
+        }
+        if (dest == goalsEgo.size())
+            break;
+        // Beyond the paper: first a turn on the spot, so that the laser (180
+        // deg, ahead of the centre) has seen all around before the fused map
+        // is asked for free space beside and behind the robot.
+        const bool lookingAround = explore.look_around && world.time() < lookAroundEnd;
+        const TSpeedDecision d =
+            lookingAround ? TSpeedDecision{}
+                          : ctrl.decide(field, ego, goalsEgo[dest], fixedIndex);
+        const double ms = std::chrono::duration<double, std::milli>(
+                              std::chrono::steady_clock::now() - t0)
+                              .count();
+        TCycleRecord rec;
+        rec.cycle = cycle;
+        rec.t = world.time();
+        rec.truePose = world.truePose();
+        rec.egoPose = ego;
+        rec.distance = r.distance;
+        rec.chosen = d.speed;
+        rec.reason = lookingAround ? "look_around" : reasonName(d.reason);
+        rec.dUndecided = d.dUndecided;
+        for (const auto& p : d.perSpeed)
+            rec.costToGo.push_back(p.costToGo);
+        rec.destination = int(dest);
+        rec.temporaryTarget = d.temporaryTarget;
+        rec.marginBroken = d.marginBroken;
+        rec.computeMs = ms;
+        // the stopping rule: sensed obstacles within the stopping distance
+        double v = d.speed;
+        int vIndex = d.speedIndex;
+        // Beyond the paper: a robot held by the undecided rule has, after N
+        // cycles in place, observed the region N times; what is still
+        // undecided then (a gap in a wall seen edge-on) will not be decided
+        // from here, so it creeps on at the slowest speed.
+        if (!lookingAround && d.reason == TSpeedReason::Undecided && d.speed == 0 &&
+            d.path.points.size() > 1) {
+            if (++undecidedStall >= ctrl.necessaryObservations()) {
+                vIndex = int(speed.speeds.size()) - 1;
+                v = speed.speeds.back();
+            }
+        } else {
+            undecidedStall = 0;
+        }
+        std::vector<TPoint2D> sensed;
+        for (const auto& sc : {scans.laser, scans.range2})
+            if (sc)
+                for (const auto& q : mapping::scanToRobotFrame(*sc))
+                    sensed.emplace_back(
+                        ego.x + std::cos(ego.phi) * q.x - std::sin(ego.phi) * q.y,
+                        ego.y + std::sin(ego.phi) * q.x + std::cos(ego.phi) * q.y);
+        auto blocked = [&](double speedV) {
+            return stopRule.options.enabled && speedV > 0 &&
+                   pathBlocked(d.path, sensed, speedV, world.robot,
+                               stopRule.options.margin, stopRule.options.lateral_margin);
+        };
+        if (blocked(v)) {
+            v = 0;
+            vIndex = -1;
+            if (fixedIndex < 0)
+                for (size_t k = size_t(std::max(0, d.speedIndex)) + 1;
+                     k < speed.speeds.size(); k++)
+                    if (!blocked(speed.speeds[k])) {
+                        v = speed.speeds[k];
+                        vIndex = int(k);
+                        break;
+                    }
+            rec.reason = "obstacle";
+        }
+        rec.commanded = v;
+        if (d.reason == TSpeedReason::Unreachable && !lookingAround) {
+            if (unreachableSince < 0)
+                unreachableSince = world.time();
+            else if (world.time() - unreachableSince >= explore.unreachable_after) {
+                r.destinationStatus[dest] = "unreachable";
+                dest++;
+                unreachableSince = -1;
+            }
+        } else {
+            unreachableSince = -1;
+        }
+        r.marginBrokenCycles += d.marginBroken ? 1 : 0;
+        r.cycles.push_back(rec);
+        r.observations.push_back(rec.truePose);
+        if (fixedIndex < 0 && (d.speedIndex != lastSpeedIndex || cycle < 3) &&
+            int(r.snapshots.size()) < explore.max_snapshots) {
+            TSnapshot s;
+            s.cycle = cycle;
+            s.map = fused;
+            s.decision = d;
+            s.egoPose = ego;
+            r.snapshots.push_back(std::move(s));
+        }
+        lastSpeedIndex = d.speedIndex;
+        // drive the cycle
+        for (int k = 0; k < steps; k++) {
+            const auto [vc, wc] =
+                lookingAround
+                    ? std::pair<double, double>(0.0, lookAroundW)
+                    : follow(d.path, egoPose(), v, world.robot.max_w_deg * M_PI / 180);
+            world.command(vc, wc);
+            world.step(dt);
+            const TPose2D tp = world.truePose();
+            safety.update(world.time(), tp, world.robot.radius, world.agents,
+                          world.clearance(tp.x, tp.y));
+            r.distance += std::hypot(tp.x - prevTrue.x, tp.y - prevTrue.y);
+            prevTrue = tp;
+            if (vc <= 0)
+                r.timeStopped += dt;
+            else if (vIndex >= 0)
+                r.timeAtSpeed[size_t(vIndex)] += dt;
+        }
+        if (progress)
+            progress(world.time());
+    }
+    r.time = world.time();
+    r.collisions = safety.collisions();
+    r.collisionsStatic = safety.collisionsStatic();
+    r.nearMisses = safety.nearMisses();
+    r.minClearance = safety.minGapStatic();
+    return r;
+}
+}  // namespace risknav::speed
