@@ -15,6 +15,7 @@ done
 
 "$BIN/risknav-risk-eval" datasets/risk-two-routes/risk.ini --out "$OUT/risk-eval"
 "$BIN/risknav-afraid-learn" datasets/corridor-doors/afraid.ini --out "$OUT/afraid-learn"
+"$BIN/risknav-explore" datasets/office/explore.ini --out "$OUT/explore"
 
 echo
 echo "demo results in $OUT/:"
@@ -31,3 +32,6 @@ echo "  $OUT/afraid-learn/afraid.png        the learned afraid level, events and
 echo "  $OUT/afraid-learn/profile.png       events and level along the corridor (cf. the paper's Figs. 8-9)"
 echo "  $OUT/afraid-learn/speed.png         the resulting speed limit along the corridor"
 echo "  $OUT/afraid-learn/speed_mask.yaml   Nav2 Speed Filter mask of the zones"
+echo "  $OUT/explore/trace.png              adaptive vs fixed speeds through the unknown office"
+echo "  $OUT/explore/speed_profile.png      speed vs distance, coloured by what limited it"
+echo "  $OUT/explore/snapshots/             the free-space map and the plans where the speed changes"

@@ -202,7 +202,7 @@ void COutputDir::commit() {
 std::vector<std::string> COutputDir::stagedNames() const {
     std::vector<std::string> v;
     for (const auto& s : m_staged)
-        v.push_back(fs::path(s.second).filename().string());
+        v.push_back(fs::path(s.second).lexically_relative(m_dir).string());
     return v;
 }
 

@@ -53,6 +53,8 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
     const int gi = m.x2idx(goal.x), gj = m.y2idx(goal.y);
     bool goalReached = false;
     double bestDist = std::numeric_limits<double>::infinity();
+    double nearestDist = std::numeric_limits<double>::infinity();
+    mrpt::math::TPoint2D nearest;
     const double band = inflation + 2 * res;
     while (!q.empty()) {
         const auto [i, j] = q.front();
@@ -60,6 +62,11 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
         if (i == gi && j == gj)
             goalReached = true;
         const size_t k = m.index(i, j);
+        const double toGoal = std::hypot(m.idx2x(i) - goal.x, m.idx2y(j) - goal.y);
+        if (toGoal < nearestDist) {
+            nearestDist = toGoal;
+            nearest = {m.idx2x(i), m.idx2y(j)};
+        }
         if (field.frontierDist[k] <= band) {
             const double d = std::hypot(m.idx2x(i) - goal.x, m.idx2y(j) - goal.y);
             if (d < bestDist) {
@@ -84,6 +91,14 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
     }
     if (goalReached && field.clearance[m.index(gi, gj)] >= inflation) {
         target = goal;
+        temporary = false;
+        return true;
+    }
+    // a goal in known free space but nearer an obstacle than the slowest
+    // margin: the reachable point nearest it (within that margin)
+    if (m.inside(gi, gj) && m.cells[m.index(gi, gj)] == mapping::TFusedCell::Free &&
+        nearestDist <= inflation + res) {
+        target = nearest;
         temporary = false;
         return true;
     }
@@ -115,10 +130,11 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
         return du;
     };
     const size_t slowest = nSpeeds - 1;
-    // a faster speed ends where its larger margin lets it: the target was
-    // placed for the slowest one
+    // a faster speed ends where its larger margin lets it near a temporary
+    // target (placed on the frontier for the slowest one); a destination is
+    // planned to exactly
     auto tolerance = [&](size_t k) {
-        return inflation(k) - inflation(slowest) + 2 * res;
+        return d.temporaryTarget ? inflation(k) - inflation(slowest) + 2 * res : 0.0;
     };
 
     if (fixedIndex >= 0) {

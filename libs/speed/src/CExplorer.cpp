@@ -115,16 +115,25 @@ bool pathBlocked(const TPlannedPath& path, const std::vector<TPoint2D>& sensed, 
     const double reach =
         robot.radius + stoppingDistance(v, robot.t_delay, robot.decel) + margin;
     const double halfW = robot.radius + lateralMargin;
+    const auto& pts = path.points;
+    if (pts.size() < 2)
+        return false;
+    // only what lies ahead along the path and what the path comes nearer
+    // to blocks it: a door post the robot is passing (beside it, or already
+    // at its closest) cannot be stopped for, only steered away from
+    const size_t a = std::min<size_t>(pts.size() - 1, 3);
+    const double dx = pts[a].x - pts[0].x, dy = pts[a].y - pts[0].y;
     double along = 0;
-    for (size_t k = 0; k < path.points.size(); k++) {
-        if (k > 0)
-            along += std::hypot(path.points[k].x - path.points[k - 1].x,
-                                path.points[k].y - path.points[k - 1].y);
+    for (size_t k = 1; k < pts.size(); k++) {
+        along += std::hypot(pts[k].x - pts[k - 1].x, pts[k].y - pts[k - 1].y);
         if (along > reach)
             break;
         for (const auto& q : sensed)
-            if (std::hypot(q.x - path.points[k].x, q.y - path.points[k].y) < halfW)
-                return true;
+            if ((q.x - pts[0].x) * dx + (q.y - pts[0].y) * dy > 0) {
+                const double dk = std::hypot(q.x - pts[k].x, q.y - pts[k].y);
+                if (dk < halfW && dk < std::hypot(q.x - pts[0].x, q.y - pts[0].y) - 0.01)
+                    return true;
+            }
     }
     return false;
 }
@@ -146,7 +155,7 @@ std::pair<double, double> follow(const TPlannedPath& path, const TPose2D& p, dou
             c = k;
         }
     }
-    const double L = std::max(0.35, 0.8 * v + 0.2);
+    const double L = std::max(0.3, 0.5 * v + 0.15);
     size_t t = c;
     while (t + 1 < pts.size() && std::hypot(pts[t].x - p.x, pts[t].y - p.y) < L)
         t++;
@@ -274,6 +283,17 @@ TModeResult CExplorer::runMode(int fixedIndex,
             }
         } else {
             undecidedStall = 0;
+        }
+        // Beyond the paper: at a destination the robot stops, so no speed
+        // whose stopping distance exceeds the path left to it
+        if (!lookingAround && !d.temporaryTarget && d.speedIndex >= 0) {
+            const double left = d.path.length;
+            while (vIndex >= 0 && vIndex + 1 < int(speed.speeds.size()) &&
+                   stoppingDistance(v, world.robot.t_delay, world.robot.decel) > left) {
+                vIndex++;
+                v = speed.speeds[size_t(vIndex)];
+                rec.reason = "goal";
+            }
         }
         std::vector<TPoint2D> sensed;
         for (const auto& sc : {scans.laser, scans.range2})

@@ -29,6 +29,10 @@ TRgb reasonColour(const std::string& r) {
         return {30, 90, 220};
     if (r == "obstacle")
         return {200, 0, 160};
+    if (r == "goal")
+        return {140, 60, 170};
+    if (r == "look_around")
+        return {120, 120, 120};
     return {200, 30, 30};  // unreachable
 }
 

@@ -37,8 +37,9 @@ struct TSpeedDecision {
 /** The adaptive speed controller of Miura, Negishi, Shirai 2006 (000)
  * sections 3-5 (flow of Fig. 13), PAPER_NOTES M1:
  *  1. destination: the goal if it lies in known free space reachable by the
- *     slowest speed; else a temporary destination on the free/undecided
- *     boundary nearest the goal (section 3.3);
+ *     slowest speed (or, for a known-free goal nearer an obstacle than that
+ *     margin, the reachable point nearest it); else a temporary destination
+ *     on the free/undecided boundary nearest the goal (section 3.3);
  *  2. a path per candidate speed, obstacles grown by the robot radius + the
  *     speed's margin (planner behind IPathPlanner);
  *  3. the narrow-space rule on their cost-to-go (safeSpeedsByGap): the
