@@ -1,8 +1,11 @@
 #include <risknav/common/CAllocationBudget.h>
 
+#include <mrpt/core/aligned_allocator.h>
+
 #include <algorithm>
 #include <cstddef>
 #include <cstdlib>
+#include <cstring>
 #include <new>
 
 namespace {
@@ -129,4 +132,28 @@ void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept 
 }
 void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept {
     std::free(p);
+}
+
+// MRPT's own aligned allocator (mrpt::aligned_allocator_cpp11: the range,
+// intensity and validity arrays of its scans, its matrices) does not go
+// through operator new but through mrpt::aligned_malloc, exported by
+// libmrpt-core; this definition in the executable takes its calls from MRPT's
+// other libraries (ELF symbol interposition), so those arrays count against
+// the budget too. Same contract as MRPT's: memory that mrpt::aligned_free
+// (free) releases. It throws std::bad_alloc rather than returning null:
+// MRPT's allocator does not check for null.
+void* mrpt::aligned_malloc(size_t size, size_t alignment) {
+    if (!charge(size))
+        throw std::bad_alloc();
+    void* p = nullptr;
+    if (posix_memalign(&p, std::max(alignment, sizeof(void*)), size ? size : 1) != 0)
+        throw std::bad_alloc();
+    return p;
+}
+
+void* mrpt::aligned_calloc(size_t bytes, size_t alignment) {
+    void* p = mrpt::aligned_malloc(bytes, alignment);
+    if (p)
+        std::memset(p, 0, bytes);
+    return p;
 }

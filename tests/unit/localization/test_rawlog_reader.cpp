@@ -314,7 +314,8 @@ TEST(CRawlogReader, CountsFromTheFileCannotAllocateBeyondIt) {
 TEST(CRawlogReader, TheFuzzersFindingsGiveOneClearError) {
     for (const std::string f : {"segv-null-deref-CActionRobotMovement2D.rawlog.gz",
                                 "oom-CObservation2DRangeScan-string-length.rawlog",
-                                "timeout-gzread-error-loops.rawlog.gz"}) {
+                                "timeout-gzread-error-loops.rawlog.gz",
+                                "oom-scan-size-mrpt-aligned-alloc.rawlog"}) {
         const std::string path =
             risknav::test::sourcePath("tests/fuzz/crashes/fuzz_rawlog/" + f);
         const auto [n, err] = readUntilError(path);
@@ -350,4 +351,21 @@ TEST(CRawlogReader, ANullActionOrObservationInAFrameIsCorruption) {
             std::string::npos)
             << err;
     }
+}
+
+TEST(CRawlogReader, EveryKeptFuzzerInputEndsCleanly) {
+    // tests/fuzz/crashes/fuzz_rawlog: every input the fuzzer found a crash,
+    // hang or memory blow-up with reads to an error or to its end; none
+    // kills the test (a crash would), none takes long (a hang would time out)
+    const std::string dir = risknav::test::sourcePath("tests/fuzz/crashes/fuzz_rawlog");
+    size_t n = 0;
+    for (const auto& f : risknav::test::listDir(dir)) {
+        const auto [frames, err] = readUntilError(dir + "/" + f);
+        (void)frames;
+        if (!err.empty()) {
+            EXPECT_NE(err.find(f), std::string::npos) << err;  // names the file
+        }
+        n++;
+    }
+    EXPECT_GE(n, 5u);
 }
