@@ -33,7 +33,8 @@ struct TSensorModel : public common::CValidatedOptions {
     void validate() const override;
 };
 
-/** Bayes update of one cell, (000) eq. (1) and its O-bar form:
+/** Bayes update of one cell, (000) section 2 (its display equation for
+ * P(E|O)) and the O-bar form:
  *  occupied reading: P' = P(O|E) P / (P(O|E) P + P(O|~E) (1 - P));
  *  free reading:     P' = P(~O|E) P / (P(~O|E) P + P(~O|~E) (1 - P)),
  * with P(~O|.) = 1 - P(O|.). */

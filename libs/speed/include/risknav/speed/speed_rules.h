@@ -22,7 +22,7 @@ namespace risknav::speed {
 std::vector<size_t> safeSpeedsByGap(const std::vector<double>& costToGo,
                                     double threshold);
 
-/** The undecided-region rule of (000) section 3.1, eq. (2): a speed v is
+/** The undecided-region rule of (000) section 3.1 (its display inequality): a speed v is
  * safe iff d / (v T) >= N, d the along-path distance to the first undecided
  * region, T the cycle time, N the necessary number of observations. */
 bool undecidedRuleHolds(double d, double v, double cycleTime, int necessaryObservations);
