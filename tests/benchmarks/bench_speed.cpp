@@ -1,0 +1,82 @@
+// One control cycle of the adaptive speed controller (issue 10, M1): two
+// sensor updates on the robot-centred grids, fusion, the planning field and
+// the decision with four A* plans. The scans and the map come from the office
+// world after the robot has driven into the corridor (a realistic map: walls,
+// doors, unknown beyond), on a 200 x 200 grid (10 m, the paper's) and on a
+// 400 x 400 one (20 m at 5 cm) to show how the cost grows.
+#include <risknav/common/CIniConfig.h>
+#include <risknav/mapping/free_space.h>
+#include <risknav/speed/CExplorer.h>
+
+#include <benchmark/benchmark.h>
+
+using namespace risknav;
+
+namespace {
+struct TScene {
+    speed::CExplorer ex;
+    sim::CSimWorld::TScans scans;
+    mrpt::math::TPose2D pose;
+    mapping::CLocalProbGrid laser, range2;
+};
+
+/** The office, the robot at the corridor's west end looking east, grids of
+ * `cells` a side that have seen 10 scans from there. */
+TScene& scene(int cells) {
+    static std::map<int, std::unique_ptr<TScene>> scenes;
+    auto& s = scenes[cells];
+    if (s)
+        return *s;
+    s = std::make_unique<TScene>();
+    common::CIniConfig c(std::string(RISKNAV_SOURCE_DIR) +
+                         "/datasets/office/explore.ini");
+    s->ex.loadFromConfigFile(c, {});
+    s->pose = mrpt::math::TPose2D(3.0, 7.0, 0.0);
+    s->ex.world.reset(s->pose, 1);
+    s->laser = mapping::CLocalProbGrid(cells, 0.05, s->pose.x, s->pose.y);
+    s->range2 = s->laser;
+    for (int k = 0; k < 10; k++) {
+        s->scans = s->ex.world.sense();
+        s->laser.integrateScan(s->pose, *s->scans.laser, s->ex.laserModel);
+        s->range2.integrateScan(s->pose, *s->scans.range2, s->ex.range2Model);
+    }
+    return *s;
+}
+
+void BM_ControlCycle(benchmark::State& st) {
+    auto& s = scene(int(st.range(0)));
+    const speed::CAdaptiveSpeedController ctrl(s.ex.speed, s.ex.world.robot.radius,
+                                               s.ex.necessaryObservations());
+    for (auto _ : st) {
+        // a copy of the grids (each cycle updates the same state); 2 x 160 KB
+        // at 200 x 200, a few % of the cycle
+        auto laser = s.laser, range2 = s.range2;
+        laser.integrateScan(s.pose, *s.scans.laser, s.ex.laserModel);
+        range2.integrateScan(s.pose, *s.scans.range2, s.ex.range2Model);
+        auto fused = mapping::fuseGrids(laser, range2, 0.7, 0.2);
+        speed::markFootprintFree(fused, s.pose, s.ex.world.robot.radius);
+        const auto field = speed::computePlanningField(fused);
+        const auto d = ctrl.decide(field, s.pose, {15.5, 7.0});
+        benchmark::DoNotOptimize(d.speed);
+    }
+    st.counters["cells"] = double(st.range(0) * st.range(0));
+}
+BENCHMARK(BM_ControlCycle)
+    ->Arg(200)
+    ->Arg(400)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void BM_SensorUpdatesOnly(benchmark::State& st) {
+    auto& s = scene(int(st.range(0)));
+    for (auto _ : st) {
+        auto laser = s.laser, range2 = s.range2;
+        laser.integrateScan(s.pose, *s.scans.laser, s.ex.laserModel);
+        range2.integrateScan(s.pose, *s.scans.range2, s.ex.range2Model);
+        benchmark::DoNotOptimize(laser.probabilities().data());
+    }
+}
+BENCHMARK(BM_SensorUpdatesOnly)->Arg(200)->Arg(400)->Unit(benchmark::kMillisecond);
+}  // namespace
+
+BENCHMARK_MAIN();
