@@ -3,10 +3,12 @@
 #include <mrpt/io/CFileGZInputStream.h>
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <stdexcept>
 #include <vector>
 
@@ -38,7 +40,8 @@ TRawlogSize rawlogBytes(const std::string& path) {
     return size;
 }
 
-std::optional<std::uint64_t> probeInChild(const std::function<void(const TProbeProgress&)>& work) {
+std::optional<std::uint64_t> probeInChild(
+    const std::function<void(const TProbeProgress&)>& work) {
     int fds[2];
     if (pipe(fds) != 0)
         throw std::runtime_error("cannot create a pipe for the rawlog probe");
@@ -50,6 +53,13 @@ std::optional<std::uint64_t> probeInChild(const std::function<void(const TProbeP
     }
     if (pid == 0) {
         close(fds[0]);
+        // The child's death is the answer, not an event: no crash handler of
+        // the parent's (a sanitizer's, a fuzzer's) may report it, and no core
+        // file is written.
+        for (const int sig : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL})
+            std::signal(sig, SIG_DFL);
+        const rlimit noCore{0, 0};
+        setrlimit(RLIMIT_CORE, &noCore);
         const int devnull = open("/dev/null", O_WRONLY);
         if (devnull >= 0) {
             dup2(devnull, STDOUT_FILENO);
@@ -78,8 +88,8 @@ std::optional<std::uint64_t> probeInChild(const std::function<void(const TProbeP
     std::uint64_t last = 0, value = 0;
     std::size_t have = 0;
     for (;;) {
-        const ssize_t r = read(fds[0], reinterpret_cast<char*>(&value) + have,
-                               sizeof(value) - have);
+        const ssize_t r =
+            read(fds[0], reinterpret_cast<char*>(&value) + have, sizeof(value) - have);
         if (r < 0 && errno == EINTR)
             continue;
         if (r <= 0)
