@@ -71,12 +71,22 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
               i1 = std::min(m_n - 1, x2idx(sx + reach));
     const int j0 = std::max(0, y2idx(sy - reach)),
               j1 = std::min(m_n - 1, y2idx(sy + reach));
+    // cheap tests first (the cost is one atan2 per cell in reach): out of
+    // reach by the squared distance; behind a sensor of <= 180 deg by the
+    // sign of the forward component (those cells map to no ray either way)
+    const double reach2 = reach * reach;
+    const double cyaw = std::cos(syaw), sinyaw = std::sin(syaw);
+    const bool halfPlane = aperture <= M_PI + 1e-9;
+    const double behind = std::sin(0.5 * step);
     for (int j = j0; j <= j1; j++) {
         const double dy = idx2y(j) - sy;
         for (int i = i0; i <= i1; i++) {
             const double dx = idx2x(i) - sx;
-            const double r = std::sqrt(dx * dx + dy * dy);
-            if (r > reach)
+            const double r2 = dx * dx + dy * dy;
+            if (r2 > reach2)
+                continue;
+            const double r = std::sqrt(r2);
+            if (halfPlane && dx * cyaw + dy * sinyaw < -r * behind)
                 continue;
             // the ray whose angular sector holds the cell's bearing
             const double b = sign * mrpt::math::wrapToPi(std::atan2(dy, dx) - syaw);
