@@ -75,14 +75,22 @@ CAllocationBudget::~CAllocationBudget() {
         charge(spent);
 }
 
-bool CAllocationBudget::exceeded() const { return tl_budget.exceeded; }
-std::size_t CAllocationBudget::requested() const { return tl_budget.used; }
+bool CAllocationBudget::exceeded() const {
+    return tl_budget.exceeded;
+}
+std::size_t CAllocationBudget::requested() const {
+    return tl_budget.used;
+}
 }  // namespace risknav::common
 
 // The replaceable global allocation functions (every form, so that new and
 // delete always pair malloc with free, also under the sanitizers).
-void* operator new(std::size_t n) { return allocate(n, 0, false); }
-void* operator new[](std::size_t n) { return allocate(n, 0, false); }
+void* operator new(std::size_t n) {
+    return allocate(n, 0, false);
+}
+void* operator new[](std::size_t n) {
+    return allocate(n, 0, false);
+}
 void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
     try {
         return allocate(n, 0, true);
@@ -117,16 +125,36 @@ void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) n
         return nullptr;
     }
 }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p) noexcept {
+    std::free(p);
+}
+void operator delete[](void* p) noexcept {
+    std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+    std::free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+    std::free(p);
+}
+void operator delete(void* p, const std::nothrow_t&) noexcept {
+    std::free(p);
+}
+void operator delete[](void* p, const std::nothrow_t&) noexcept {
+    std::free(p);
+}
+void operator delete(void* p, std::align_val_t) noexcept {
+    std::free(p);
+}
+void operator delete[](void* p, std::align_val_t) noexcept {
+    std::free(p);
+}
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept {
+    std::free(p);
+}
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
+    std::free(p);
+}
 void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept {
     std::free(p);
 }

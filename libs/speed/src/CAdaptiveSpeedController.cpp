@@ -44,8 +44,7 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
     if (!m.inside(si, sj))
         return false;
     // the cells the slowest speed can reach (the planner's escape rule included)
-    const double startClear = field.clearance[m.index(si, sj)];
-    const double escapeRadius = inflation + 2 * res;
+    const CTraversable traversable(field, si, sj, inflation, true);
     std::vector<uint8_t> seen(m.cells.size(), 0);
     std::deque<std::pair<int, int>> q;
     q.emplace_back(si, sj);
@@ -67,23 +66,14 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
             nearestDist = toGoal;
             nearest = {m.idx2x(i), m.idx2y(j)};
         }
-        if (field.frontierDist[k] <= band) {
-            const double d = std::hypot(m.idx2x(i) - goal.x, m.idx2y(j) - goal.y);
-            if (d < bestDist) {
-                bestDist = d;
-                target = {m.idx2x(i), m.idx2y(j)};
-            }
+        if (field.frontierDist[k] <= band && toGoal < bestDist) {
+            bestDist = toGoal;
+            target = {m.idx2x(i), m.idx2y(j)};
         }
         for (int dj = -1; dj <= 1; dj++)
             for (int di = -1; di <= 1; di++) {
                 const int ni = i + di, nj = j + dj;
-                if (!m.inside(ni, nj) || seen[m.index(ni, nj)])
-                    continue;
-                const double c = field.clearance[m.index(ni, nj)];
-                const bool ok = c >= inflation ||
-                                (c > 0 && c >= startClear - 0.5 * res &&
-                                 std::hypot(ni - si, nj - sj) * res <= escapeRadius);
-                if (!ok)
+                if (!m.inside(ni, nj) || seen[m.index(ni, nj)] || !traversable(ni, nj))
                     continue;
                 seen[m.index(ni, nj)] = 1;
                 q.emplace_back(ni, nj);

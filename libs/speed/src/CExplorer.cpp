@@ -295,9 +295,10 @@ TModeResult CExplorer::runMode(int fixedIndex,
                 rec.reason = "goal";
             }
         }
+        // the sensed points in the ego frame, when the stopping rule will look
         std::vector<TPoint2D> sensed;
         for (const auto& sc : {scans.laser, scans.range2})
-            if (sc)
+            if (sc && stopRule.options.enabled && v > 0)
                 for (const auto& q : mapping::scanToRobotFrame(*sc))
                     sensed.emplace_back(
                         ego.x + std::cos(ego.phi) * q.x - std::sin(ego.phi) * q.y,
@@ -339,7 +340,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
             int(r.snapshots.size()) < explore.max_snapshots) {
             TSnapshot s;
             s.cycle = cycle;
-            s.map = fused;
+            s.field = field;
             s.decision = d;
             s.egoPose = ego;
             r.snapshots.push_back(std::move(s));

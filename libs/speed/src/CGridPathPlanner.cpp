@@ -5,6 +5,25 @@
 #include <queue>
 
 namespace risknav::speed {
+CTraversable::CTraversable(const TPlanningField& field, int si, int sj, double inflation,
+                           bool escape)
+    : m_field(field),
+      m_si(si),
+      m_sj(sj),
+      m_inflation(inflation),
+      m_startClear(field.clearance[field.map.index(si, sj)]),
+      m_escapeRadius(inflation + 2 * field.map.resolution),
+      m_escape(escape) {}
+
+bool CTraversable::operator()(int i, int j) const {
+    const double c = m_field.clearance[m_field.map.index(i, j)];
+    if (c >= m_inflation)
+        return true;
+    const double res = m_field.map.resolution;
+    return m_escape && c > 0 && c >= m_startClear - 0.5 * res &&
+           std::hypot(i - m_si, j - m_sj) * res <= m_escapeRadius;
+}
+
 TPlannedPath CGridPathPlanner::plan(const TPlanningField& field,
                                     const mrpt::math::TPoint2D& start,
                                     const mrpt::math::TPoint2D& goal, double inflation,
@@ -22,19 +41,11 @@ TPlannedPath CGridPathPlanner::plan(const TPlanningField& field,
     const int gi = m.x2idx(goal.x), gj = m.y2idx(goal.y);
     const size_t s = m.index(si, sj);
     // a robot inside its own margin may leave with the clearance it has
-    const double startClear = field.clearance[s];
-    if (startClear < inflation && !escape) {
+    const CTraversable traversable(field, si, sj, inflation, escape);
+    if (!traversable.startKeepsInflation() && !escape) {
         out.points = {start};
         return out;  // costToGo stays +inf
     }
-    const double escapeRadius = inflation + 2 * res;
-    auto traversable = [&](int i, int j) {
-        const double c = field.clearance[m.index(i, j)];
-        if (c >= inflation)
-            return true;
-        return escape && c > 0 && c >= startClear - 0.5 * res &&
-               std::hypot(i - si, j - sj) * res <= escapeRadius;
-    };
     const double kDiag = std::sqrt(2.0);
     auto heuristic = [&](int i, int j) {
         const int dx = std::abs(i - gi), dy = std::abs(j - gj);

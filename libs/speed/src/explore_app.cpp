@@ -206,7 +206,8 @@ void writeExploreOutputs(const CExplorer& ex, const std::vector<TModeResult>& ru
     if (!runs.empty() && runs.front().fixedIndex < 0 && !runs.front().snapshots.empty()) {
         std::filesystem::create_directories(out.finalPath("snapshots"));
         for (const auto& s : runs.front().snapshots) {
-            const auto grid = mapping::toMrptGrid(s.map);
+            const auto& map = s.field.map;
+            const auto grid = mapping::toMrptGrid(map);
             CMapImage img(grid, 700);
             const auto& d = s.decision;
             char title[200];
@@ -217,11 +218,11 @@ void writeExploreOutputs(const CExplorer& ex, const std::vector<TModeResult>& ru
                               : "inf");
             img.setTitle(title);
             // obstacles expanded by the fastest speed's margin and the robot size
-            const auto field = computePlanningField(s.map);
-            std::vector<uint8_t> grown(field.clearance.size());
+            const auto& clearance = s.field.clearance;
+            std::vector<uint8_t> grown(clearance.size());
             for (size_t k = 0; k < grown.size(); k++)
-                grown[k] = s.map.cells[k] == mapping::TFusedCell::Free &&
-                           field.clearance[k] < ex.world.robot.radius + o.margins.front();
+                grown[k] = map.cells[k] == mapping::TFusedCell::Free &&
+                           clearance[k] < ex.world.robot.radius + o.margins.front();
             img.paintCells(grown, {255, 200, 200});
             for (size_t k = 0; k < d.perSpeed.size(); k++) {
                 const TRgb c = kModeColours[(k + 1) % 6];

@@ -34,5 +34,6 @@ using TProbeProgress = std::function<void(std::uint64_t)>;
  *  once in a child to learn which entry, if any, does that. The child writes
  *  nothing to stdout or stderr and leaves by _exit, so no destructor of the
  *  parent's objects (staged output folders, files) runs in it. */
-std::optional<std::uint64_t> probeInChild(const std::function<void(const TProbeProgress&)>& work);
+std::optional<std::uint64_t> probeInChild(
+    const std::function<void(const TProbeProgress&)>& work);
 }  // namespace risknav::localization

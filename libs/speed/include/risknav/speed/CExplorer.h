@@ -47,10 +47,9 @@ struct TCycleRecord {
 /** A snapshot of the adaptive mode where its speed changes ((000) Fig. 16). */
 struct TSnapshot {
     int cycle = 0;
-    mapping::TFreeSpaceMap map;
+    TPlanningField field;  ///< the fused map and its clearances, as planned on
     TSpeedDecision decision;
     mrpt::math::TPose2D egoPose;
-    double inflationFastest = 0;
 };
 
 /** One mode's run. */

@@ -38,6 +38,25 @@ class IPathPlanner {
     virtual std::string name() const = 0;
 };
 
+/** The cells a robot starting at cell (si, sj) may enter at an inflation:
+ * clearance >= inflation; with `escape`, within inflation + 2 cells of the
+ * start also cells no nearer a non-free cell than the start (half a cell of
+ * rounding). The one rule of the planner and of the target flood. */
+class CTraversable {
+  public:
+    CTraversable(const TPlanningField& field, int si, int sj, double inflation,
+                 bool escape);
+    bool operator()(int i, int j) const;
+    /** The start cell itself keeps the inflation. */
+    bool startKeepsInflation() const { return m_startClear >= m_inflation; }
+
+  private:
+    const TPlanningField& m_field;
+    int m_si, m_sj;
+    double m_inflation, m_startClear, m_escapeRadius;
+    bool m_escape;
+};
+
 /** A* on the grid's cells, 8-connected, octile heuristic (exact for the
  * cost of its moves). */
 class CGridPathPlanner : public IPathPlanner {
