@@ -2,8 +2,9 @@
 #include <risknav/speed/speed_rules.h>
 
 #include <cmath>
-#include <deque>
+#include <functional>
 #include <limits>
+#include <queue>
 #include <stdexcept>
 
 namespace risknav::speed {
@@ -35,48 +36,74 @@ CAdaptiveSpeedController::CAdaptiveSpeedController(
 bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
                                             const mrpt::math::TPoint2D& start,
                                             const mrpt::math::TPoint2D& goal,
-                                            mrpt::math::TPoint2D& target,
-                                            bool& temporary) const {
+                                            mrpt::math::TPoint2D& target, bool& temporary,
+                                            const TTargetHints& hints) const {
+    const TGoalCost& goalCost = hints.goalCost;
     const auto& m = field.map;
     const double res = m.resolution;
     const double inflation = m_radius + m_o.margins.back();
     const int si = m.x2idx(start.x), sj = m.y2idx(start.y);
     if (!m.inside(si, sj))
         return false;
-    // the cells the slowest speed can reach (the planner's escape rule included)
+    // the cells the slowest speed can reach (the planner's escape rule
+    // included), in order of path length from the start (Dijkstra, 8-connected)
     const CTraversable traversable(field, si, sj, inflation, true);
-    std::vector<uint8_t> seen(m.cells.size(), 0);
-    std::deque<std::pair<int, int>> q;
-    q.emplace_back(si, sj);
-    seen[m.index(si, sj)] = 1;
+    const double inf = std::numeric_limits<double>::infinity();
+    std::vector<double> g(m.cells.size(), inf);
+    using TEntry = std::pair<double, size_t>;
+    std::priority_queue<TEntry, std::vector<TEntry>, std::greater<TEntry>> open;
+    g[m.index(si, sj)] = 0;
+    open.emplace(0.0, m.index(si, sj));
     const int gi = m.x2idx(goal.x), gj = m.y2idx(goal.y);
     bool goalReached = false;
-    double bestDist = std::numeric_limits<double>::infinity();
-    double nearestDist = std::numeric_limits<double>::infinity();
-    mrpt::math::TPoint2D nearest;
+    double bestCost = inf, nearestDist = inf, bestStraight = inf;
+    mrpt::math::TPoint2D nearest, straightTarget;
     const double band = inflation + 2 * res;
-    while (!q.empty()) {
-        const auto [i, j] = q.front();
-        q.pop_front();
+    while (!open.empty()) {
+        const auto [gk, k] = open.top();
+        open.pop();
+        if (gk > g[k])
+            continue;
+        const int i = int(k % size_t(m.size)), j = int(k / size_t(m.size));
         if (i == gi && j == gj)
             goalReached = true;
-        const size_t k = m.index(i, j);
         const double toGoal = std::hypot(m.idx2x(i) - goal.x, m.idx2y(j) - goal.y);
         if (toGoal < nearestDist) {
             nearestDist = toGoal;
             nearest = {m.idx2x(i), m.idx2y(j)};
         }
-        if (field.frontierDist[k] <= band && toGoal < bestDist) {
-            bestDist = toGoal;
-            target = {m.idx2x(i), m.idx2y(j)};
+        // Beyond the paper (which takes the boundary point nearest the goal
+        // in a straight line): path to it + the cost on from it, over the
+        // open frontier and the map's edge
+        if ((field.openFrontierDist[k] <= band || field.borderDist[k] <= band)) {
+            const double straight = gk + m_o.frontier_goal_weight * toGoal;
+            if (straight < bestStraight) {
+                bestStraight = straight;
+                straightTarget = {m.idx2x(i), m.idx2y(j)};
+            }
+            const double sw =
+                hints.hasPrevious && std::hypot(m.idx2x(i) - hints.previous.x,
+                                                m.idx2y(j) - hints.previous.y) > 1.0
+                    ? m_o.target_switch_cost
+                    : 0.0;
+            const double cost =
+                sw + (goalCost ? gk + goalCost(m.idx2x(i), m.idx2y(j)) : straight);
+            if (cost < bestCost) {
+                bestCost = cost;
+                target = {m.idx2x(i), m.idx2y(j)};
+            }
         }
         for (int dj = -1; dj <= 1; dj++)
             for (int di = -1; di <= 1; di++) {
                 const int ni = i + di, nj = j + dj;
-                if (!m.inside(ni, nj) || seen[m.index(ni, nj)] || !traversable(ni, nj))
+                if ((di == 0 && dj == 0) || !m.inside(ni, nj) || !traversable(ni, nj))
                     continue;
-                seen[m.index(ni, nj)] = 1;
-                q.emplace_back(ni, nj);
+                const size_t nk = m.index(ni, nj);
+                const double ng = gk + (di != 0 && dj != 0 ? M_SQRT2 : 1.0) * res;
+                if (ng < g[nk]) {
+                    g[nk] = ng;
+                    open.emplace(ng, nk);
+                }
             }
     }
     if (goalReached && field.clearance[m.index(gi, gj)] >= inflation) {
@@ -93,19 +120,26 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
         return true;
     }
     temporary = true;
-    return std::isfinite(bestDist);
+    if (!std::isfinite(bestCost) && std::isfinite(bestStraight)) {
+        // goalCost knows no way on from any candidate (a memory that walled
+        // the robot in, e.g. a destination moved by drift): the straight line
+        target = straightTarget;
+        return true;
+    }
+    return std::isfinite(bestCost);
 }
 
 TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
                                                 const mrpt::math::TPose2D& robot,
                                                 const mrpt::math::TPoint2D& goal,
-                                                int fixedIndex) const {
+                                                int fixedIndex,
+                                                const TTargetHints& hints) const {
     TSpeedDecision d;
     const mrpt::math::TPoint2D start(robot.x, robot.y);
     const size_t nSpeeds = m_o.speeds.size();
     if (fixedIndex >= int(nSpeeds))
         throw std::invalid_argument("speed controller: no such fixed speed");
-    if (!chooseTarget(field, start, goal, d.target, d.temporaryTarget)) {
+    if (!chooseTarget(field, start, goal, d.target, d.temporaryTarget, hints)) {
         d.reason = TSpeedReason::Unreachable;
         return d;
     }

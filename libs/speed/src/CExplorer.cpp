@@ -1,6 +1,7 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/config_read.h>
 #include <risknav/common/stopping.h>
+#include <risknav/mapping/CFreeSpaceMemory.h>
 #include <risknav/mapping/free_space.h>
 #include <risknav/mapping/scan_points.h>
 #include <risknav/speed/CExplorer.h>
@@ -12,6 +13,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
 #include <set>
 
 using namespace risknav::common;
@@ -111,7 +115,8 @@ void markFootprintFree(mapping::TFreeSpaceMap& m, const TPose2D& p, double radiu
 }
 
 bool pathBlocked(const TPlannedPath& path, const std::vector<TPoint2D>& sensed, double v,
-                 const TRobotOptions& robot, double margin, double lateralMargin) {
+                 const TRobotOptions& robot, double margin, double lateralMargin,
+                 double noiseTolerance) {
     const double reach =
         robot.radius + stoppingDistance(v, robot.t_delay, robot.decel) + margin;
     const double halfW = robot.radius + lateralMargin;
@@ -131,7 +136,8 @@ bool pathBlocked(const TPlannedPath& path, const std::vector<TPoint2D>& sensed, 
         for (const auto& q : sensed)
             if ((q.x - pts[0].x) * dx + (q.y - pts[0].y) * dy > 0) {
                 const double dk = std::hypot(q.x - pts[k].x, q.y - pts[k].y);
-                if (dk < halfW && dk < std::hypot(q.x - pts[0].x, q.y - pts[0].y) - 0.01)
+                if (dk < halfW &&
+                    dk < std::hypot(q.x - pts[0].x, q.y - pts[0].y) - noiseTolerance)
                     return true;
             }
     }
@@ -140,9 +146,13 @@ bool pathBlocked(const TPlannedPath& path, const std::vector<TPoint2D>& sensed, 
 
 namespace {
 /** Pure pursuit along the path at speed v; v = 0 (or a sharp turn) turns in
- * place towards the path, so that the robot looks where it will go. */
-std::pair<double, double> follow(const TPlannedPath& path, const TPose2D& p, double v,
-                                 double maxW) {
+ * place towards the path, so that the robot looks where it will go.
+ * Beyond plain pure pursuit: the look-ahead point is pulled back along the
+ * path until the straight line to it keeps the clearance the path keeps
+ * there (on a door post's corner the chord would cut past the slowest
+ * speed's 5 cm margin). */
+std::pair<double, double> follow(const TPlannedPath& path, const TPlanningField& field,
+                                 const TPose2D& p, double v, double maxW, double radius) {
     const auto& pts = path.points;
     if (pts.size() < 2)
         return {0.0, 0.0};
@@ -159,11 +169,31 @@ std::pair<double, double> follow(const TPlannedPath& path, const TPose2D& p, dou
     size_t t = c;
     while (t + 1 < pts.size() && std::hypot(pts[t].x - p.x, pts[t].y - p.y) < L)
         t++;
+    const double res = field.map.resolution;
+    auto chordKeepsClearance = [&](size_t to) {
+        double pathClear = std::numeric_limits<double>::infinity();
+        for (size_t k = c; k <= to; k++)
+            pathClear = std::min(pathClear, field.clearanceAt(pts[k].x, pts[k].y));
+        const double len = std::hypot(pts[to].x - p.x, pts[to].y - p.y);
+        const int n = int(std::ceil(len / (0.5 * res)));
+        for (int s = 1; s <= n; s++) {
+            const double f = double(s) / n;
+            if (field.clearanceAt(p.x + f * (pts[to].x - p.x),
+                                  p.y + f * (pts[to].y - p.y)) < pathClear - 0.5 * res)
+                return false;
+        }
+        return true;
+    };
+    while (t > c + 1 && !chordKeepsClearance(t))
+        t--;
     const double alpha =
         mrpt::math::wrapToPi(std::atan2(pts[t].y - p.y, pts[t].x - p.x) - p.phi);
-    if (v <= 0 || std::abs(alpha) > 1.0)
+    // where the robot has less than 10 cm to spare, an arc that starts off
+    // the chord can touch what the chord passes: it turns on the spot first
+    const double maxAlpha = field.clearanceAt(p.x, p.y) < radius + 0.1 ? 0.15 : 1.0;
+    if (v <= 0 || std::abs(alpha) > maxAlpha)
         return {0.0, std::clamp(1.5 * alpha, -maxW, maxW)};
-    const double dist = std::max(L, 1e-3);
+    const double dist = std::max(std::hypot(pts[t].x - p.x, pts[t].y - p.y), 1e-3);
     return {v, std::clamp(2 * v * std::sin(alpha) / dist, -maxW, maxW)};
 }
 }  // namespace
@@ -195,6 +225,11 @@ TModeResult CExplorer::runMode(int fixedIndex,
         const auto ge = e0 + local;
         goalsEgo.emplace_back(ge.x(), ge.y());
     }
+    std::optional<TPoint2D> previousTarget;  // temporary, of this destination
+    std::unique_ptr<mapping::CFreeSpaceMemory> memory;
+    if (explore.memory_size > 0)
+        memory = std::make_unique<mapping::CFreeSpaceMemory>(
+            explore.memory_size, explore.memory_resolution, ego0.x, ego0.y);
     r.destinationStatus.assign(goalsWorld.size(), "not_reached");
     r.destinationError.assign(goalsWorld.size(), 0.0);
     r.timeAtSpeed.assign(speed.speeds.size(), 0.0);
@@ -212,6 +247,10 @@ TModeResult CExplorer::runMode(int fixedIndex,
     // one turn, plus a second for the turn-rate ramp
     const double lookAroundEnd = 2 * M_PI / lookAroundW + 1.0;
     const double dt = T / steps;
+    // two standard deviations of the noisier range sensor, 1 cm at least
+    double noiseTolerance = std::max(0.01, 2 * world.laser.options.noise_std);
+    if (world.range2.options.enabled)
+        noiseTolerance = std::max(noiseTolerance, 2 * world.range2.options.noise_std);
     for (int cycle = 0; world.time() < explore.time_limit && dest < goalsEgo.size();
          cycle++) {
         const auto scans = world.sense();
@@ -230,7 +269,29 @@ TModeResult CExplorer::runMode(int fixedIndex,
         // there), though no sensor sees under it (the laser is mounted ahead
         // of the centre); otherwise the robot would start in "unknown" space.
         markFootprintFree(fused, ego, world.robot.radius);
-        const auto field = computePlanningField(fused);
+        const auto field = computePlanningField(fused, world.robot.radius);
+        if (memory)
+            memory->update(fused);
+        // the memory's cost to the destination, computed when a temporary
+        // destination is to be chosen, at most once a cycle
+        bool costReady = false;
+        TTargetHints hints;
+        hints.hasPrevious = previousTarget.has_value();
+        if (previousTarget)
+            hints.previous = *previousTarget;
+        if (memory)
+            hints.goalCost = [&](double x, double y) {
+                if (!costReady) {
+                    memory->computeCostToGoal(goalsEgo[dest], speed.frontier_goal_weight,
+                                              fused, world.robot.radius);
+                    costReady = true;
+                }
+                // from a candidate (within the target band of a frontier or
+                // the map's edge) to the unknown beyond
+                return memory->costToGoal(x, y,
+                                          world.robot.radius + speed.margins.back() +
+                                              3 * explore.local_map_resolution);
+            };
         while (dest < goalsEgo.size() &&
                std::hypot(goalsEgo[dest].x - ego.x, goalsEgo[dest].y - ego.y) <
                    explore.goal_tolerance) {
@@ -239,6 +300,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
             r.destinationError[dest] =
                 std::hypot(goalsWorld[dest].x - tp.x, goalsWorld[dest].y - tp.y);
             dest++;
+            previousTarget.reset();
             unreachableSince = -1;
         }
         if (dest == goalsEgo.size())
@@ -249,7 +311,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
         const bool lookingAround = explore.look_around && world.time() < lookAroundEnd;
         const TSpeedDecision d =
             lookingAround ? TSpeedDecision{}
-                          : ctrl.decide(field, ego, goalsEgo[dest], fixedIndex);
+                          : ctrl.decide(field, ego, goalsEgo[dest], fixedIndex, hints);
         const double ms = std::chrono::duration<double, std::milli>(
                               std::chrono::steady_clock::now() - t0)
                               .count();
@@ -266,6 +328,12 @@ TModeResult CExplorer::runMode(int fixedIndex,
             rec.costToGo.push_back(p.costToGo);
         rec.destination = int(dest);
         rec.temporaryTarget = d.temporaryTarget;
+        if (!lookingAround) {
+            if (d.temporaryTarget && d.reason != TSpeedReason::Unreachable)
+                previousTarget = d.target;
+            else
+                previousTarget.reset();
+        }
         rec.marginBroken = d.marginBroken;
         rec.computeMs = ms;
         // the stopping rule: sensed obstacles within the stopping distance
@@ -306,7 +374,8 @@ TModeResult CExplorer::runMode(int fixedIndex,
         auto blocked = [&](double speedV) {
             return stopRule.options.enabled && speedV > 0 &&
                    pathBlocked(d.path, sensed, speedV, world.robot,
-                               stopRule.options.margin, stopRule.options.lateral_margin);
+                               stopRule.options.margin, stopRule.options.lateral_margin,
+                               noiseTolerance);
         };
         if (blocked(v)) {
             v = 0;
@@ -328,6 +397,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
             else if (world.time() - unreachableSince >= explore.unreachable_after) {
                 r.destinationStatus[dest] = "unreachable";
                 dest++;
+                previousTarget.reset();
                 unreachableSince = -1;
             }
         } else {
@@ -351,7 +421,8 @@ TModeResult CExplorer::runMode(int fixedIndex,
             const auto [vc, wc] =
                 lookingAround
                     ? std::pair<double, double>(0.0, lookAroundW)
-                    : follow(d.path, egoPose(), v, world.robot.max_w_deg * M_PI / 180);
+                    : follow(d.path, field, egoPose(), v,
+                             world.robot.max_w_deg * M_PI / 180, world.robot.radius);
             world.command(vc, wc);
             world.step(dt);
             const TPose2D tp = world.truePose();

@@ -13,15 +13,40 @@ CTraversable::CTraversable(const TPlanningField& field, int si, int sj, double i
       m_inflation(inflation),
       m_startClear(field.clearance[field.map.index(si, sj)]),
       m_escapeRadius(inflation + 2 * field.map.resolution),
-      m_escape(escape) {}
+      m_escape(escape) {
+    if (!m_escape || startKeepsInflation())
+        return;
+    // The escape first without rounding: never nearer than the start. Half a
+    // cell of rounding per cycle would let a robot that starts each cycle a
+    // little nearer creep, cycle by cycle, onto a door post; it is allowed
+    // only when no strict way out exists.
+    const auto& m = field.map;
+    std::vector<uint8_t> seen(m.cells.size(), 0);
+    std::vector<std::pair<int, int>> stack = {{si, sj}};
+    seen[m.index(si, sj)] = 1;
+    while (!stack.empty()) {
+        const auto [i, j] = stack.back();
+        stack.pop_back();
+        if (field.clearance[m.index(i, j)] >= inflation)
+            return;  // a strict way out exists
+        for (int dj = -1; dj <= 1; dj++)
+            for (int di = -1; di <= 1; di++) {
+                const int ni = i + di, nj = j + dj;
+                if (!m.inside(ni, nj) || seen[m.index(ni, nj)] || !(*this)(ni, nj))
+                    continue;
+                seen[m.index(ni, nj)] = 1;
+                stack.emplace_back(ni, nj);
+            }
+    }
+    m_slack = 0.5 * field.map.resolution;
+}
 
 bool CTraversable::operator()(int i, int j) const {
     const double c = m_field.clearance[m_field.map.index(i, j)];
     if (c >= m_inflation)
         return true;
-    const double res = m_field.map.resolution;
-    return m_escape && c > 0 && c >= m_startClear - 0.5 * res &&
-           std::hypot(i - m_si, j - m_sj) * res <= m_escapeRadius;
+    return m_escape && c > 0 && c >= m_startClear - m_slack &&
+           std::hypot(i - m_si, j - m_sj) * m_field.map.resolution <= m_escapeRadius;
 }
 
 TPlannedPath CGridPathPlanner::plan(const TPlanningField& field,

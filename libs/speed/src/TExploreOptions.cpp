@@ -31,6 +31,8 @@ void TExploreOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
     ego_motion = readChoice(c, s, "ego_motion", ego_motion, {"odometry", "ground_truth"});
     local_map_size = readDouble(c, s, "local_map_size", local_map_size);
     local_map_resolution = readDouble(c, s, "local_map_resolution", local_map_resolution);
+    memory_size = readDouble(c, s, "memory_size", memory_size);
+    memory_resolution = readDouble(c, s, "memory_resolution", memory_resolution);
     sim_dt = readDouble(c, s, "sim_dt", sim_dt);
     time_limit = readDouble(c, s, "time_limit", time_limit);
     goal_tolerance = readDouble(c, s, "goal_tolerance", goal_tolerance);
@@ -48,6 +50,8 @@ void TExploreOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
     writeKey(c, s, "modes", joined(modes));
     writeKey(c, s, "ego_motion", ego_motion);
     writeKey(c, s, "local_map_size", local_map_size);
+    writeKey(c, s, "memory_size", memory_size);
+    writeKey(c, s, "memory_resolution", memory_resolution);
     writeKey(c, s, "local_map_resolution", local_map_resolution);
     writeKey(c, s, "sim_dt", sim_dt);
     writeKey(c, s, "time_limit", time_limit);
@@ -76,6 +80,12 @@ void TExploreOptions::validate() const {
              TRange::closed(0.01, 0.5, "m"));
     checkRule(local_map_size / local_map_resolution <= 2000, section, "local_map_size",
               numberText(local_map_size), "at most 2000 cells a side");
+    checkKey(section, "memory_size", memory_size, TRange::closed(0, 1000, "m"));
+    checkKey(section, "memory_resolution", memory_resolution,
+             TRange::closed(0.05, 5, "m"));
+    checkRule(memory_size / memory_resolution <= 4096, section, "memory_size",
+              numberText(memory_size),
+              "more than 4096 memory cells a side (raise memory_resolution)");
     checkKey(section, "sim_dt", sim_dt, TRange{0, 1, true, false, "s"});
     checkKey(section, "time_limit", time_limit, TRange{0, 36000, true, false, "s"});
     checkKey(section, "goal_tolerance", goal_tolerance, TRange{0, 10, true, false, "m"});

@@ -14,6 +14,8 @@ void TSpeedControlOptions::loadFromConfigFile(const mrpt::config::CConfigFileBas
     lookahead_cycles = readInt(c, s, "lookahead_cycles", lookahead_cycles);
     occupied_threshold = readDouble(c, s, "occupied_threshold", occupied_threshold);
     free_threshold = readDouble(c, s, "free_threshold", free_threshold);
+    frontier_goal_weight = readDouble(c, s, "frontier_goal_weight", frontier_goal_weight);
+    target_switch_cost = readDouble(c, s, "target_switch_cost", target_switch_cost);
 }
 
 void TSpeedControlOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
@@ -25,6 +27,8 @@ void TSpeedControlOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
     writeKey(c, s, "lookahead_cycles", lookahead_cycles);
     writeKey(c, s, "occupied_threshold", occupied_threshold);
     writeKey(c, s, "free_threshold", free_threshold);
+    writeKey(c, s, "frontier_goal_weight", frontier_goal_weight);
+    writeKey(c, s, "target_switch_cost", target_switch_cost);
 }
 
 void TSpeedControlOptions::validate() const {
@@ -47,5 +51,9 @@ void TSpeedControlOptions::validate() const {
     checkKey(section, "occupied_threshold", occupied_threshold,
              TRange{0.5, 1, false, true, ""});
     checkKey(section, "free_threshold", free_threshold, TRange{0, 0.5, true, true, ""});
+    checkKey(section, "frontier_goal_weight", frontier_goal_weight,
+             TRange::closed(1, 100));
+    checkKey(section, "target_switch_cost", target_switch_cost,
+             TRange::closed(0, 1000, "m"));
 }
 }  // namespace risknav::speed

@@ -4,6 +4,7 @@
 
 #include <mrpt/math/TPose2D.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +18,21 @@ enum class TSpeedReason {
     Unreachable,  ///< no path and no frontier: the robot stops
 };
 const char* reasonName(TSpeedReason r);
+
+/** Cost [m] of the way on from an ego-frame point to the goal, used to rank
+ * temporary destinations; empty: frontier_goal_weight x the straight line. */
+using TGoalCost = std::function<double(double x, double y)>;
+
+/** What the caller knows beyond one map (beyond the paper): the cost of the
+ * way on, and the temporary destination of the previous cycle (candidates
+ * farther than 1 m from it pay target_switch_cost: a choice that flips with
+ * every few centimetres of motion, as a wall enters and leaves the local
+ * map's edge, would hold the robot in a doorway). */
+struct TTargetHints {
+    TGoalCost goalCost;
+    bool hasPrevious = false;
+    mrpt::math::TPoint2D previous;
+};
 
 /** One cycle's decision, everything the outputs show. */
 struct TSpeedDecision {
@@ -39,7 +55,10 @@ struct TSpeedDecision {
  *  1. destination: the goal if it lies in known free space reachable by the
  *     slowest speed (or, for a known-free goal nearer an obstacle than that
  *     margin, the reachable point nearest it); else a temporary destination
- *     on the free/undecided boundary nearest the goal (section 3.3);
+ *     on the free/undecided boundary nearest the goal (section 3.3); beyond
+ *     the paper, among the open frontier cells and the local map's edge, the
+ *     one with the least path length to it + cost on from it (goalCost, or
+ *     frontier_goal_weight x the straight line) + the switch cost;
  *  2. a path per candidate speed, obstacles grown by the robot radius + the
  *     speed's margin (planner behind IPathPlanner);
  *  3. the narrow-space rule on their cost-to-go (safeSpeedsByGap): the
@@ -59,7 +78,8 @@ class CAdaptiveSpeedController {
                              std::shared_ptr<const IPathPlanner> planner = nullptr);
     /** fixedIndex < 0: adaptive; else fixed at that candidate speed. */
     TSpeedDecision decide(const TPlanningField& field, const mrpt::math::TPose2D& robot,
-                          const mrpt::math::TPoint2D& goal, int fixedIndex = -1) const;
+                          const mrpt::math::TPoint2D& goal, int fixedIndex = -1,
+                          const TTargetHints& hints = {}) const;
     const TSpeedControlOptions& options() const { return m_o; }
     int necessaryObservations() const { return m_N; }
 
@@ -67,7 +87,7 @@ class CAdaptiveSpeedController {
      * false when there is neither a reachable goal nor a reachable frontier. */
     bool chooseTarget(const TPlanningField& field, const mrpt::math::TPoint2D& start,
                       const mrpt::math::TPoint2D& goal, mrpt::math::TPoint2D& target,
-                      bool& temporary) const;
+                      bool& temporary, const TTargetHints& hints = {}) const;
 
   private:
     TSpeedControlOptions m_o;

@@ -23,10 +23,15 @@ void markFootprintFree(mapping::TFreeSpaceMap& m, const mrpt::math::TPose2D& p,
  * eqs. 1-4, as CStoppingDistanceLimiter, but on the planned path instead of
  * a straight corridor, which a turning path leaves): a sensed point (ego
  * frame) closer than radius + lateralMargin to a path point within
- * radius + d_stop(v) + margin along the path. */
+ * radius + d_stop(v) + margin along the path, ahead of the robot, that
+ * the path comes nearer to than the robot now is by more than
+ * `noiseTolerance` [m] (a door post the robot stands beside is at the same
+ * distance from the path within the sensor's noise: no reason to stop, and
+ * stopping there would hold the robot in the doorway for ever). */
 bool pathBlocked(const TPlannedPath& path,
                  const std::vector<mrpt::math::TPoint2D>& sensed, double v,
-                 const common::TRobotOptions& robot, double margin, double lateralMargin);
+                 const common::TRobotOptions& robot, double margin, double lateralMargin,
+                 double noiseTolerance = 0.01);
 
 /** One control cycle of a mode, as cycles.csv shows it. */
 struct TCycleRecord {

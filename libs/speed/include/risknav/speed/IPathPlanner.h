@@ -26,8 +26,8 @@ struct TPlannedPath {
  * point nearest the goal, reached = false). A robot already closer than `inflation` to a
  * non-free cell has no path at that inflation (costToGo = +inf: the speed's margin is
  * broken now), unless `escape`: then, near the start, it may move with the clearance it
- * has (never nearer a non-free cell than the start, up to half a cell of
- * rounding), so that the slowest speed can get out. */
+ * has (never nearer a non-free cell than the start; half a cell of rounding
+ * only when there is no other way out), so that the slowest speed can get out. */
 class IPathPlanner {
   public:
     virtual ~IPathPlanner() = default;
@@ -41,7 +41,8 @@ class IPathPlanner {
 /** The cells a robot starting at cell (si, sj) may enter at an inflation:
  * clearance >= inflation; with `escape`, within inflation + 2 cells of the
  * start also cells no nearer a non-free cell than the start (half a cell of
- * rounding). The one rule of the planner and of the target flood. */
+ * rounding only when that gives no way out). The one rule of the planner and
+ * of the target flood. */
 class CTraversable {
   public:
     CTraversable(const TPlanningField& field, int si, int sj, double inflation,
@@ -55,6 +56,7 @@ class CTraversable {
     int m_si, m_sj;
     double m_inflation, m_startClear, m_escapeRadius;
     bool m_escape;
+    double m_slack = 0;  ///< [m] rounding allowed on the escape
 };
 
 /** A* on the grid's cells, 8-connected, octile heuristic (exact for the

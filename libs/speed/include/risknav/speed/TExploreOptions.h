@@ -16,9 +16,14 @@ struct TExploreOptions : public common::CValidatedOptions {
     std::string ego_motion = "odometry";  ///< odometry | ground_truth
     double local_map_size = 10.0;         ///< [m] side of the robot-centred grids
     double local_map_resolution = 0.05;   ///< [m]
-    double sim_dt = 0.05;                 ///< [s] physics step inside a cycle
-    double time_limit = 300;              ///< [s] simulated, per mode
-    double goal_tolerance = 0.3;          ///< [m] a destination counts as reached
+    /** [m] side of the coarse memory (CFreeSpaceMemory) that ranks the ways
+     * on to a destination beyond the local map; 0 = none (the paper's
+     * straight line). Beyond the paper. */
+    double memory_size = 50.0;
+    double memory_resolution = 0.25;  ///< [m]
+    double sim_dt = 0.05;             ///< [s] physics step inside a cycle
+    double time_limit = 300;          ///< [s] simulated, per mode
+    double goal_tolerance = 0.3;      ///< [m] a destination counts as reached
     double unreachable_after =
         5;  ///< [s] of "unreachable" before a destination is given up
     /** Turn once on the spot before setting off (beyond the paper: a laser

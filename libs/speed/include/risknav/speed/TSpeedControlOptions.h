@@ -21,6 +21,14 @@ struct TSpeedControlOptions : public common::CValidatedOptions {
         2;  ///< section 4.2: a faster speed must keep its margin this long
     double occupied_threshold = 0.7;  ///< section 2 classification
     double free_threshold = 0.2;
+    /** Beyond the paper: a temporary destination minimises path length to it
+     * + this x straight-line distance from it to the goal (the unknown part
+     * of the way counts more than the known part; a very large weight gives
+     * the paper's rule, the boundary point nearest the goal). */
+    double frontier_goal_weight = 2.0;
+    /** [m] Beyond the paper: added to the cost of a temporary destination
+     * more than 1 m from the previous cycle's (hysteresis; see TTargetHints). */
+    double target_switch_cost = 3.0;
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                             const std::string& section) override;
     void saveToConfigFile(mrpt::config::CConfigFileBase& c,
