@@ -126,6 +126,14 @@ TEST(ExploreE2E, BadInputIsExitTwoWithTheKey) {
         {"--set SpeedControl.speeds='1.5 0.7 0.35 0.2'", "exceeds [Robot] max_v"},
         {"--set MapRange2.p_obs_given_free=0.7", "[MapRange2] p_obs_given_obstacle"},
         {"--set Explore.modes=fast", "[Explore] modes"},
+        {"--set Explore.memory_size=-1", "[Explore] memory_size"},
+        {"--set Explore.memory_resolution=0", "[Explore] memory_resolution"},
+        {"--set Explore.memory_size=1000 --set Explore.memory_resolution=0.05",
+         "more than 4096 memory cells"},
+        {"--set SpeedControl.frontier_goal_weight=0.5",
+         "[SpeedControl] frontier_goal_weight"},
+        {"--set SpeedControl.target_switch_cost=nan",
+         "[SpeedControl] target_switch_cost"},
     };
     writeFile(w + "/explore.ini", base);
     for (const auto& [set, expect] : cases) {
@@ -187,4 +195,32 @@ TEST(ExploreE2E, EveryKeyInTheDocumentedConfigIsKnown) {
         return out;
     };
     EXPECT_EQ(withoutTimes(d + "/cycles.csv"), withoutTimes(d2 + "/cycles.csv"));
+}
+
+TEST(ExploreE2E, TheTJunctionBeyondTheLocalMapNeedsTheMemory) {
+    // datasets/validation: destinations up to 16 m apart, a dead-end branch
+    // and a room beside it. With the memory: all four, no collision. With
+    // the paper's straight-line rule (memory_size = 0) the robot, back from
+    // the branch's dead end, takes the room for the way east and never gets
+    // to the third destination.
+    const std::string cfg = sourcePath("datasets/validation/explore_t_junction.ini");
+    const std::string with = freshDir("tj");
+    auto r =
+        run(binPath(kApp) + " -q -o '" + with +
+            "' --set Explore.modes=adaptive --set Explore.time_limit=150 '" + cfg + "'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    auto s = readJson(with + "/summary.json");
+    EXPECT_EQ(s["status"], "ok");
+    EXPECT_TRUE(s["modes"][0]["all_reached"].get<bool>());
+    EXPECT_EQ(s["modes"][0]["collisions"], 0);
+    const std::string without = freshDir("tj0");
+    r = run(binPath(kApp) + " -q -o '" + without +
+            "' --set Explore.modes=adaptive --set Explore.time_limit=150 "
+            "--set Explore.memory_size=0 '" +
+            cfg + "'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    s = readJson(without + "/summary.json");
+    EXPECT_EQ(s["status"], "incomplete");
+    EXPECT_EQ(s["modes"][0]["destinations"][1], "reached");
+    EXPECT_NE(s["modes"][0]["destinations"][2], "reached");
 }

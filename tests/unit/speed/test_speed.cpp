@@ -1,5 +1,7 @@
 // M1 speed control (Miura et al. 2006, sections 3-5).
+#include <risknav/mapping/CFreeSpaceMemory.h>
 #include <risknav/speed/CAdaptiveSpeedController.h>
+#include <risknav/speed/CExplorer.h>
 #include <risknav/speed/speed_rules.h>
 
 #include <gtest/gtest.h>
@@ -230,4 +232,156 @@ TEST(SpeedControlOptions, BadListsAreRefused) {
     o.cycle_time = 0;
     EXPECT_THROW(o.validate(), std::exception);
     EXPECT_NO_THROW(TSpeedControlOptions{}.validate());
+}
+
+TEST(PlanningField, AHoleInAWallIsAFrontierButNoOpenOne) {
+    // a wall at x in [0, 0.1] across the map with one undecided cell in it
+    auto m = wallWithGap(0.0);
+    fillRect(m, 0.0, -0.03, 0.1, 0.0, TFusedCell::Undecided);  // one row of cells
+    fillRect(m, 0.15, -10, 10, 10, TFusedCell::Undecided);     // unknown beyond
+    auto f = computePlanningField(m, 0.25);
+    const size_t k = f.map.index(f.map.x2idx(-0.3), f.map.y2idx(0.0));
+    EXPECT_LT(f.frontierDist[k], 0.3);               // the undecided rule sees it
+    EXPECT_TRUE(std::isinf(f.openFrontierDist[k]));  // no way on through it
+    // a 1 m undecided stretch of the wall: room for the robot beyond it
+    m = wallWithGap(0.0);
+    fillRect(m, 0.0, -0.5, 0.1, 0.5, TFusedCell::Undecided);
+    fillRect(m, 0.15, -10, 10, 10, TFusedCell::Undecided);
+    f = computePlanningField(m, 0.25);
+    EXPECT_LT(f.openFrontierDist[k], 0.3);
+    // without the opening test every frontier cell is open
+    EXPECT_EQ(computePlanningField(m).openFrontierDist,
+              computePlanningField(m).frontierDist);
+}
+
+TEST(PlanningField, FreeCellsOnTheMapsEdgeAreTheWayOnWhereTheMapEnds) {
+    auto m = openMap();
+    fillRect(m, -10, 1.0, 10, 10, TFusedCell::Obstacle);  // a wall north
+    const auto f = computePlanningField(m, 0.25);
+    auto at = [&](const std::vector<float>& v, double x, double y) {
+        return double(v[f.map.index(f.map.x2idx(x), f.map.y2idx(y))]);
+    };
+    EXPECT_LT(at(f.borderDist, -4.9, 0.0), 0.1);  // west edge, open
+    EXPECT_LT(at(f.borderDist, 0.0, -4.9), 0.1);  // south edge
+    // the edge cells under the wall's reach (< radius from it) are not open
+    EXPECT_GT(at(f.borderDist, -4.95, 0.9), 0.1);
+    EXPECT_TRUE(std::isinf(at(f.openFrontierDist, 0.0, 0.0)));  // no frontier
+}
+
+TEST(SpeedController, TheMemoryKeepsTheRobotOutOfAForgottenDeadEndRoom) {
+    // The T junction's trap in small: east of a wall (x in [2, 2.2], door at
+    // |y| < 0.5) lies a room the local map has forgotten (undecided); the
+    // goal lies beyond it, 10 m east. The straight-line rule goes through the
+    // door. The memory saw the room closed on every side.
+    auto local = openMap();
+    fillRect(local, 2.0, -10, 2.2, 10, TFusedCell::Obstacle);
+    fillRect(local, 2.0, -0.5, 2.2, 0.5, TFusedCell::Free);
+    fillRect(local, 2.25, -10, 10, 10, TFusedCell::Undecided);
+    const auto f = computePlanningField(local, 0.25);
+    const CAdaptiveSpeedController c(TSpeedControlOptions{}, 0.25, 5);
+    const TPoint2D goal(10.0, 0.0);
+    TPoint2D target;
+    bool temporary = false;
+    ASSERT_TRUE(c.chooseTarget(f, {0, 0}, goal, target, temporary));
+    EXPECT_TRUE(temporary);
+    EXPECT_GT(target.x, 1.4);  // at the door
+    EXPECT_LT(std::abs(target.y), 0.6);
+
+    risknav::mapping::CFreeSpaceMemory mem(40.0, 0.25, 0.0, 0.0);
+    auto room = openMap(120);  // 6 m around (4, 0)
+    for (auto& cell : room.cells)
+        cell = TFusedCell::Undecided;
+    room.xMin = 1.0;
+    room.yMin = -3.0;
+    fillRect(room, 2.0, -2.2, 5.2, 2.2, TFusedCell::Obstacle);
+    fillRect(room, 2.2, -2.0, 5.0, 2.0, TFusedCell::Free);
+    fillRect(room, 2.0, -0.5, 2.2, 0.5, TFusedCell::Free);  // the door
+    mem.update(room);
+    mem.computeCostToGoal(goal, 2.0, f.map, 0.25);
+    TTargetHints hints;
+    hints.goalCost = [&](double x, double y) { return mem.costToGoal(x, y, 0.45); };
+    ASSERT_TRUE(c.chooseTarget(f, {0, 0}, goal, target, temporary, hints));
+    EXPECT_TRUE(temporary);
+    // the way on is where the local map ends, away from the room
+    EXPECT_TRUE(target.x < 1.0 || std::abs(target.y) > 2.5)
+        << target.x << " " << target.y;
+    EXPECT_GT(std::max(std::abs(target.x), std::abs(target.y)), 4.5);
+}
+
+TEST(SpeedController, ASwitchCostHoldsThePreviousTemporaryDestination) {
+    // two ways on: a 2 m opening north-east and one west; the goal is east
+    auto m = openMap();
+    fillRect(m, -10, 2.0, 10, 10, TFusedCell::Obstacle);
+    fillRect(m, -10, -10, 10, -2.0, TFusedCell::Obstacle);
+    fillRect(m, 3.0, -10, 10, 10, TFusedCell::Undecided);
+    fillRect(m, -10, -10, -3.0, 10, TFusedCell::Undecided);
+    const auto f = computePlanningField(m, 0.25);
+    TSpeedControlOptions o;
+    o.target_switch_cost = 0;
+    const TPoint2D goal(4.0, 8.0);
+    TPoint2D a, b;
+    bool temporary = false;
+    ASSERT_TRUE(
+        CAdaptiveSpeedController(o, 0.25, 5).chooseTarget(f, {0, 0}, goal, a, temporary));
+    EXPECT_GT(a.x, 2.0);  // east, nearer the goal
+    TTargetHints hints;
+    hints.hasPrevious = true;
+    hints.previous = {-2.6, 0.0};  // last cycle it went west
+    ASSERT_TRUE(CAdaptiveSpeedController(o, 0.25, 5)
+                    .chooseTarget(f, {0, 0}, goal, b, temporary, hints));
+    EXPECT_NEAR(b.x, a.x, 1e-9);  // no switch cost: east again
+    o.target_switch_cost = 1000;
+    ASSERT_TRUE(CAdaptiveSpeedController(o, 0.25, 5)
+                    .chooseTarget(f, {0, 0}, goal, b, temporary, hints));
+    EXPECT_LT(std::hypot(b.x + 2.6, b.y), 1.0);  // held west
+}
+
+TEST(GridPathPlanner, TheEscapeNeverComesNearerThanTheStartUnlessThereIsNoOtherWay) {
+    // a hand-made field: clearance 0.5 everywhere (>= the inflation 0.3)
+    // but around the start cell (10, 10), which has 0.20
+    TPlanningField f;
+    f.map = openMap(20);
+    f.clearance.assign(f.map.cells.size(), 0.5f);
+    auto set = [&](int i, int j, float c) { f.clearance[f.map.index(i, j)] = c; };
+    for (int j = 6; j <= 14; j++)
+        for (int i = 6; i <= 14; i++)
+            set(i, j, 0.1f);
+    set(10, 10, 0.20f);
+    set(11, 10, 0.19f);  // nearer than the start, within half a cell
+    for (int i = 6; i <= 9; i++)
+        set(i, 10, 0.21f);  // a way out west, never nearer
+    CTraversable strict(f, 10, 10, 0.30, true);
+    EXPECT_FALSE(strict(11, 10));
+    EXPECT_TRUE(strict(9, 10));
+    EXPECT_FALSE(strict(10, 11));  // 0.1: never
+    // the way west closed: half a cell of rounding is the only way out
+    for (int i = 6; i <= 9; i++)
+        set(i, 10, 0.1f);
+    for (int i = 12; i <= 14; i++)
+        set(i, 10, 0.19f);
+    CTraversable rounding(f, 10, 10, 0.30, true);
+    EXPECT_TRUE(rounding(11, 10));
+    EXPECT_FALSE(rounding(9, 10));
+    // and the planner then leaves by it
+    const auto p =
+        CGridPathPlanner().plan(f, {f.map.idx2x(10), f.map.idx2y(10)},
+                                {f.map.idx2x(18), f.map.idx2y(10)}, 0.30, 0.0, true);
+    EXPECT_TRUE(p.reached);
+}
+
+TEST(StoppingRule, APostBesideTheRobotDoesNotStopItAPointAheadDoes) {
+    TPlannedPath path;
+    for (int k = 0; k <= 60; k++)
+        path.points.emplace_back(0.05 * k, 0.0);
+    path.length = 3.0;
+    path.reached = true;
+    risknav::common::TRobotOptions robot;  // radius 0.25
+    // ahead, on the path: stop
+    EXPECT_TRUE(pathBlocked(path, {{0.6, 0.1}}, 0.35, robot, 0.1, 0.0));
+    // just ahead and beside: 0.22 m from the robot, 0.20 m from the path
+    // ahead; within 1 cm of noise it comes nearer, within 6 cm it does not
+    EXPECT_TRUE(pathBlocked(path, {{0.1, 0.2}}, 0.35, robot, 0.1, 0.0, 0.01));
+    EXPECT_FALSE(pathBlocked(path, {{0.1, 0.2}}, 0.35, robot, 0.1, 0.0, 0.06));
+    // behind the robot: never
+    EXPECT_FALSE(pathBlocked(path, {{-0.2, 0.0}}, 0.35, robot, 0.1, 0.0));
 }
