@@ -1,10 +1,12 @@
 // One control cycle of the adaptive speed controller (issue 10, M1): two
-// sensor updates on the robot-centred grids, fusion, the planning field and
-// the decision with four A* plans. The scans and the map come from the office
+// sensor updates on the robot-centred grids, fusion, the planning field, the
+// memory's update and cost on (50 m at 0.25 m, the default) and the decision
+// with four A* plans, as risknav-explore runs it. The scans and the map come from the office
 // world after the robot has driven into the corridor (a realistic map: walls,
 // doors, unknown beyond), on a 200 x 200 grid (10 m, the paper's) and on a
 // 400 x 400 one (20 m at 5 cm) to show how the cost grows.
 #include <risknav/common/CIniConfig.h>
+#include <risknav/mapping/CFreeSpaceMemory.h>
 #include <risknav/mapping/free_space.h>
 #include <risknav/speed/CExplorer.h>
 
@@ -47,6 +49,10 @@ void BM_ControlCycle(benchmark::State& st) {
     auto& s = scene(int(st.range(0)));
     const speed::CAdaptiveSpeedController ctrl(s.ex.speed, s.ex.world.robot.radius,
                                                s.ex.necessaryObservations());
+    const double radius = s.ex.world.robot.radius;
+    const mrpt::math::TPoint2D goal(15.5, 7.0);  // beyond the local map
+    mapping::CFreeSpaceMemory memory(s.ex.explore.memory_size,
+                                     s.ex.explore.memory_resolution, 3.0, 7.0);
     for (auto _ : st) {
         // a copy of the grids (each cycle updates the same state); 2 x 160 KB
         // at 200 x 200, a few % of the cycle
@@ -54,9 +60,20 @@ void BM_ControlCycle(benchmark::State& st) {
         laser.integrateScan(s.pose, *s.scans.laser, s.ex.laserModel);
         range2.integrateScan(s.pose, *s.scans.range2, s.ex.range2Model);
         auto fused = mapping::fuseGrids(laser, range2, 0.7, 0.2);
-        speed::markFootprintFree(fused, s.pose, s.ex.world.robot.radius);
-        const auto field = speed::computePlanningField(fused);
-        const auto d = ctrl.decide(field, s.pose, {15.5, 7.0});
+        speed::markFootprintFree(fused, s.pose, radius);
+        const auto field = speed::computePlanningField(fused, radius);
+        memory.update(fused);
+        bool ready = false;
+        speed::TTargetHints hints;
+        hints.goalCost = [&](double x, double y) {
+            if (!ready) {
+                memory.computeCostToGoal(goal, s.ex.speed.frontier_goal_weight, fused,
+                                         radius);
+                ready = true;
+            }
+            return memory.costToGoal(x, y, radius + s.ex.speed.margins.back() + 0.15);
+        };
+        const auto d = ctrl.decide(field, s.pose, goal, -1, hints);
         benchmark::DoNotOptimize(d.speed);
     }
     st.counters["cells"] = double(st.range(0) * st.range(0));
@@ -77,6 +94,42 @@ void BM_SensorUpdatesOnly(benchmark::State& st) {
     }
 }
 BENCHMARK(BM_SensorUpdatesOnly)->Arg(200)->Arg(400)->Unit(benchmark::kMillisecond);
+
+/** The planning field alone (clearance, frontier, open frontier, map edge). */
+void BM_PlanningFieldOnly(benchmark::State& st) {
+    auto& s = scene(200);
+    const auto fused = mapping::fuseGrids(s.laser, s.range2, 0.7, 0.2);
+    for (auto _ : st)
+        benchmark::DoNotOptimize(speed::computePlanningField(fused, 0.25).clearance.data());
+}
+BENCHMARK(BM_PlanningFieldOnly)->Unit(benchmark::kMillisecond);
+
+/** The decision alone (target choice + four A* plans), straight-line rule. */
+void BM_DecideOnly(benchmark::State& st) {
+    auto& s = scene(200);
+    auto fused = mapping::fuseGrids(s.laser, s.range2, 0.7, 0.2);
+    speed::markFootprintFree(fused, s.pose, 0.25);
+    const auto field = speed::computePlanningField(fused, 0.25);
+    const speed::CAdaptiveSpeedController ctrl(s.ex.speed, 0.25,
+                                               s.ex.necessaryObservations());
+    for (auto _ : st)
+        benchmark::DoNotOptimize(ctrl.decide(field, s.pose, {15.5, 7.0}).speed);
+}
+BENCHMARK(BM_DecideOnly)->Unit(benchmark::kMillisecond);
+
+/** The memory alone: update from the 10 m local map and the cost on. */
+void BM_MemoryUpdateAndCostOn(benchmark::State& st) {
+    auto& s = scene(200);
+    const auto fused = mapping::fuseGrids(s.laser, s.range2, 0.7, 0.2);
+    mapping::CFreeSpaceMemory memory(s.ex.explore.memory_size,
+                                     s.ex.explore.memory_resolution, 3.0, 7.0);
+    for (auto _ : st) {
+        memory.update(fused);
+        memory.computeCostToGoal({15.5, 7.0}, 2.0, fused, 0.25);
+        benchmark::DoNotOptimize(memory.costToGoal(8.0, 7.0, 0.45));
+    }
+}
+BENCHMARK(BM_MemoryUpdateAndCostOn)->Unit(benchmark::kMillisecond);
 }  // namespace
 
 BENCHMARK_MAIN();

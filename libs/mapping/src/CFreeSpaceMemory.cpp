@@ -93,7 +93,7 @@ void CFreeSpaceMemory::computeCostToGoal(const mrpt::math::TPoint2D& goal,
     // e.g. an undecided cell or two in a seen wall, is no way on), except
     // around the goal itself
     const int grow = int(std::lround(robotRadius / m_res));
-    std::vector<uint8_t> wall(m_cells.size(), 0);
+    std::vector<uint8_t> closed(m_cells.size(), 0);
     for (int j = 0; j < m_n; j++)
         for (int i = 0; i < m_n; i++) {
             if (m_cells[size_t(j) * m_n + i] != TState::Obstacle)
@@ -103,14 +103,31 @@ void CFreeSpaceMemory::computeCostToGoal(const mrpt::math::TPoint2D& goal,
                      ni++)
                     if (std::hypot(ni - gi, nj - gj) > grow + 1 ||
                         m_cells[size_t(nj) * m_n + ni] == TState::Obstacle)
-                        wall[size_t(nj) * m_n + ni] = 1;
+                        closed[size_t(nj) * m_n + ni] = 1;
         }
+    // ... and the local map's free cells
+    for (int j = 0; j < m_n; j++) {
+        const double y = m_yMin + (j + 0.5) * m_res;
+        if (y < wy0 || y >= wy1)
+            continue;
+        const int lj = window.y2idx(y);
+        for (int i = 0; i < m_n; i++) {
+            const double x = m_xMin + (i + 0.5) * m_res;
+            if (x >= wx0 && x < wx1 && window.at(window.x2idx(x), lj) == TFusedCell::Free)
+                closed[size_t(j) * m_n + i] = 1;
+        }
+    }
+    // Only the box around the window and the goal, 5 m beyond them: a way
+    // on that leaves it by more is not worth ranking (and the search stays
+    // a fraction of the memory)
+    const double margin = 5.0;
+    const int bi0 = std::max(0, x2idx(std::min(wx0, goal.x) - margin));
+    const int bj0 = std::max(0, y2idx(std::min(wy0, goal.y) - margin));
+    const int bi1 = std::min(m_n - 1, x2idx(std::max(wx1, goal.x) + margin));
+    const int bj1 = std::min(m_n - 1, y2idx(std::max(wy1, goal.y) + margin));
     auto blocked = [&](int i, int j) {
-        if (wall[size_t(j) * m_n + i])
-            return true;
-        const double x = m_xMin + (i + 0.5) * m_res, y = m_yMin + (j + 0.5) * m_res;
-        return x >= wx0 && x < wx1 && y >= wy0 && y < wy1 &&
-               window.at(window.x2idx(x), window.y2idx(y)) == TFusedCell::Free;
+        return i < bi0 || j < bj0 || i > bi1 || j > bj1 ||
+               closed[size_t(j) * m_n + i] != 0;
     };
 
     if (gi >= 0 && gj >= 0 && gi < m_n && gj < m_n) {

@@ -75,7 +75,7 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
         // Beyond the paper (which takes the boundary point nearest the goal
         // in a straight line): path to it + the cost on from it, over the
         // open frontier and the map's edge
-        if ((field.openFrontierDist[k] <= band || field.borderDist[k] <= band)) {
+        if (field.wayOnDist[k] <= band) {
             const double straight = gk + m_o.frontier_goal_weight * toGoal;
             if (straight < bestStraight) {
                 bestStraight = straight;

@@ -70,28 +70,26 @@ TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map,
         }
     f.clearance = distanceTo(blocked, n, map.resolution, true);
     f.frontierDist = distanceTo(frontier, n, map.resolution, false);
+    // The ways on, for the choice of a temporary destination: open frontier
+    // cells, and the grid's outer ring, whose free cells lead on into what the
+    // robot-centred grid no longer (or not yet) holds
+    std::vector<float> toObstacle;
     if (minOpening > 0) {
         std::vector<uint8_t> obstacle(map.cells.size());
         for (size_t k = 0; k < map.cells.size(); k++)
             obstacle[k] = map.cells[k] == TFusedCell::Obstacle;
-        const auto toObstacle = distanceTo(obstacle, n, map.resolution, false);
-        for (size_t k = 0; k < frontier.size(); k++)
-            frontier[k] = frontier[k] && toObstacle[k] >= minOpening;
-        f.openFrontierDist = distanceTo(frontier, n, map.resolution, false);
-        // the grid's outer ring: free cells there lead on into what the
-        // robot-centred grid no longer (or not yet) holds
-        std::vector<uint8_t> border(map.cells.size(), 0);
-        for (int j = 0; j < n; j++)
-            for (int i = 0; i < n; i++)
-                if ((i == 0 || j == 0 || i == n - 1 || j == n - 1) &&
-                    map.cells[map.index(i, j)] == TFusedCell::Free &&
-                    toObstacle[map.index(i, j)] >= minOpening)
-                    border[map.index(i, j)] = 1;
-        f.borderDist = distanceTo(border, n, map.resolution, false);
-    } else {
-        f.openFrontierDist = f.frontierDist;
-        f.borderDist.assign(map.cells.size(), std::numeric_limits<float>::infinity());
+        toObstacle = distanceTo(obstacle, n, map.resolution, false);
     }
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            const size_t k = map.index(i, j);
+            if (minOpening > 0 && toObstacle[k] < minOpening)
+                frontier[k] = 0;
+            else if ((i == 0 || j == 0 || i == n - 1 || j == n - 1) &&
+                     map.cells[k] == TFusedCell::Free)
+                frontier[k] = 1;
+        }
+    f.wayOnDist = distanceTo(frontier, n, map.resolution, false);
     return f;
 }
 }  // namespace risknav::speed

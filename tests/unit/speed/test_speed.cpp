@@ -242,16 +242,15 @@ TEST(PlanningField, AHoleInAWallIsAFrontierButNoOpenOne) {
     auto f = computePlanningField(m, 0.25);
     const size_t k = f.map.index(f.map.x2idx(-0.3), f.map.y2idx(0.0));
     EXPECT_LT(f.frontierDist[k], 0.3);               // the undecided rule sees it
-    EXPECT_TRUE(std::isinf(f.openFrontierDist[k]));  // no way on through it
+    EXPECT_GT(f.wayOnDist[k], 4.0);  // no way on through it (only the map's edge)
+    // without the opening test it would be one
+    EXPECT_LT(computePlanningField(m, 0.0).wayOnDist[k], 0.3);
     // a 1 m undecided stretch of the wall: room for the robot beyond it
     m = wallWithGap(0.0);
     fillRect(m, 0.0, -0.5, 0.1, 0.5, TFusedCell::Undecided);
     fillRect(m, 0.15, -10, 10, 10, TFusedCell::Undecided);
     f = computePlanningField(m, 0.25);
-    EXPECT_LT(f.openFrontierDist[k], 0.3);
-    // without the opening test every frontier cell is open
-    EXPECT_EQ(computePlanningField(m).openFrontierDist,
-              computePlanningField(m).frontierDist);
+    EXPECT_LT(f.wayOnDist[k], 0.3);
 }
 
 TEST(PlanningField, FreeCellsOnTheMapsEdgeAreTheWayOnWhereTheMapEnds) {
@@ -261,11 +260,11 @@ TEST(PlanningField, FreeCellsOnTheMapsEdgeAreTheWayOnWhereTheMapEnds) {
     auto at = [&](const std::vector<float>& v, double x, double y) {
         return double(v[f.map.index(f.map.x2idx(x), f.map.y2idx(y))]);
     };
-    EXPECT_LT(at(f.borderDist, -4.9, 0.0), 0.1);  // west edge, open
-    EXPECT_LT(at(f.borderDist, 0.0, -4.9), 0.1);  // south edge
+    EXPECT_LT(at(f.wayOnDist, -4.9, 0.0), 0.1);  // west edge, open
+    EXPECT_LT(at(f.wayOnDist, 0.0, -4.9), 0.1);  // south edge
     // the edge cells under the wall's reach (< radius from it) are not open
-    EXPECT_GT(at(f.borderDist, -4.95, 0.9), 0.1);
-    EXPECT_TRUE(std::isinf(at(f.openFrontierDist, 0.0, 0.0)));  // no frontier
+    EXPECT_GT(at(f.wayOnDist, -4.95, 0.9), 0.1);
+    EXPECT_NEAR(at(f.wayOnDist, 0.0, 0.0), 4.95 - 0.025, 0.03);  // only the edges
 }
 
 TEST(SpeedController, TheMemoryKeepsTheRobotOutOfAForgottenDeadEndRoom) {

@@ -39,10 +39,11 @@ class CFreeSpaceMemory {
      * obstacles): a metre of remembered free cell costs 1, a metre of
      * unknown `unknownWeight`; obstacles grown by `robotRadius` (not
      * around the goal), and the cells the window (the local map) holds as
-     * free (the local planner's part of the way), cannot be crossed. So a
-     * frontier's way on starts in the unknown next to it, and a local map
-     * edge's in what lies beyond it: a closed room that scrolled out of the
-     * window has no way on. */
+     * free (the local planner's part of the way), cannot be crossed, nor
+     * the memory more than 5 m around the window and the goal (a bound on
+     * the search; cost stays +inf there). So a frontier's way on starts in the unknown
+     * next to it, and a local map edge's in what lies beyond it: a closed room that
+     * scrolled out of the window has no way on. */
     void computeCostToGoal(const mrpt::math::TPoint2D& goal, double unknownWeight,
                            const TFreeSpaceMap& window, double robotRadius);
     /** After computeCostToGoal: the least cost + distance over the cells
