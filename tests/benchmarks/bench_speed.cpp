@@ -1,8 +1,8 @@
 // One control cycle of the adaptive speed controller (issue 10, M1): two
 // sensor updates on the robot-centred grids, fusion, the planning field, the
 // memory's update and cost on (50 m at 0.25 m, the default) and the decision
-// with four A* plans, as risknav-explore runs it. The scans and the map come from the office
-// world after the robot has driven into the corridor (a realistic map: walls,
+// with four A* plans, as risknav-explore runs it. The scans and the map come from the
+// office world after the robot has driven into the corridor (a realistic map: walls,
 // doors, unknown beyond), on a 200 x 200 grid (10 m, the paper's) and on a
 // 400 x 400 one (20 m at 5 cm) to show how the cost grows.
 #include <risknav/common/CIniConfig.h>
@@ -100,7 +100,8 @@ void BM_PlanningFieldOnly(benchmark::State& st) {
     auto& s = scene(200);
     const auto fused = mapping::fuseGrids(s.laser, s.range2, 0.7, 0.2);
     for (auto _ : st)
-        benchmark::DoNotOptimize(speed::computePlanningField(fused, 0.25).clearance.data());
+        benchmark::DoNotOptimize(
+            speed::computePlanningField(fused, 0.25).clearance.data());
 }
 BENCHMARK(BM_PlanningFieldOnly)->Unit(benchmark::kMillisecond);
 

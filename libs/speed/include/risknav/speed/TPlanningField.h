@@ -22,8 +22,8 @@ namespace risknav::speed {
  * corridor the robot-centred grid has forgotten). */
 struct TPlanningField {
     mapping::TFreeSpaceMap map;
-    std::vector<float> clearance;         ///< [m], 0 on non-free cells
-    std::vector<float> frontierDist;      ///< [m], +inf when there is no frontier
+    std::vector<float> clearance;     ///< [m], 0 on non-free cells
+    std::vector<float> frontierDist;  ///< [m], +inf when there is no frontier
     std::vector<float> wayOnDist;     ///< [m], to open frontier and map-edge cells
     double clearanceAt(double x, double y) const;
     double frontierDistAt(double x, double y) const;
