@@ -224,3 +224,19 @@ TEST(ExploreE2E, TheTJunctionBeyondTheLocalMapNeedsTheMemory) {
     EXPECT_EQ(s["modes"][0]["destinations"][1], "reached");
     EXPECT_NE(s["modes"][0]["destinations"][2], "reached");
 }
+
+TEST(ExploreE2E, ADestinationNotApproachedForTheTimeoutIsGivenUp) {
+    // the turn on the spot at the start takes ~6 s without coming nearer:
+    // with a 4 s alarm the first destination is given up there, the robot
+    // goes on to the next
+    const std::string out = freshDir("alarm");
+    const auto r = run(binPath(kApp) + " -q -o '" + out +
+                       "' --set Explore.modes=adaptive --set Explore.time_limit=40 "
+                       "--set Explore.not_approaching_timeout=4 '" +
+                       sourcePath("datasets/office/explore.ini") + "'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto s = readJson(out + "/summary.json");
+    EXPECT_EQ(s["status"], "incomplete");
+    EXPECT_EQ(s["modes"][0]["destinations"][0], "unreachable");
+    EXPECT_EQ(s["modes"][0]["collisions"], 0);
+}

@@ -226,6 +226,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
         goalsEgo.emplace_back(ge.x(), ge.y());
     }
     std::optional<TPoint2D> previousTarget;  // temporary, of this destination
+    double bestToGoal = std::numeric_limits<double>::infinity(), bestToGoalTime = 0;
     std::unique_ptr<mapping::CFreeSpaceMemory> memory;
     if (explore.memory_size > 0)
         memory = std::make_unique<mapping::CFreeSpaceMemory>(
@@ -302,6 +303,8 @@ TModeResult CExplorer::runMode(int fixedIndex,
             dest++;
             previousTarget.reset();
             unreachableSince = -1;
+            bestToGoal = std::numeric_limits<double>::infinity();
+            bestToGoalTime = world.time();
         }
         if (dest == goalsEgo.size())
             break;
@@ -391,7 +394,22 @@ TModeResult CExplorer::runMode(int fixedIndex,
             rec.reason = "obstacle";
         }
         rec.commanded = v;
-        if (d.reason == TSpeedReason::Unreachable && !lookingAround) {
+        // the not-approaching alarm
+        const double toGoal =
+            std::hypot(goalsEgo[dest].x - ego.x, goalsEgo[dest].y - ego.y);
+        if (toGoal < bestToGoal - 0.5) {
+            bestToGoal = toGoal;
+            bestToGoalTime = world.time();
+        }
+        if (explore.not_approaching_timeout > 0 &&
+            world.time() - bestToGoalTime > explore.not_approaching_timeout) {
+            r.destinationStatus[dest] = "unreachable";
+            dest++;
+            previousTarget.reset();
+            unreachableSince = -1;
+            bestToGoal = std::numeric_limits<double>::infinity();
+            bestToGoalTime = world.time();
+        } else if (d.reason == TSpeedReason::Unreachable && !lookingAround) {
             if (unreachableSince < 0)
                 unreachableSince = world.time();
             else if (world.time() - unreachableSince >= explore.unreachable_after) {
@@ -399,6 +417,8 @@ TModeResult CExplorer::runMode(int fixedIndex,
                 dest++;
                 previousTarget.reset();
                 unreachableSince = -1;
+                bestToGoal = std::numeric_limits<double>::infinity();
+                bestToGoalTime = world.time();
             }
         } else {
             unreachableSince = -1;

@@ -37,6 +37,8 @@ void TExploreOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
     time_limit = readDouble(c, s, "time_limit", time_limit);
     goal_tolerance = readDouble(c, s, "goal_tolerance", goal_tolerance);
     unreachable_after = readDouble(c, s, "unreachable_after", unreachable_after);
+    not_approaching_timeout =
+        readDouble(c, s, "not_approaching_timeout", not_approaching_timeout);
     look_around = readBool(c, s, "look_around", look_around);
     max_snapshots = readInt(c, s, "max_snapshots", max_snapshots);
     seed = uint64_t(
@@ -57,6 +59,7 @@ void TExploreOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
     writeKey(c, s, "time_limit", time_limit);
     writeKey(c, s, "goal_tolerance", goal_tolerance);
     writeKey(c, s, "unreachable_after", unreachable_after);
+    writeKey(c, s, "not_approaching_timeout", not_approaching_timeout);
     writeKey(c, s, "look_around", look_around);
     writeKey(c, s, "max_snapshots", max_snapshots);
     writeKey(c, s, "seed", double(seed));
@@ -91,6 +94,8 @@ void TExploreOptions::validate() const {
     checkKey(section, "goal_tolerance", goal_tolerance, TRange{0, 10, true, false, "m"});
     checkKey(section, "unreachable_after", unreachable_after,
              TRange::closed(0, 3600, "s"));
+    checkKey(section, "not_approaching_timeout", not_approaching_timeout,
+             TRange::closed(0, 36000, "s"));
     checkKey(section, "max_snapshots", double(max_snapshots), TRange::closed(0, 1000));
 }
 }  // namespace risknav::speed

@@ -24,8 +24,13 @@ struct TExploreOptions : public common::CValidatedOptions {
     double sim_dt = 0.05;             ///< [s] physics step inside a cycle
     double time_limit = 300;          ///< [s] simulated, per mode
     double goal_tolerance = 0.3;      ///< [m] a destination counts as reached
-    double unreachable_after =
-        5;  ///< [s] of "unreachable" before a destination is given up
+    double unreachable_after = 5;
+    /** [s] a destination the robot has not come 0.5 m nearer to (in the ego
+     * frame) for this long is given up as unreachable (MRPT's reactive
+     * navigator raises its "not approaching the target" alarm after 30 s;
+     * exploring needs detours); 0 = never. Beyond the paper. */
+    double not_approaching_timeout =
+        90;  ///< [s] of "unreachable" before a destination is given up
     /** Turn once on the spot before setting off (beyond the paper: a laser
      * mounted ahead of the centre has not seen beside and behind the robot). */
     bool look_around = true;
