@@ -43,11 +43,6 @@ double TPlanningField::clearanceAt(double x, double y) const {
     return map.inside(i, j) ? clearance[map.index(i, j)] : 0.0;
 }
 
-double TPlanningField::frontierDistAt(double x, double y) const {
-    const int i = map.x2idx(x), j = map.y2idx(y);
-    return map.inside(i, j) ? frontierDist[map.index(i, j)] : 0.0;
-}
-
 TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map,
                                     double minOpening) {
     TPlanningField f;
@@ -69,7 +64,6 @@ TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map,
                 }
         }
     f.clearance = distanceTo(blocked, n, map.resolution, true);
-    f.frontierDist = distanceTo(frontier, n, map.resolution, false);
     // The ways on, for the choice of a temporary destination: open frontier
     // cells, and the grid's outer ring, whose free cells lead on into what the
     // robot-centred grid no longer (or not yet) holds

@@ -6,12 +6,11 @@
 namespace risknav::speed {
 /** What the planners and the speed rules read from one cycle's free-space
  * map: per cell the clearance [m] to the nearest non-free cell (obstacle or
- * undecided; the ring outside the grid counts as non-free) and the distance
- * [m] to the nearest frontier cell (an undecided cell 4-adjacent to a free
- * cell: where the unknown begins; undecided cells walled off behind
- * obstacles are not a frontier). Exact Euclidean distances (OpenCV's
- * distance transform) from the cell's centre to the other cell's near edge
- * (centre distance - half a cell).
+ * undecided; the ring outside the grid counts as non-free). Exact Euclidean
+ * distances (OpenCV's distance transform) from the cell's centre to the other
+ * cell's near edge (centre distance - half a cell). A frontier cell is an
+ * undecided cell 4-adjacent to a free cell: where the unknown begins
+ * (undecided cells walled off behind obstacles are none).
  * For the choice of a temporary destination only (beyond the paper),
  * `wayOnDist` is the distance to the ways on: the frontier cells where the
  * unknown could let the robot on, at least `minOpening` from every obstacle
@@ -22,11 +21,9 @@ namespace risknav::speed {
  * corridor the robot-centred grid has forgotten). */
 struct TPlanningField {
     mapping::TFreeSpaceMap map;
-    std::vector<float> clearance;     ///< [m], 0 on non-free cells
-    std::vector<float> frontierDist;  ///< [m], +inf when there is no frontier
-    std::vector<float> wayOnDist;     ///< [m], to open frontier and map-edge cells
+    std::vector<float> clearance;  ///< [m], 0 on non-free cells
+    std::vector<float> wayOnDist;  ///< [m], to open frontier and map-edge cells
     double clearanceAt(double x, double y) const;
-    double frontierDistAt(double x, double y) const;
 };
 
 /** `minOpening` [m]: see wayOnDist (0: every frontier cell is open). */
