@@ -227,6 +227,17 @@ TModeResult CExplorer::runMode(int fixedIndex,
     }
     std::optional<TPoint2D> previousTarget;  // temporary, of this destination
     double bestToGoal = std::numeric_limits<double>::infinity(), bestToGoalTime = 0;
+    double unreachableSince = -1;
+    size_t dest = 0;
+    // on to the next destination, this one `status`
+    auto nextDestination = [&](const char* status) {
+        r.destinationStatus[dest] = status;
+        dest++;
+        previousTarget.reset();
+        unreachableSince = -1;
+        bestToGoal = std::numeric_limits<double>::infinity();
+        bestToGoalTime = world.time();
+    };
     std::unique_ptr<mapping::CFreeSpaceMemory> memory;
     if (explore.memory_size > 0)
         memory = std::make_unique<mapping::CFreeSpaceMemory>(
@@ -238,8 +249,6 @@ TModeResult CExplorer::runMode(int fixedIndex,
                                         necessaryObservations());
     sim::CSafetyMonitor safety;
     safety.reset();
-    size_t dest = 0;
-    double unreachableSince = -1;
     int lastSpeedIndex = -2;
     int undecidedStall = 0;
     TPose2D prevTrue = world.truePose();
@@ -297,14 +306,9 @@ TModeResult CExplorer::runMode(int fixedIndex,
                std::hypot(goalsEgo[dest].x - ego.x, goalsEgo[dest].y - ego.y) <
                    explore.goal_tolerance) {
             const TPose2D tp = world.truePose();
-            r.destinationStatus[dest] = "reached";
             r.destinationError[dest] =
                 std::hypot(goalsWorld[dest].x - tp.x, goalsWorld[dest].y - tp.y);
-            dest++;
-            previousTarget.reset();
-            unreachableSince = -1;
-            bestToGoal = std::numeric_limits<double>::infinity();
-            bestToGoalTime = world.time();
+            nextDestination("reached");
         }
         if (dest == goalsEgo.size())
             break;
@@ -403,23 +407,12 @@ TModeResult CExplorer::runMode(int fixedIndex,
         }
         if (explore.not_approaching_timeout > 0 &&
             world.time() - bestToGoalTime > explore.not_approaching_timeout) {
-            r.destinationStatus[dest] = "unreachable";
-            dest++;
-            previousTarget.reset();
-            unreachableSince = -1;
-            bestToGoal = std::numeric_limits<double>::infinity();
-            bestToGoalTime = world.time();
+            nextDestination("unreachable");
         } else if (d.reason == TSpeedReason::Unreachable && !lookingAround) {
             if (unreachableSince < 0)
                 unreachableSince = world.time();
-            else if (world.time() - unreachableSince >= explore.unreachable_after) {
-                r.destinationStatus[dest] = "unreachable";
-                dest++;
-                previousTarget.reset();
-                unreachableSince = -1;
-                bestToGoal = std::numeric_limits<double>::infinity();
-                bestToGoalTime = world.time();
-            }
+            else if (world.time() - unreachableSince >= explore.unreachable_after)
+                nextDestination("unreachable");
         } else {
             unreachableSince = -1;
         }
