@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "free_space_fixtures.h"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -11,26 +13,10 @@ using risknav::mapping::CFreeSpaceMemory;
 using risknav::mapping::TFreeSpaceMap;
 using risknav::mapping::TFusedCell;
 using TState = CFreeSpaceMemory::TState;
+using risknav::test::fillRect;
+using risknav::test::localMap;
 
 namespace {
-/** A local map of `size` m, 5 cm cells, centred on (cx, cy), all `fill`. */
-TFreeSpaceMap localMap(double cx, double cy, double size, TFusedCell fill) {
-    TFreeSpaceMap m;
-    m.resolution = 0.05;
-    m.size = int(std::lround(size / m.resolution));
-    m.xMin = cx - 0.5 * size;
-    m.yMin = cy - 0.5 * size;
-    m.cells.assign(size_t(m.size) * m.size, fill);
-    return m;
-}
-void fillRect(TFreeSpaceMap& m, double x0, double y0, double x1, double y1,
-              TFusedCell c) {
-    for (int j = 0; j < m.size; j++)
-        for (int i = 0; i < m.size; i++)
-            if (m.idx2x(i) >= x0 && m.idx2x(i) <= x1 && m.idx2y(j) >= y0 &&
-                m.idx2y(j) <= y1)
-                m.cells[m.index(i, j)] = c;
-}
 /** A closed 4 x 4 m room, x in [2, 6], y in [-2, 2], walls 0.2 m, seen from
  * inside; `door`: a 1.2 m gap in its east wall. Outside it: unknown. */
 TFreeSpaceMap roomSeen(bool door) {

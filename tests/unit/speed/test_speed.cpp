@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "free_space_fixtures.h"
+
 #include <cmath>
 #include <queue>
 #include <random>
@@ -18,21 +20,9 @@ using risknav::mapping::TFusedCell;
 namespace {
 /** n x n cells of 5 cm centred on the origin, all free. */
 TFreeSpaceMap openMap(int n = 200) {
-    TFreeSpaceMap m;
-    m.size = n;
-    m.resolution = 0.05;
-    m.xMin = m.yMin = -0.5 * n * m.resolution;
-    m.cells.assign(size_t(n) * n, TFusedCell::Free);
-    return m;
+    return risknav::test::localMap(0, 0, n * 0.05, TFusedCell::Free);
 }
-void fillRect(TFreeSpaceMap& m, double x0, double y0, double x1, double y1,
-              TFusedCell c) {
-    for (int j = 0; j < m.size; j++)
-        for (int i = 0; i < m.size; i++)
-            if (m.idx2x(i) >= x0 && m.idx2x(i) <= x1 && m.idx2y(j) >= y0 &&
-                m.idx2y(j) <= y1)
-                m.cells[m.index(i, j)] = c;
-}
+using risknav::test::fillRect;
 /** A wall across the whole map at x in [0, 0.1] with a gap of `gap` m
  * centred on y = 0. */
 TFreeSpaceMap wallWithGap(double gap) {
