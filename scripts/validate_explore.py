@@ -1,0 +1,114 @@
+#!/usr/bin/env python3
+"""Multi-world, multi-seed validation of risknav-explore (issue 10, M1).
+
+Runs the adaptive mode on:
+- the office (datasets/office/explore.ini), people off;
+- the office with the corridor walker of datasets/office/world.ini added;
+- the T junction (datasets/validation/explore_t_junction.ini), a world the
+  controller was not tuned on;
+each over seeds 1..N, and prints per world: runs with every destination
+reached, collisions, near misses, time (mean and range), min clearance and
+the destinations given up. Extra `--set` options apply to every run (e.g.
+`--set Explore.ego_motion=ground_truth`).
+
+Usage: python3 scripts/validate_explore.py [--seeds 5] [--jobs 2]
+       [--out out/validate-explore] [--set Section.key=value ...]
+Needs the built apps (scripts/build.sh). Writes summary.md and summary.json.
+"""
+import argparse
+import concurrent.futures
+import json
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, ".."))
+APP = os.path.join(ROOT, "build", "bin", "risknav-explore")
+
+
+def walker_config(out):
+    """The office config with [CorridorWalker1] of the office world added."""
+    office = os.path.join(ROOT, "datasets", "office")
+    text = open(os.path.join(office, "explore.ini")).read()
+    text = text.replace("office.png", os.path.join(office, "office.png"))
+    world = open(os.path.join(office, "world.ini")).read().splitlines()
+    start = world.index("[CorridorWalker1]")
+    section = []
+    for line in world[start:]:
+        if not line.strip() and section:
+            break
+        section.append(line)
+    path = os.path.join(out, "office_walker.ini")
+    with open(path, "w") as f:
+        f.write(text + "\n" + "\n".join(section) + "\n")
+    return path
+
+
+def run(args):
+    name, config, seed, out, sets = args
+    d = os.path.join(out, "%s-%d" % (name, seed))
+    cmd = [APP, config, "--out", d, "--seed", str(seed), "-q",
+           "--set", "Explore.modes=adaptive"]
+    for s in sets:
+        cmd += ["--set", s]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit("%s seed %d: exit %d: %s" % (name, seed, r.returncode, r.stderr))
+    m = json.load(open(os.path.join(d, "summary.json")))["modes"][0]
+    return name, seed, m
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--seeds", type=int, default=5)
+    p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--out", default=os.path.join(ROOT, "out", "validate-explore"))
+    p.add_argument("--set", action="append", default=[], dest="sets")
+    a = p.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    worlds = [
+        ("office", os.path.join(ROOT, "datasets", "office", "explore.ini")),
+        ("office_walker", walker_config(a.out)),
+        ("t_junction",
+         os.path.join(ROOT, "datasets", "validation", "explore_t_junction.ini")),
+    ]
+    jobs = [(n, c, s, a.out, a.sets) for n, c in worlds
+            for s in range(1, a.seeds + 1)]
+    with concurrent.futures.ThreadPoolExecutor(a.jobs) as ex:
+        results = list(ex.map(run, jobs))
+    rows, summary = [], {}
+    for name, _ in worlds:
+        ms = [(s, m) for n, s, m in results if n == name]
+        times = [m["time_s"] for _, m in ms]
+        given_up = ["seed %d D%d" % (s, k + 1) for s, m in ms
+                    for k, st in enumerate(m["destinations"]) if st != "reached"]
+        w = {
+            "runs": len(ms),
+            "all_reached": sum(1 for _, m in ms if m["all_reached"]),
+            "collisions": sum(m["collisions"] for _, m in ms),
+            "near_misses": sum(m["near_misses"] for _, m in ms),
+            "time_mean_s": sum(times) / len(times),
+            "time_min_s": min(times),
+            "time_max_s": max(times),
+            "min_clearance_m": min(m["min_clearance_m"] for _, m in ms),
+            "not_reached": given_up,
+        }
+        summary[name] = w
+        rows.append("| %s | %d/%d | %d | %d | %.1f s (%.1f-%.1f) | %.3f m | %s |" % (
+            name, w["all_reached"], w["runs"], w["collisions"], w["near_misses"],
+            w["time_mean_s"], w["time_min_s"], w["time_max_s"],
+            w["min_clearance_m"], ", ".join(given_up) or "-"))
+    table = ["| world | all reached | collisions | near misses | time mean (range) "
+             "| min clearance | not reached |", "|---|---|---|---|---|---|---|"] + rows
+    print("\n".join(table))
+    with open(os.path.join(a.out, "summary.md"), "w") as f:
+        f.write("\n".join(table) + "\n")
+    with open(os.path.join(a.out, "summary.json"), "w") as f:
+        json.dump(summary, f, indent=2)
+    return 0 if all(w["all_reached"] == w["runs"] and w["collisions"] == 0
+                    for w in summary.values()) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
