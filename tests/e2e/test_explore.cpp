@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "test_support.h"
@@ -128,6 +129,9 @@ TEST(ExploreE2E, BadInputIsExitTwoWithTheKey) {
         {"--set Explore.modes=fast", "[Explore] modes"},
         {"--set Explore.memory_size=-1", "[Explore] memory_size"},
         {"--set Explore.memory_resolution=0", "[Explore] memory_resolution"},
+        {"--set Explore.memory_size=5", "at least local_map_size"},
+        {"--set Explore.memory_size=1e-300", "at least local_map_size"},
+        {"--set Explore.memory_resolution=5", "at most local_map_size / 4"},
         {"--set Explore.memory_size=1000 --set Explore.memory_resolution=0.05",
          "more than 4096 memory cells"},
         {"--set SpeedControl.frontier_goal_weight=0.5",
@@ -195,6 +199,29 @@ TEST(ExploreE2E, EveryKeyInTheDocumentedConfigIsKnown) {
         return out;
     };
     EXPECT_EQ(withoutTimes(d + "/cycles.csv"), withoutTimes(d2 + "/cycles.csv"));
+    // and the other way round: every key the app writes is documented there
+    auto keys = [](const std::string& path) {
+        std::set<std::string> out;
+        std::string section;
+        for (const auto& l : readLines(path)) {
+            if (l.empty() || l[0] == ';' || l[0] == '#')
+                continue;
+            if (l[0] == '[') {
+                section = l.substr(0, l.find(']') + 1);
+                continue;
+            }
+            const auto eq = l.find('=');
+            if (eq == std::string::npos)
+                continue;
+            std::string k = l.substr(0, eq);
+            k.erase(k.find_last_not_of(" \t") + 1);
+            out.insert(section + k);
+        }
+        return out;
+    };
+    const auto documented = keys(sourcePath("config/risknav-explore.ini"));
+    for (const auto& k : keys(d + "/config_effective.ini"))
+        EXPECT_TRUE(documented.count(k)) << k << " is not in config/risknav-explore.ini";
 }
 
 TEST(ExploreE2E, TheTJunctionBeyondTheLocalMapNeedsTheMemory) {

@@ -89,6 +89,14 @@ void TExploreOptions::validate() const {
     checkRule(memory_size / memory_resolution <= 4096, section, "memory_size",
               numberText(memory_size),
               "more than 4096 memory cells a side (raise memory_resolution)");
+    // a memory smaller than the local map, or of a few cells, remembers nothing
+    checkRule(
+        memory_size == 0 || memory_size >= local_map_size, section, "memory_size",
+        numberText(memory_size),
+        "must be 0 (none) or at least local_map_size = " + numberText(local_map_size));
+    checkRule(memory_resolution <= local_map_size / 4, section, "memory_resolution",
+              numberText(memory_resolution),
+              "must be at most local_map_size / 4 = " + numberText(local_map_size / 4));
     checkKey(section, "sim_dt", sim_dt, TRange{0, 1, true, false, "s"});
     checkKey(section, "time_limit", time_limit, TRange{0, 36000, true, false, "s"});
     checkKey(section, "goal_tolerance", goal_tolerance, TRange{0, 10, true, false, "m"});
