@@ -88,6 +88,26 @@ TNearestObstacles CDistanceField::nearestObstacles() const {
     return n;
 }
 
+double CDistanceField::pointClearance(double x, double y, double reach) const {
+    const double coarse = clearanceAt(x, y);
+    if (!(coarse <= reach + 2 * m_res))
+        return coarse;
+    const int r = int(std::ceil((reach + 2 * m_res) / m_res));
+    const int ci = x2idx(x), cj = y2idx(y);
+    double best = std::numeric_limits<double>::infinity();
+    for (int cy = cj - r; cy <= cj + r; cy++)
+        for (int cx = ci - r; cx <= ci + r; cx++) {
+            if (!isObstacle(cx, cy))
+                continue;
+            // point to the square [x0, x0 + res] x [y0, y0 + res]
+            const double x0 = m_xmin + cx * m_res, y0 = m_ymin + cy * m_res;
+            const double dx = std::max({x0 - x, 0.0, x - (x0 + m_res)});
+            const double dy = std::max({y0 - y, 0.0, y - (y0 + m_res)});
+            best = std::min(best, std::hypot(dx, dy));
+        }
+    return std::min(best, coarse);
+}
+
 double CDistanceField::clearance(int cx, int cy) const {
     if (m_w == 0 || m_h == 0)
         return 0.0;

@@ -285,7 +285,7 @@ json CWorldSimulator::run(COutputDir& out, bool quiet) {
         const TPose2D now = world.truePose();
         r.distance += std::hypot(now.x - before.x, now.y - before.y);
         r.safety.update(t + dt, now, world.robot.radius, world.agents,
-                        world.clearance(now.x, now.y));
+                        world.pointClearance(now.x, now.y));
         const auto& rb = world.robot;
         r.safety.updateCorridor(t + dt, now, world.speed(), rb.radius,
                                 stoppingDistance(world.speed(), rb.t_delay, rb.decel) +

@@ -67,11 +67,11 @@ void CExplorer::loadFromConfigFile(const CIniConfig& c, std::optional<uint64_t> 
                           x, y, g.getXMin(), g.getXMax(), g.getYMin(), g.getYMax());
             throwBadKey(c, "Explore", key, readString(c, "Explore", key, ""), b);
         }
-        if (world.clearance(x, y) < world.robot.radius) {
+        if (world.pointClearance(x, y) < world.robot.radius) {
             std::snprintf(b, sizeof(b),
                           "(%.2f, %.2f) is inside an obstacle (clearance %.2f m < robot "
                           "radius %.2f m)",
-                          x, y, world.clearance(x, y), world.robot.radius);
+                          x, y, world.pointClearance(x, y), world.robot.radius);
             throwBadKey(c, "Explore", key, readString(c, "Explore", key, ""), b);
         }
     };
@@ -440,7 +440,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
             world.step(dt);
             const TPose2D tp = world.truePose();
             safety.update(world.time(), tp, world.robot.radius, world.agents,
-                          world.clearance(tp.x, tp.y));
+                          world.pointClearance(tp.x, tp.y));
             r.distance += std::hypot(tp.x - prevTrue.x, tp.y - prevTrue.y);
             prevTrue = tp;
             if (vc <= 0)

@@ -90,6 +90,45 @@ TEST(DistanceField, ClearanceEqualsBruteForce) {
     }
 }
 
+TEST(DistanceField, PointClearanceIsTheExactDistanceToTheCellSquares) {
+    // the collision check: from a point (not its cell's centre) to the
+    // obstacle cells' squares (not their centres), against brute force
+    std::mt19937 rng(9);
+    std::vector<std::pair<int, int>> obst;
+    for (int i = 0; i < 12; i++)
+        obst.emplace_back(int(rng() % 30), int(rng() % 20));
+    const auto g = smallMap(obst);
+    TObstacleRule rule;
+    rule.outside_is_obstacle = true;
+    const CDistanceField f(g, rule);
+    std::uniform_real_distribution<double> ux(f.xMin(), f.xMax()), uy(f.yMin(), f.yMax());
+    int near = 0;
+    for (int k = 0; k < 2000; k++) {
+        const double x = ux(rng), y = uy(rng);
+        double best = std::numeric_limits<double>::infinity();
+        for (int oy = -1; oy <= f.sizeY(); oy++)
+            for (int ox = -1; ox <= f.sizeX(); ox++) {
+                if (!f.isObstacle(ox, oy))
+                    continue;
+                const double r = f.resolution();
+                const double x0 = f.xMin() + ox * r, y0 = f.yMin() + oy * r;
+                best = std::min(best, std::hypot(std::max({x0 - x, 0.0, x - x0 - r}),
+                                                 std::max({y0 - y, 0.0, y - y0 - r})));
+            }
+        const double reach = 0.35;
+        const double c = f.pointClearance(x, y, reach);
+        if (best <= reach) {
+            ASSERT_NEAR(c, best, 1e-9) << x << " " << y;
+            near++;
+        } else {
+            ASSERT_GT(c, reach - 1e-9) << x << " " << y;
+        }
+        // the cell-centre clearance can exceed the exact one by up to a cell
+        EXPECT_LE(best, f.clearanceAt(x, y) + 1e-9);
+    }
+    EXPECT_GT(near, 200);
+}
+
 TEST(DistanceField, OpenMapIsBoundedByItsOutside) {
     const auto g = smallMap({});
     TObstacleRule rule;

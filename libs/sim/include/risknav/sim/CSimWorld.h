@@ -88,6 +88,11 @@ class CSimWorld {
     /** Distance [m] from (x, y) to the nearest map obstacle (0 inside one or off the
      * map). */
     double clearance(double x, double y) const { return m_field.clearanceAt(x, y); }
+    /** The same, exact from the point to the obstacle cells' squares near it
+     * (CDistanceField::pointClearance): what collisions are counted with. */
+    double pointClearance(double x, double y) const {
+        return m_field.pointClearance(x, y, robot.radius + 0.3);
+    }
     /** People events since reset (emerge, spawn, leave, give_up). */
     const std::vector<TAgentEvent>& agentEvents() const { return m_agentEvents; }
     size_t range2Scans() const { return m_range2Scans; }
