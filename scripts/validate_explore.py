@@ -4,8 +4,10 @@
 Runs the adaptive mode on:
 - the office (datasets/office/explore.ini), people off;
 - the office with the corridor walker of datasets/office/world.ini added;
-- the T junction (datasets/validation/explore_t_junction.ini), a world the
-  controller was not tuned on;
+- the T junction (datasets/validation/explore_t_junction.ini) and four
+  worlds an independent tester drew (a U corridor, a hall with pillars, rooms
+  with a dead-end room, the same with a destination behind it), none of which
+  the controller was tuned on;
 each over seeds 1..N, and prints per world: runs with every destination
 reached, collisions, near misses, time (mean and range), min clearance and
 the destinations given up. Extra `--set` options apply to every run (e.g.
@@ -70,9 +72,8 @@ def main():
     worlds = [
         ("office", os.path.join(ROOT, "datasets", "office", "explore.ini")),
         ("office_walker", walker_config(a.out)),
-        ("t_junction",
-         os.path.join(ROOT, "datasets", "validation", "explore_t_junction.ini")),
-    ]
+    ] + [(w, os.path.join(ROOT, "datasets", "validation", "explore_%s.ini" % w))
+         for w in ("t_junction", "u_corridor", "hall", "rooms", "rooms_trap")]
     jobs = [(n, c, s, a.out, a.sets) for n, c in worlds
             for s in range(1, a.seeds + 1)]
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as ex:

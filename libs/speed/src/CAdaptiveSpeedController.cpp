@@ -143,6 +143,8 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
         d.reason = TSpeedReason::Unreachable;
         return d;
     }
+    d.nearestToGoal =
+        !d.temporaryTarget && std::hypot(d.target.x - goal.x, d.target.y - goal.y) > 1e-9;
     const double res = field.map.resolution;
     auto inflation = [&](size_t k) { return m_radius + m_o.margins[k]; };
     // d for speed k on path p: its margin disc's front meets the unknown; a

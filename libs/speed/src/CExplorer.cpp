@@ -226,6 +226,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
         goalsEgo.emplace_back(ge.x(), ge.y());
     }
     std::optional<TPoint2D> previousTarget;  // temporary, of this destination
+    std::optional<TPoint2D> nearestTarget;   // the point nearest this destination
     double bestToGoal = std::numeric_limits<double>::infinity(), bestToGoalTime = 0;
     double unreachableSince = -1;
     size_t dest = 0;
@@ -234,6 +235,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
         r.destinationStatus[dest] = status;
         dest++;
         previousTarget.reset();
+        nearestTarget.reset();
         unreachableSince = -1;
         bestToGoal = std::numeric_limits<double>::infinity();
         bestToGoalTime = world.time();
@@ -302,9 +304,16 @@ TModeResult CExplorer::runMode(int fixedIndex,
                                           world.robot.radius + speed.margins.back() +
                                               3 * explore.local_map_resolution);
             };
-        while (dest < goalsEgo.size() &&
-               std::hypot(goalsEgo[dest].x - ego.x, goalsEgo[dest].y - ego.y) <
-                   explore.goal_tolerance) {
+        // reached: within the tolerance, or (a destination nearer an
+        // obstacle than the robot may come) at the point nearest it
+        auto arrived = [&] {
+            return std::hypot(goalsEgo[dest].x - ego.x, goalsEgo[dest].y - ego.y) <
+                       explore.goal_tolerance ||
+                   (nearestTarget &&
+                    std::hypot(nearestTarget->x - ego.x, nearestTarget->y - ego.y) <
+                        explore.goal_tolerance / 2);
+        };
+        while (dest < goalsEgo.size() && arrived()) {
             const TPose2D tp = world.truePose();
             r.destinationError[dest] =
                 std::hypot(goalsWorld[dest].x - tp.x, goalsWorld[dest].y - tp.y);
@@ -336,6 +345,10 @@ TModeResult CExplorer::runMode(int fixedIndex,
         rec.destination = int(dest);
         rec.temporaryTarget = d.temporaryTarget;
         if (!lookingAround) {
+            if (d.nearestToGoal)
+                nearestTarget = d.target;
+            else
+                nearestTarget.reset();
             if (d.temporaryTarget && d.reason != TSpeedReason::Unreachable)
                 previousTarget = d.target;
             else

@@ -47,7 +47,10 @@ struct TSpeedDecision {
     double dUndecided = 0;               ///< [m] along the path, +inf = none
     mrpt::math::TPoint2D target;         ///< the destination planned to
     bool temporaryTarget = false;        ///< target on the free/undecided boundary
-    bool marginBroken = false;           ///< fixed mode: no path with its own margin
+    /** The goal lies in known free space nearer an obstacle than the slowest
+     * margin allows: the target is the reachable point nearest it. */
+    bool nearestToGoal = false;
+    bool marginBroken = false;  ///< fixed mode: no path with its own margin
 };
 
 /** The adaptive speed controller of Miura, Negishi, Shirai 2006 (000)
