@@ -120,6 +120,11 @@ void CIniConfig::applyOverride(const std::string& assignment) {
     // reported by throwOnUnreadKeys(), so a typo in --set is not ignored.
     write(lhs.substr(0, dot), lhs.substr(dot + 1), assignment.substr(eq + 1));
     discardSavingChanges();  // write() marks the file modified again
+    m_overridden.emplace(lower(lhs.substr(0, dot)), lower(lhs.substr(dot + 1)));
+}
+
+bool CIniConfig::isOverridden(const std::string& section, const std::string& key) const {
+    return m_overridden.count({lower(section), lower(key)}) > 0;
 }
 
 bool CIniConfig::hasKey(const std::string& section, const std::string& key) const {

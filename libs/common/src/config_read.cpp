@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -44,12 +45,20 @@ bool present(const CConfigFileBase& c, const std::string& s, const std::string& 
     return true;
 }
 
+/** A decimal number as people write it: digits, sign, point, exponent. Not
+ * what strtod also takes (hex "0x10", "inf", "nan"), and not a value it
+ * rounds to 0 or to a subnormal (1e-400 would be read as 0 silently). */
 bool parseNumber(const std::string& txt, double& out) {
     if (txt.empty())
         return false;
+    for (const char ch : txt)
+        if (!std::isdigit(static_cast<unsigned char>(ch)) && ch != '+' && ch != '-' &&
+            ch != '.' && ch != 'e' && ch != 'E')
+            return false;
     char* end = nullptr;
+    errno = 0;
     out = std::strtod(txt.c_str(), &end);
-    return end && *end == '\0' && std::isfinite(out);
+    return end && *end == '\0' && errno != ERANGE && std::isfinite(out);
 }
 
 void checkReadRange(const CConfigFileBase& c, const std::string& s, const std::string& k,
@@ -83,11 +92,18 @@ std::string configWhere(const CConfigFileBase& c) {
     return "";
 }
 
+std::string configWhere(const CConfigFileBase& c, const std::string& section,
+                        const std::string& key) {
+    if (const auto* ini = dynamic_cast<const CIniConfig*>(&c))
+        return ini->path() + (ini->isOverridden(section, key) ? " (--set): " : ": ");
+    return "";
+}
+
 void throwBadKey(const CConfigFileBase& c, const std::string& section,
                  const std::string& key, const std::string& value,
                  const std::string& rule) {
-    throw CBadInputError(configWhere(c) + "[" + section + "] " + key + " = '" + value +
-                         "': " + rule);
+    throw CBadInputError(configWhere(c, section, key) + "[" + section + "] " + key +
+                         " = '" + value + "': " + rule);
 }
 
 double readDouble(const CConfigFileBase& c, const std::string& s, const std::string& k,
@@ -106,7 +122,7 @@ double requireDouble(const CConfigFileBase& c, const std::string& s, const std::
                      const TRange& r) {
     std::string raw;
     if (!present(c, s, k, raw))
-        throw CBadInputError(configWhere(c) + "[" + s + "] " + k +
+        throw CBadInputError(configWhere(c, s, k) + "[" + s + "] " + k +
                              ": required key is missing (" + r.describe() + ")");
     return readDouble(c, s, k, 0.0, r);
 }
@@ -153,7 +169,7 @@ std::string requireString(const CConfigFileBase& c, const std::string& s,
                           const std::string& k) {
     std::string raw;
     if (!present(c, s, k, raw) || raw.empty())
-        throw CBadInputError(configWhere(c) + "[" + s + "] " + k +
+        throw CBadInputError(configWhere(c, s, k) + "[" + s + "] " + k +
                              ": required key is missing");
     return raw;
 }
@@ -207,7 +223,7 @@ std::string readPath(const CConfigFileBase& c, const std::string& s, const std::
     std::string v = readString(c, s, k, def);
     if (v.empty()) {
         if (mustExist)
-            throw CBadInputError(configWhere(c) + "[" + s + "] " + k +
+            throw CBadInputError(configWhere(c, s, k) + "[" + s + "] " + k +
                                  ": required key is missing");
         return v;
     }

@@ -24,7 +24,7 @@ TPoint2D readPoint(const mrpt::config::CConfigFileBase& c, const std::string& s,
                    const std::string& k) {
     const auto v = readNumbers(c, s, k, {}, {});
     if (v.size() != 2)
-        throw CBadInputError(configWhere(c) + "[" + s + "] " + k +
+        throw CBadInputError(configWhere(c, s, k) + "[" + s + "] " + k +
                              ": required, as x y [m]");
     return {v[0], v[1]};
 }
@@ -116,7 +116,7 @@ void CRiskEvaluator::loadFromConfigFile(const CIniConfig& c) {
     try {
         prepare();
     } catch (const CConfigKeyError& e) {
-        throw CBadInputError(configWhere(c) + e.what());
+        throw CBadInputError(configWhere(c, e.section, e.key) + e.what());
     }
 }
 

@@ -20,7 +20,7 @@ std::vector<TPoint2D> readPath(const mrpt::config::CConfigFileBase& c,
                                const std::string& s) {
     const auto v = readNumbers(c, s, "path", {}, TRange::any("m"), 4, 2);
     if (v.empty())
-        throw CBadInputError(configWhere(c) + "[" + s +
+        throw CBadInputError(configWhere(c, s, "path") + "[" + s +
                              "] path: required key is missing");
     std::vector<TPoint2D> p;
     for (size_t i = 0; i + 1 < v.size(); i += 2)
@@ -63,7 +63,7 @@ void CAgentsSim::TDoorPedestrian::loadFromConfigFile(
     section = s;
     const auto seg = readNumbers(c, s, "door", {}, TRange::any("m"));
     if (seg.size() != 4)
-        throw CBadInputError(configWhere(c) + "[" + s +
+        throw CBadInputError(configWhere(c, s, "door") + "[" + s +
                              "] door: needs x1 y1 x2 y2 (the doorway segment)");
     std::copy(seg.begin(), seg.end(), door);
     path = readPath(c, s);

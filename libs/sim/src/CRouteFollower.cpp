@@ -14,7 +14,7 @@ void CRouteFollower::TOptions::loadFromConfigFile(const mrpt::config::CConfigFil
                                                   const std::string& s) {
     waypoints = readNumbers(c, s, "waypoints", waypoints, TRange::any("m"), 4, 2);
     if (waypoints.empty())
-        throw CBadInputError(configWhere(c) + "[" + s +
+        throw CBadInputError(configWhere(c, s, "waypoints") + "[" + s +
                              "] waypoints: required key is missing (x0 y0 x1 y1 ...)");
     speed = readDouble(c, s, "speed", speed);
     speeds = readNumbers(c, s, "speeds", speeds, TRange::any("m/s"));

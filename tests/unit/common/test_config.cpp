@@ -71,6 +71,24 @@ TEST(ConfigRead, StrictNumbersWithFullErrorMessages) {
               std::string::npos);
 }
 
+TEST(ConfigRead, OnlyDecimalNumbersThatDoNotUnderflow) {
+    // strtod alone takes hex and silently rounds 1e-400 to 0 (the tester's
+    // findings on risknav-explore)
+    const std::string p = iniFile(
+        "[A]\nhex = 0x10\nhexf = 0x1.8p1\ntiny = 1e-400\nsub = 1e-310\ninf = inf\n"
+        "nan = nan\nok = -1.5e-3\nbig = 1e400\n");
+    CIniConfig c(p);
+    for (const char* k : {"hex", "hexf", "tiny", "sub", "inf", "nan", "big"}) {
+        const std::string e = errorOf([&] { readDouble(c, "A", k, 0, TRange::any()); });
+        EXPECT_NE(e.find("not a number"), std::string::npos) << k << ": " << e;
+    }
+    EXPECT_DOUBLE_EQ(readDouble(c, "A", "ok", 0, TRange::any()), -1.5e-3);
+    EXPECT_NE(errorOf([&] {
+                  readInt(c, "A", "hex", 0, TRange::any());
+              }).find("'0x10': not an integer"),
+              std::string::npos);
+}
+
 TEST(ConfigRead, IntsBoolsChoicesLists) {
     CIniConfig c(
         iniFile("[A]\nn = 3\nf = 2.5\nb = yes\nbb = maybe\nmode = loop\nv = [1, 2 3 "
@@ -172,6 +190,10 @@ TEST(CIniConfig, OverridesFromTheCommandLine) {
                   c.applyOverride("Route.speed");
               }).find("expected SECTION.KEY=VALUE"),
               std::string::npos);
+    // a bad value from --set is said to come from --set, not from the file
+    c.applyOverride("route.SPEED=fast");
+    EXPECT_EQ(errorOf([&] { readDouble(c, "Route", "speed", 0, TRange::any()); }),
+              c.path() + " (--set): [Route] speed = 'fast': not a number");
 }
 
 namespace {

@@ -26,6 +26,8 @@ class CIniConfig : public mrpt::config::CConfigFile {
     ~CIniConfig() override;
 
     const std::string& path() const { return m_path; }
+    /** The key's value came from applyOverride() (--set), not the file. */
+    bool isOverridden(const std::string& section, const std::string& key) const;
     /** Folder of the config file (absolute), for relative path resolution. */
     const std::string& folder() const { return m_folder; }
 
@@ -57,6 +59,7 @@ class CIniConfig : public mrpt::config::CConfigFile {
     static void checkLines(const std::string& path);
     std::string m_path, m_folder;
     mutable std::set<std::pair<std::string, std::string>> m_read;
+    std::set<std::pair<std::string, std::string>> m_overridden;  ///< lower case
 };
 
 }  // namespace risknav::common

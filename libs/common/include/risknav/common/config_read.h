@@ -116,8 +116,11 @@ void checkRule(bool ok, const std::string& section, const std::string& key,
 std::string effectiveConfigText(const std::string& sourcePath,
                                 const mrpt::config::CConfigFileMemory& saved);
 
-/** "file.ini: " for a CIniConfig, "" otherwise: prefix of every message. */
+/** "file.ini: " for a CIniConfig, "" otherwise: prefix of every message;
+ * with the section and key: "file.ini (--set): " when --set gave that key. */
 std::string configWhere(const mrpt::config::CConfigFileBase& c);
+std::string configWhere(const mrpt::config::CConfigFileBase& c,
+                        const std::string& section, const std::string& key);
 /** Throws CBadInputError "<file>: [section] key = 'value': <rule>". */
 [[noreturn]] void throwBadKey(const mrpt::config::CConfigFileBase& c,
                               const std::string& section, const std::string& key,
@@ -141,6 +144,6 @@ void risknav::common::loadOptions(OPTIONS& o, const mrpt::config::CConfigFileBas
     try {
         o.validate();
     } catch (const CConfigKeyError& e) {
-        throw CBadInputError(configWhere(c) + e.what());
+        throw CBadInputError(configWhere(c, e.section, e.key) + e.what());
     }
 }
