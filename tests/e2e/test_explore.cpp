@@ -138,6 +138,12 @@ TEST(ExploreE2E, BadInputIsExitTwoWithTheKey) {
          "[SpeedControl] frontier_goal_weight"},
         {"--set SpeedControl.target_switch_cost=nan",
          "[SpeedControl] target_switch_cost"},
+        {"--set SpeedControl.frontier_goal_weight=0x10",
+         "(--set): [SpeedControl] frontier_goal_weight = '0x10': not a number"},
+        {"--set Explore.not_approaching_timeout=-1", "[Explore] not_approaching_timeout"},
+        {"--set MapRange2.p_obs_given_obstacle=0.5001 --set "
+         "MapRange2.p_obs_given_free=0.5",
+         "[MapRange2] p_obs_given_obstacle = '0.5001': more than 1000 observations"},
     };
     writeFile(w + "/explore.ini", base);
     for (const auto& [set, expect] : cases) {

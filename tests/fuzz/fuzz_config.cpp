@@ -12,6 +12,9 @@
 #include <risknav/common/config_read.h>
 #include <risknav/common/grid_io.h>
 #include <risknav/mapping/TObstacleRule.h>
+#include <risknav/mapping/TSensorModel.h>
+#include <risknav/speed/TExploreOptions.h>
+#include <risknav/speed/TSpeedControlOptions.h>
 
 #include <stdexcept>
 
@@ -53,6 +56,24 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                 common::loadOptions(o, c, s);
             });
         }
+        // risknav-explore's own sections (issue 10)
+        tolerate([&] {
+            speed::TExploreOptions o;
+            common::loadOptions(o, c, "Explore");
+        });
+        tolerate([&] {
+            speed::TSpeedControlOptions o;
+            common::loadOptions(o, c, "SpeedControl");
+        });
+        for (const char* s : {"MapLaser", "MapRange2"})
+            tolerate([&] {
+                mapping::TSensorModel o;
+                common::loadOptions(o, c, s);
+                try {  // documented: no N for this model (the app says which key)
+                    (void)mapping::necessaryObservations(o, 0.2);
+                } catch (const std::invalid_argument&) {
+                }
+            });
         tolerate([&] {
             (void)common::readDouble(c, "Simulation", "sim_dt", 0.05,
                                      common::TRange::positive("s"));

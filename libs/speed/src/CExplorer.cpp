@@ -17,6 +17,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <stdexcept>
 
 using namespace risknav::common;
 using mrpt::math::TPoint2D;
@@ -78,7 +79,21 @@ void CExplorer::loadFromConfigFile(const CIniConfig& c, std::optional<uint64_t> 
     check("start", explore.start[0], explore.start[1]);
     for (size_t k = 0; k + 1 < explore.destinations.size(); k += 2)
         check("destinations", explore.destinations[k], explore.destinations[k + 1]);
-    necessaryObservations();  // the models are validated; N exists
+    // N must exist for each model (validate() cannot know the free threshold)
+    for (const auto& [sec, model] :
+         {std::pair<const char*, const mapping::TSensorModel*>("MapLaser", &laserModel),
+          {"MapRange2", &range2Model}}) {
+        try {
+            (void)mapping::necessaryObservations(*model, speed.free_threshold);
+        } catch (const std::invalid_argument& e) {
+            throwBadKey(
+                c, sec, "p_obs_given_obstacle", numberText(model->p_obs_given_obstacle),
+                std::string(e.what()) +
+                    " with p_obs_given_free = " + numberText(model->p_obs_given_free) +
+                    " and [SpeedControl] free_threshold = " +
+                    numberText(speed.free_threshold));
+        }
+    }
 }
 
 void CExplorer::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
