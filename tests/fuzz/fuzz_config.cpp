@@ -28,6 +28,15 @@ void tolerate(F&& f) {
     } catch (const std::runtime_error&) {  // CBadInputError and readers' errors
     }
 }
+
+/** One options struct loaded and validated from `section`. */
+template <class OPTIONS>
+void load(const common::CIniConfig& c, const char* section) {
+    tolerate([&] {
+        OPTIONS o;
+        common::loadOptions(o, c, section);
+    });
+}
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -38,33 +47,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         for (const auto& s : c.sections())
             (void)s;
         // Each read separately, so that one bad key does not hide the others.
-        tolerate([&] {
-            common::TRobotOptions o;
-            common::loadOptions(o, c, "Robot");
-        });
-        tolerate([&] {
-            common::TOdometryOptions o;
-            common::loadOptions(o, c, "Odometry");
-        });
+        load<common::TRobotOptions>(c, "Robot");
+        load<common::TOdometryOptions>(c, "Odometry");
         for (const char* s : {"World", "RiskEval", "AfraidLearn"}) {
-            tolerate([&] {
-                mapping::TObstacleRule o;
-                common::loadOptions(o, c, s);
-            });
-            tolerate([&] {
-                common::TMapSourceOptions o;
-                common::loadOptions(o, c, s);
-            });
+            load<mapping::TObstacleRule>(c, s);
+            load<common::TMapSourceOptions>(c, s);
         }
         // risknav-explore's own sections (issue 10)
-        tolerate([&] {
-            speed::TExploreOptions o;
-            common::loadOptions(o, c, "Explore");
-        });
-        tolerate([&] {
-            speed::TSpeedControlOptions o;
-            common::loadOptions(o, c, "SpeedControl");
-        });
+        load<speed::TExploreOptions>(c, "Explore");
+        load<speed::TSpeedControlOptions>(c, "SpeedControl");
         for (const char* s : {"MapLaser", "MapRange2"})
             tolerate([&] {
                 mapping::TSensorModel o;

@@ -82,8 +82,8 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
                 straightTarget = {m.idx2x(i), m.idx2y(j)};
             }
             const double sw =
-                hints.hasPrevious && std::hypot(m.idx2x(i) - hints.previous.x,
-                                                m.idx2y(j) - hints.previous.y) > 1.0
+                hints.previous && std::hypot(m.idx2x(i) - hints.previous->x,
+                                             m.idx2y(j) - hints.previous->y) > 1.0
                     ? m_o.target_switch_cost
                     : 0.0;
             const double cost =

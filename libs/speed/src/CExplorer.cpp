@@ -303,9 +303,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
         // destination is to be chosen, at most once a cycle
         bool costReady = false;
         TTargetHints hints;
-        hints.hasPrevious = previousTarget.has_value();
-        if (previousTarget)
-            hints.previous = *previousTarget;
+        hints.previous = previousTarget;
         if (memory)
             hints.goalCost = [&](double x, double y) {
                 if (!costReady) {

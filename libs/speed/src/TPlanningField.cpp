@@ -48,7 +48,8 @@ TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map,
     TPlanningField f;
     f.map = map;
     const int n = map.size;
-    std::vector<uint8_t> blocked(map.cells.size()), frontier(map.cells.size(), 0);
+    // wayOn: the frontier cells, then (below) only the open ones and the ring
+    std::vector<uint8_t> blocked(map.cells.size()), wayOn(map.cells.size(), 0);
     for (size_t k = 0; k < map.cells.size(); k++)
         blocked[k] = map.cells[k] != TFusedCell::Free;
     for (int j = 0; j < n; j++)
@@ -59,7 +60,7 @@ TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map,
             for (int k = 0; k < 4; k++)
                 if (map.inside(i + di[k], j + dj[k]) &&
                     map.cells[map.index(i + di[k], j + dj[k])] == TFusedCell::Free) {
-                    frontier[map.index(i, j)] = 1;
+                    wayOn[map.index(i, j)] = 1;
                     break;
                 }
         }
@@ -78,12 +79,12 @@ TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map,
         for (int i = 0; i < n; i++) {
             const size_t k = map.index(i, j);
             if (minOpening > 0 && toObstacle[k] < minOpening)
-                frontier[k] = 0;
+                wayOn[k] = 0;
             else if ((i == 0 || j == 0 || i == n - 1 || j == n - 1) &&
                      map.cells[k] == TFusedCell::Free)
-                frontier[k] = 1;
+                wayOn[k] = 1;
         }
-    f.wayOnDist = distanceTo(frontier, n, map.resolution, false);
+    f.wayOnDist = distanceTo(wayOn, n, map.resolution, false);
     return f;
 }
 }  // namespace risknav::speed

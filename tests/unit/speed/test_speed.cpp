@@ -313,8 +313,7 @@ TEST(SpeedController, ASwitchCostHoldsThePreviousTemporaryDestination) {
         CAdaptiveSpeedController(o, 0.25, 5).chooseTarget(f, {0, 0}, goal, a, temporary));
     EXPECT_GT(a.x, 2.0);  // east, nearer the goal
     TTargetHints hints;
-    hints.hasPrevious = true;
-    hints.previous = {-2.6, 0.0};  // last cycle it went west
+    hints.previous = TPoint2D(-2.6, 0.0);  // last cycle it went west
     ASSERT_TRUE(CAdaptiveSpeedController(o, 0.25, 5)
                     .chooseTarget(f, {0, 0}, goal, b, temporary, hints));
     EXPECT_NEAR(b.x, a.x, 1e-9);  // no switch cost: east again

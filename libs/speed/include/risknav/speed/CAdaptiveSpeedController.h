@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,8 +31,7 @@ using TGoalCost = std::function<double(double x, double y)>;
  * map's edge, would hold the robot in a doorway). */
 struct TTargetHints {
     TGoalCost goalCost;
-    bool hasPrevious = false;
-    mrpt::math::TPoint2D previous;
+    std::optional<mrpt::math::TPoint2D> previous;
 };
 
 /** One cycle's decision, everything the outputs show. */
