@@ -45,6 +45,13 @@ bool present(const CConfigFileBase& c, const std::string& s, const std::string& 
     return true;
 }
 
+void checkReadRange(const CConfigFileBase& c, const std::string& s, const std::string& k,
+                    const std::string& raw, double v, const TRange& r) {
+    if (!r.contains(v))
+        throwBadKey(c, s, k, raw, r.describe());
+}
+}  // namespace
+
 /** A decimal number as people write it: digits, sign, point, exponent. Not
  * what strtod also takes (hex "0x10", "inf", "nan"), and not a value it
  * rounds to 0 or to a subnormal (1e-400 would be read as 0 silently). */
@@ -60,13 +67,6 @@ bool parseNumber(const std::string& txt, double& out) {
     out = std::strtod(txt.c_str(), &end);
     return end && *end == '\0' && errno != ERANGE && std::isfinite(out);
 }
-
-void checkReadRange(const CConfigFileBase& c, const std::string& s, const std::string& k,
-                    const std::string& raw, double v, const TRange& r) {
-    if (!r.contains(v))
-        throwBadKey(c, s, k, raw, r.describe());
-}
-}  // namespace
 
 bool TRange::contains(double v) const {
     if (std::isnan(v))

@@ -6,17 +6,24 @@
 #include <set>
 
 namespace risknav::geometry {
-TGraphPath shortestPath(size_t n, const std::vector<TGraphEdge>& edges, size_t source,
-                        size_t target, const std::vector<bool>& edgeRemoved,
-                        const std::vector<bool>& nodeRemoved) {
-    std::vector<std::vector<size_t>> adj(n);
+namespace {
+using TAdjacency = std::vector<std::vector<size_t>>;  // node -> incident edge ids
+
+TAdjacency adjacency(size_t n, const std::vector<TGraphEdge>& edges) {
+    TAdjacency adj(n);
     for (size_t e = 0; e < edges.size(); e++) {
-        if (edgeRemoved[e])
-            continue;
         adj[edges[e].a].push_back(e);
-        if (edges[e].b != edges[e].a)
+        if (edges[e].b != edges[e].a && !edges[e].directed)
             adj[edges[e].b].push_back(e);
     }
+    return adj;
+}
+
+// Dijkstra over a prebuilt adjacency (Yen's spur searches reuse one).
+TGraphPath dijkstra(const TAdjacency& adj, const std::vector<TGraphEdge>& edges,
+                    size_t source, size_t target, const std::vector<bool>& edgeRemoved,
+                    const std::vector<bool>& nodeRemoved) {
+    const size_t n = adj.size();
     const double inf = std::numeric_limits<double>::infinity();
     std::vector<double> dist(n, inf);
     std::vector<size_t> viaEdge(n, size_t(-1));
@@ -35,6 +42,8 @@ TGraphPath shortestPath(size_t n, const std::vector<TGraphEdge>& edges, size_t s
         if (u == target)
             break;
         for (size_t e : adj[u]) {
+            if (edgeRemoved[e])
+                continue;
             const size_t v = edges[e].a == u ? edges[e].b : edges[e].a;
             if (nodeRemoved[v])
                 continue;
@@ -60,6 +69,13 @@ TGraphPath shortestPath(size_t n, const std::vector<TGraphEdge>& edges, size_t s
     p.length = dist[target];
     return p;
 }
+}  // namespace
+
+TGraphPath shortestPath(size_t n, const std::vector<TGraphEdge>& edges, size_t source,
+                        size_t target, const std::vector<bool>& edgeRemoved,
+                        const std::vector<bool>& nodeRemoved) {
+    return dijkstra(adjacency(n, edges), edges, source, target, edgeRemoved, nodeRemoved);
+}
 
 TGraphPath shortestPath(size_t n, const std::vector<TGraphEdge>& edges, size_t source,
                         size_t target) {
@@ -71,7 +87,8 @@ std::vector<TGraphPath> kShortestPaths(size_t n, const std::vector<TGraphEdge>& 
                                        size_t source, size_t target, size_t k) {
     std::vector<TGraphPath> A;
     std::vector<bool> noEdge(edges.size(), false), noNode(n, false);
-    TGraphPath first = shortestPath(n, edges, source, target, noEdge, noNode);
+    const TAdjacency adj = adjacency(n, edges);  // built once for every spur search
+    TGraphPath first = dijkstra(adj, edges, source, target, noEdge, noNode);
     if (first.nodes.empty() || k == 0)
         return A;
     A.push_back(first);
@@ -96,7 +113,7 @@ std::vector<TGraphPath> kShortestPaths(size_t n, const std::vector<TGraphEdge>& 
                 nr[last.nodes[j]] = true;
                 rootLen += edges[last.edges[j]].length;
             }
-            TGraphPath sp = shortestPath(n, edges, spur, target, er, nr);
+            TGraphPath sp = dijkstra(adj, edges, spur, target, er, nr);
             if (sp.nodes.empty())
                 continue;
             TGraphPath total;

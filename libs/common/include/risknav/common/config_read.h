@@ -35,6 +35,12 @@ struct TRange {
     static double inf() { return std::numeric_limits<double>::infinity(); }
 };
 
+/** A decimal number as people write it: digits, sign, point, exponent. Not
+ * what strtod also takes (hex "0x10", "inf", "nan"), and not a value it
+ * rounds to 0 or to a subnormal. The one number rule of every risknav reader
+ * (configs, text map formats). */
+bool parseNumber(const std::string& txt, double& out);
+
 /** @name Strict typed reads.
  * MRPT's read_double() accepts "0.5 ; comment" as a crash (stod) and "5abc" as 5;
  * these reads accept exactly one number (or the documented list) and throw

@@ -6,12 +6,15 @@
  * evaluator (GVG candidate routes, M2) and the viewpoint planner (visibility
  * graph, M4), so it lives below both. */
 namespace risknav::geometry {
-/** An undirected multigraph edge (parallel edges allowed: two corridors
- * between the same junctions are different routes). A graph is a node count
- * plus a list of these; an edge's id is its index in the list. */
+/** A multigraph edge (parallel edges allowed: two corridors between the same
+ * junctions are different routes), undirected unless `directed` (then only
+ * a -> b: the viewpoint planner's tangent graph, where passing a corner
+ * clockwise or counter-clockwise are different states). A graph is a node
+ * count plus a list of these; an edge's id is its index in the list. */
 struct TGraphEdge {
     size_t a = 0, b = 0;
     double length = 0;  ///< weight, >= 0
+    bool directed = false;
 };
 
 /** A path as the list of edge ids from source to target, with its node sequence. */

@@ -1,0 +1,75 @@
+#pragma once
+#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/grid_io.h>
+#include <risknav/mapping/TObstacleRule.h>
+#include <risknav/viewpoint/observation_model.h>
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace risknav::viewpoint {
+/** [ViewpointPlan]: the world, the task and the planner's settings. */
+struct TViewpointPlanOptions : public common::CValidatedOptions {
+    std::string
+        world_file;  ///< polygon world text (obstacles, bounds, landmarks); required
+    /** Optional occupancy grid whose obstacles are traced into polygons and
+     * added to the world file's (map_* keys as in every app, plus the
+     * obstacle rule's keys and contour_tolerance). */
+    common::TMapSourceOptions map;
+    mapping::TObstacleRule rule;
+    double contour_tolerance = 0.05;  ///< [m] polygon simplification of traced contours
+
+    double start_x = std::numeric_limits<double>::quiet_NaN();  ///< [m] required
+    double start_y = std::numeric_limits<double>::quiet_NaN();  ///< [m] required
+    double goal_x = std::numeric_limits<double>::quiet_NaN();   ///< [m] required
+    double goal_y = std::numeric_limits<double>::quiet_NaN();   ///< [m] required
+
+    /** Safety margins S of the sweep [m] (004 Tables II/III: 10 ... 90 mm). */
+    std::vector<double> safety_margins{0.01, 0.02, 0.03, 0.04, 0.05,
+                                       0.06, 0.07, 0.08, 0.09};
+    int k_paths = 10;              ///< paths per S (Yen's k shortest)
+    int corner_segments = 16;      ///< corner polygons: a full turn in this many edges
+    double sample_step = 0.02;     ///< [m] path samples = viewpoint candidates
+    double dead_reckoning = 0.10;  ///< dead-reckoning error, fraction of the distance
+    double start_error = 0;        ///< [m] position error at the start
+    double start_heading_error_deg = 0;  ///< [deg] heading error at the start
+    bool exhaustive =
+        false;        ///< evaluate every candidate (no pruning; same result, slower)
+    int threads = 0;  ///< S values in parallel; 0: the machine's cores
+    int monte_carlo_draws = 100;  ///< per viewpoint, checking every feasible plan's bound
+    uint64_t seed = 1;            ///< of the Monte Carlo check
+
+    std::string section = "ViewpointPlan";
+
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                            const std::string& section) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                          const std::string& section) const override;
+    void validate() const override;
+};
+
+/** [Camera]: the two panning cameras and their image errors. */
+struct TCameraOptions : public common::CValidatedOptions {
+    double camera_offset = 0.1;     ///< [m] b_r, each camera's distance from the centre
+    double focal_px = 3000;         ///< [px]
+    int image_width = 640;          ///< [px]
+    int image_height = 480;         ///< [px]
+    double max_range = 5;           ///< [m] landmark distance limit
+    double max_incidence_deg = 75;  ///< [deg] max angle off a landmark's facing
+    double pan_limit_deg = 180;     ///< [deg] |pan| limit
+    double du_px = 1, dv_px = 1,
+           dr_px = 1;  ///< [px] image errors (004: R1 1 px, R2 3 px)
+
+    TCameraRig rig() const;
+    TImageErrors errors() const;
+
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                            const std::string& section) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                          const std::string& section) const override;
+    void validate() const override;
+};
+
+}  // namespace risknav::viewpoint

@@ -1,0 +1,149 @@
+#include <risknav/common/config_read.h>
+#include <risknav/viewpoint/TViewpointPlanOptions.h>
+
+#include <cmath>
+
+using namespace risknav::common;
+
+namespace risknav::viewpoint {
+void TViewpointPlanOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                               const std::string& s) {
+    section = s;
+    world_file = readPath(c, s, "world_file", world_file, true);
+    if (c.keyExists(s, "map_file"))
+        map.loadFromConfigFile(c, s);
+    rule.loadFromConfigFile(c, s);
+    contour_tolerance = readDouble(c, s, "contour_tolerance", contour_tolerance);
+    start_x = requireDouble(c, s, "start_x", TRange::any("m"));
+    start_y = requireDouble(c, s, "start_y", TRange::any("m"));
+    goal_x = requireDouble(c, s, "goal_x", TRange::any("m"));
+    goal_y = requireDouble(c, s, "goal_y", TRange::any("m"));
+    safety_margins = readNumbers(c, s, "safety_margins", safety_margins, {}, 1);
+    k_paths = readInt(c, s, "k_paths", k_paths);
+    corner_segments = readInt(c, s, "corner_segments", corner_segments);
+    sample_step = readDouble(c, s, "sample_step", sample_step);
+    dead_reckoning = readDouble(c, s, "dead_reckoning", dead_reckoning);
+    start_error = readDouble(c, s, "start_error", start_error);
+    start_heading_error_deg =
+        readDouble(c, s, "start_heading_error_deg", start_heading_error_deg);
+    exhaustive = readBool(c, s, "exhaustive", exhaustive);
+    threads = readInt(c, s, "threads", threads);
+    monte_carlo_draws = readInt(c, s, "monte_carlo_draws", monte_carlo_draws);
+    seed = uint64_t(
+        readDouble(c, s, "seed", double(seed), TRange::closed(0, 9007199254740992.0)));
+}
+
+void TViewpointPlanOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                             const std::string& s) const {
+    writeKey(c, s, "world_file", world_file);
+    if (!map.map_file.empty()) {
+        map.saveToConfigFile(c, s);
+        rule.saveToConfigFile(c, s);
+        writeKey(c, s, "contour_tolerance", contour_tolerance);
+    }
+    writeKey(c, s, "start_x", start_x);
+    writeKey(c, s, "start_y", start_y);
+    writeKey(c, s, "goal_x", goal_x);
+    writeKey(c, s, "goal_y", goal_y);
+    writeKey(c, s, "safety_margins", safety_margins);
+    writeKey(c, s, "k_paths", k_paths);
+    writeKey(c, s, "corner_segments", corner_segments);
+    writeKey(c, s, "sample_step", sample_step);
+    writeKey(c, s, "dead_reckoning", dead_reckoning);
+    writeKey(c, s, "start_error", start_error);
+    writeKey(c, s, "start_heading_error_deg", start_heading_error_deg);
+    writeKey(c, s, "exhaustive", exhaustive);
+    writeKey(c, s, "threads", threads);
+    writeKey(c, s, "monte_carlo_draws", monte_carlo_draws);
+    writeKey(c, s, "seed", std::to_string(seed));
+}
+
+void TViewpointPlanOptions::validate() const {
+    checkRule(!world_file.empty(), section, "world_file", world_file, "required");
+    if (!map.map_file.empty()) {
+        map.validate();
+        rule.validate();
+    }
+    checkKey(section, "contour_tolerance", contour_tolerance, TRange::closed(0, 1, "m"));
+    const TRange where = TRange::closed(-1e5, 1e5, "m (required)");
+    checkKey(section, "start_x", start_x, where);
+    checkKey(section, "start_y", start_y, where);
+    checkKey(section, "goal_x", goal_x, where);
+    checkKey(section, "goal_y", goal_y, where);
+    checkRule(std::hypot(goal_x - start_x, goal_y - start_y) > 1e-6, section, "goal_x",
+              numberText(goal_x), "the goal must differ from the start");
+    checkRule(!safety_margins.empty() && safety_margins.size() <= 100, section,
+              "safety_margins", std::to_string(safety_margins.size()) + " values",
+              "1 to 100 values");
+    checkKey(section, "safety_margins", safety_margins, TRange::closed(0.001, 10, "m"));
+    checkKey(section, "k_paths", k_paths, TRange::closed(1, 100));
+    checkKey(section, "corner_segments", corner_segments, TRange::closed(4, 360));
+    checkKey(section, "sample_step", sample_step, TRange::closed(0.001, 1, "m"));
+    checkKey(section, "dead_reckoning", dead_reckoning,
+             TRange::closed(0, 1, "(fraction)"));
+    checkKey(section, "start_error", start_error, TRange::closed(0, 100, "m"));
+    checkKey(section, "start_heading_error_deg", start_heading_error_deg,
+             TRange::closed(0, 180, "deg"));
+    checkKey(section, "threads", threads, TRange::closed(0, 64));
+    checkKey(section, "monte_carlo_draws", monte_carlo_draws, TRange::closed(0, 100000));
+}
+
+TCameraRig TCameraOptions::rig() const {
+    TCameraRig r;
+    r.b_r = camera_offset;
+    r.focal = focal_px;
+    r.width = image_width;
+    r.height = image_height;
+    r.maxRange = max_range;
+    r.maxIncidence = max_incidence_deg * M_PI / 180;
+    r.panLimit = pan_limit_deg * M_PI / 180;
+    return r;
+}
+
+TImageErrors TCameraOptions::errors() const {
+    return {du_px, dv_px, dr_px};
+}
+
+void TCameraOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                        const std::string& s) {
+    camera_offset = readDouble(c, s, "camera_offset", camera_offset);
+    focal_px = readDouble(c, s, "focal_px", focal_px);
+    image_width = readInt(c, s, "image_width", image_width);
+    image_height = readInt(c, s, "image_height", image_height);
+    max_range = readDouble(c, s, "max_range", max_range);
+    max_incidence_deg = readDouble(c, s, "max_incidence_deg", max_incidence_deg);
+    pan_limit_deg = readDouble(c, s, "pan_limit_deg", pan_limit_deg);
+    du_px = readDouble(c, s, "du_px", du_px);
+    dv_px = readDouble(c, s, "dv_px", dv_px);
+    dr_px = readDouble(c, s, "dr_px", dr_px);
+}
+
+void TCameraOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                      const std::string& s) const {
+    writeKey(c, s, "camera_offset", camera_offset);
+    writeKey(c, s, "focal_px", focal_px);
+    writeKey(c, s, "image_width", image_width);
+    writeKey(c, s, "image_height", image_height);
+    writeKey(c, s, "max_range", max_range);
+    writeKey(c, s, "max_incidence_deg", max_incidence_deg);
+    writeKey(c, s, "pan_limit_deg", pan_limit_deg);
+    writeKey(c, s, "du_px", du_px);
+    writeKey(c, s, "dv_px", dv_px);
+    writeKey(c, s, "dr_px", dr_px);
+}
+
+void TCameraOptions::validate() const {
+    const std::string s = "Camera";
+    checkKey(s, "camera_offset", camera_offset, TRange::closed(0.001, 10, "m"));
+    checkKey(s, "focal_px", focal_px, TRange::closed(1, 1e6, "px"));
+    checkKey(s, "image_width", image_width, TRange::closed(8, 100000, "px"));
+    checkKey(s, "image_height", image_height, TRange::closed(8, 100000, "px"));
+    checkKey(s, "max_range", max_range, TRange::closed(0.01, 1000, "m"));
+    checkKey(s, "max_incidence_deg", max_incidence_deg, TRange::closed(0, 89.9, "deg"));
+    checkKey(s, "pan_limit_deg", pan_limit_deg, TRange::closed(0, 180, "deg"));
+    checkKey(s, "du_px", du_px, TRange::closed(0, 1000, "px"));
+    checkKey(s, "dv_px", dv_px, TRange::closed(0, 1000, "px"));
+    checkKey(s, "dr_px", dr_px, TRange::closed(0, 1000, "px"));
+}
+
+}  // namespace risknav::viewpoint
