@@ -207,7 +207,7 @@ void CViewpointPlanner::plan() {
                 continue;
             }
             const TPlanRow& b = m_sweep[m_optimal->first].rows[m_optimal->second];
-            const double tol = 1e-6;
+            const double tol = options.length_tolerance;
             const bool better =
                 row.length < b.length - tol ||
                 (std::abs(row.length - b.length) <= tol &&

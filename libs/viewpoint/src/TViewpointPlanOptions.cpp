@@ -26,6 +26,7 @@ void TViewpointPlanOptions::loadFromConfigFile(const mrpt::config::CConfigFileBa
     start_error = readDouble(c, s, "start_error", start_error);
     start_heading_error_deg =
         readDouble(c, s, "start_heading_error_deg", start_heading_error_deg);
+    length_tolerance = readDouble(c, s, "length_tolerance", length_tolerance);
     exhaustive = readBool(c, s, "exhaustive", exhaustive);
     threads = readInt(c, s, "threads", threads);
     monte_carlo_draws = readInt(c, s, "monte_carlo_draws", monte_carlo_draws);
@@ -52,6 +53,7 @@ void TViewpointPlanOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
     writeKey(c, s, "dead_reckoning", dead_reckoning);
     writeKey(c, s, "start_error", start_error);
     writeKey(c, s, "start_heading_error_deg", start_heading_error_deg);
+    writeKey(c, s, "length_tolerance", length_tolerance);
     writeKey(c, s, "exhaustive", exhaustive);
     writeKey(c, s, "threads", threads);
     writeKey(c, s, "monte_carlo_draws", monte_carlo_draws);
@@ -84,6 +86,7 @@ void TViewpointPlanOptions::validate() const {
     checkKey(section, "start_error", start_error, TRange::closed(0, 100, "m"));
     checkKey(section, "start_heading_error_deg", start_heading_error_deg,
              TRange::closed(0, 180, "deg"));
+    checkKey(section, "length_tolerance", length_tolerance, TRange::closed(0, 1000, "m"));
     checkKey(section, "threads", threads, TRange::closed(0, 64));
     checkKey(section, "monte_carlo_draws", monte_carlo_draws, TRange::closed(0, 100000));
 }

@@ -136,10 +136,52 @@ double det3(const double J[3][3]) {
            J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
 }
 
-std::optional<TPose2D> solveThreeLandmark(const TObservation& o, const TMeasurement& z,
-                                          const std::vector<TLandmark>& lms,
-                                          const TCameraRig& rig, const TPose2D& prior) {
-    TPose2D p = prior;
+// Closed-form resection with both cameras taken at the robot centre: the
+// robot sees L0L1 under the angle t01 and L1L2 under t12, so it lies on the
+// two circles of the inscribed-angle theorem (003 eqs. (6)-(7)); they meet in
+// L1 and in the robot, the mirror image of L1 in the line of the centres.
+// Only a starting point for the exact Newton solve (the cameras sit b_r off
+// the centre).
+std::optional<TPose2D> resectionAtCentre(const TObservation& o, const TMeasurement& z,
+                                         const std::vector<TLandmark>& lms,
+                                         const TCameraRig& rig) {
+    TPoint2D L[3];
+    double b[3];
+    for (int k = 0; k < 3; k++) {
+        const TLandmark& l = lms[size_t(o.lm[size_t(k)])];
+        L[k] = {l.x, l.y};
+        const int side = k < 2 ? o.side : -o.side;
+        b[k] = o.pan[size_t(camIndex(side))] - std::atan(z[size_t(k)] / rig.focal);
+    }
+    auto centre = [](const TPoint2D& a, const TPoint2D& c,
+                     double theta) -> std::optional<TPoint2D> {
+        const double s = std::sin(theta);
+        if (std::abs(s) < 1e-9)
+            return std::nullopt;
+        const double dx = c.x - a.x, dy = c.y - a.y;
+        const double k = 0.5 * std::cos(theta) / s;  // (d / 2) cot(theta) / d
+        return TPoint2D{(a.x + c.x) / 2 - k * dy, (a.y + c.y) / 2 + k * dx};
+    };
+    const auto c01 = centre(L[0], L[1], wrap(b[1] - b[0]));
+    const auto c12 = centre(L[1], L[2], wrap(b[2] - b[1]));
+    if (!c01 || !c12)
+        return std::nullopt;
+    const double ux = c12->x - c01->x, uy = c12->y - c01->y, uu = ux * ux + uy * uy;
+    if (uu < 1e-18)
+        return std::nullopt;
+    const double t = ((L[1].x - c01->x) * ux + (L[1].y - c01->y) * uy) / uu;
+    const TPoint2D f{c01->x + t * ux, c01->y + t * uy};  // foot of L1 on the line
+    const TPoint2D p{2 * f.x - L[1].x, 2 * f.y - L[1].y};
+    if (std::hypot(p.x - L[1].x, p.y - L[1].y) < 1e-9)
+        return std::nullopt;
+    // Heading: the world bearing of L0 minus its measured robot-frame bearing.
+    return TPose2D{p.x, p.y, wrap(std::atan2(L[0].y - p.y, L[0].x - p.x) - b[0])};
+}
+
+std::optional<TPose2D> newtonThreeLandmark(const TObservation& o, const TMeasurement& z,
+                                           const std::vector<TLandmark>& lms,
+                                           const TCameraRig& rig, const TPose2D& start) {
+    TPose2D p = start;
     double r[3], J[3][3];
     auto norm = [](const double v[3]) {
         return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
@@ -150,10 +192,12 @@ std::optional<TPose2D> solveThreeLandmark(const TObservation& o, const TMeasurem
             break;
         // Singular when robot and landmarks lie on one circle (or line):
         // the bearings then do not fix the pose. Scale-free test on the
-        // determinant relative to the rows' sizes.
+        // determinant relative to the rows' sizes; below 1e-6 a pixel's error
+        // would move the pose by metres, so such geometry counts as
+        // degenerate rather than as a (useless) solution.
         const double rows = norm(J[0]) * norm(J[1]) * norm(J[2]);
         const double D = det3(J);
-        if (!(std::abs(D) > 1e-9 * rows))
+        if (!(std::abs(D) > 1e-6 * rows))
             return std::nullopt;
         // Cramer's rule for J d = -r.
         double d[3];
@@ -184,6 +228,30 @@ std::optional<TPose2D> solveThreeLandmark(const TObservation& o, const TMeasurem
     if (!(norm(r) < 1e-9))
         return std::nullopt;
     return p;
+}
+
+std::optional<TPose2D> solveThreeLandmark(const TObservation& o, const TMeasurement& z,
+                                          const std::vector<TLandmark>& lms,
+                                          const TCameraRig& rig, const TPose2D& prior) {
+    // With the cameras off the centre the bearing equations can have more
+    // than one solution: Newton from the closed-form resection and from the
+    // dead-reckoning prior, and the solution nearest the prior is kept (the
+    // dead-reckoning history decides, as for the two-landmark roots).
+    std::optional<TPose2D> best;
+    double bestD = 0;
+    auto consider = [&](const std::optional<TPose2D>& p) {
+        if (!p)
+            return;
+        const double d = std::hypot(p->x - prior.x, p->y - prior.y);
+        if (!best || d < bestD) {
+            best = p;
+            bestD = d;
+        }
+    };
+    if (const auto init = resectionAtCentre(o, z, lms, rig))
+        consider(newtonThreeLandmark(o, z, lms, rig, *init));
+    consider(newtonThreeLandmark(o, z, lms, rig, prior));
+    return best;
 }
 }  // namespace
 

@@ -191,11 +191,11 @@ void drawPlan(const CViewpointPlanner& p, const std::string& path) {
 
 // Per S: the path the paper's tables list (the shortest feasible one, then
 // the fewest viewpoints).
-const TPlanRow* bestOfS(const TSweepPoint& sp) {
+const TPlanRow* bestOfS(const TSweepPoint& sp, double tol) {
     const TPlanRow* b = nullptr;
     for (const auto& r : sp.rows)
-        if (r.feasible && (!b || r.length < b->length - 1e-6 ||
-                           (std::abs(r.length - b->length) <= 1e-6 &&
+        if (r.feasible && (!b || r.length < b->length - tol ||
+                           (std::abs(r.length - b->length) <= tol &&
                             r.viewpoints.size() < b->viewpoints.size())))
             b = &r;
     return b;
@@ -307,7 +307,7 @@ json writeViewpointReport(const CViewpointPlanner& p, COutputDir& out) {
            << "| S [mm] | route | path length [mm] | viewpoints "
               "|\n|---:|---:|---:|---:|\n";
         for (const auto& sp : p.sweep()) {
-            const TPlanRow* b = bestOfS(sp);
+            const TPlanRow* b = bestOfS(sp, p.options.length_tolerance);
             const bool o = b && b == opt;
             char line[160];
             if (b)

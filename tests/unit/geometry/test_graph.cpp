@@ -25,7 +25,7 @@ std::vector<TGraphPath> allSimplePaths(size_t n, const std::vector<TGraphEdge>& 
         }
         onPath[u] = true;
         for (size_t e = 0; e < edges.size(); e++) {
-            if (edges[e].a != u && edges[e].b != u)
+            if (edges[e].a != u && (edges[e].b != u || edges[e].directed))
                 continue;
             const size_t v = edges[e].a == u ? edges[e].b : edges[e].a;
             if (onPath[v])
@@ -70,6 +70,40 @@ TEST(KShortestPaths, MatchesExhaustiveEnumerationOnRandomMultigraphs) {
             EXPECT_EQ(yen[i].nodes.back(), n - 1);
         }
     }
+}
+
+TEST(KShortestPaths, DirectedEdgesMatchExhaustiveEnumeration) {
+    // Directed edges (the viewpoint planner's tangent graph) are followed
+    // a -> b only; mixed with undirected ones.
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> len(1, 10);
+    std::bernoulli_distribution directed(0.7);
+    int nonEmpty = 0;
+    for (int g = 0; g < 40; g++) {
+        const size_t n = 6 + g % 4;
+        std::vector<TGraphEdge> edges;
+        std::uniform_int_distribution<size_t> node(0, n - 1);
+        for (size_t e = 0; e < 3 * n; e++) {
+            const size_t a = node(rng), b = node(rng);
+            if (a != b)
+                edges.push_back(
+                    {a, b, std::round(len(rng) * 8) / 8 + 1e-3 * e, directed(rng)});
+        }
+        const auto ref = allSimplePaths(n, edges, 0, n - 1);
+        const auto yen = kShortestPaths(n, edges, 0, n - 1, 6);
+        ASSERT_EQ(yen.size(), std::min<size_t>(6, ref.size())) << "graph " << g;
+        nonEmpty += !yen.empty();
+        for (size_t i = 0; i < yen.size(); i++) {
+            EXPECT_NEAR(yen[i].length, ref[i].length, 1e-9) << "graph " << g;
+            EXPECT_EQ(yen[i].edges, ref[i].edges) << "graph " << g << " path " << i;
+            for (size_t k = 0; k < yen[i].edges.size(); k++) {
+                const auto& e = edges[yen[i].edges[k]];
+                if (e.directed)
+                    EXPECT_EQ(e.a, yen[i].nodes[k]) << "against the edge's direction";
+            }
+        }
+    }
+    EXPECT_GT(nonEmpty, 20);
 }
 
 TEST(KShortestPaths, Unreachable) {
