@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <random>
 #include <thread>
@@ -90,23 +91,42 @@ double CViewpointPlanner::allowedError(double x, double y) const {
 }
 
 TPointEvaluation CViewpointPlanner::evaluate(const std::vector<TPathSample>& samples,
-                                             size_t i) const {
+                                             size_t i, bool bestOnly) const {
     TPointEvaluation ev;
     const TPathSample& p = samples[i];
     const TPose2D pose{p.x, p.y, p.heading};
     const TCameraRig rig = camera.rig();
     const TImageErrors err = camera.errors();
     const auto views = landmarkViews(pose, m_world.landmarks, rig, m_index);
-    const auto obs = enumerateObservations(pose, m_world.landmarks, views, rig);
+    auto obs = enumerateObservations(pose, m_world.landmarks, views, rig);
     ev.observations = obs.size();
+    // The cheap closed-form strategies first: their reach bounds the costly
+    // three-landmark Newton solves sooner.
+    std::stable_sort(
+        obs.begin(), obs.end(), [](const TObservation& a, const TObservation& b) {
+            auto rank = [](TStrategy s) {
+                return s == TStrategy::TwoLandmark ? 0 : s == TStrategy::Stereo ? 1 : 2;
+            };
+            return rank(a.strategy) < rank(b.strategy);
+        });
+    const double dr = options.dead_reckoning;
+    // The reach only shrinks as the errors grow: an observation whose errors
+    // so far already reach no further than the best is done.
+    std::function<bool(double, double)> giveUp;
+    if (bestOnly)
+        giveUp = [&](double ePos, double dPhi) {
+            return ev.best && reachFrom(samples, i, ePos, dPhi, dr) <= ev.best->reach;
+        };
     for (const auto& o : obs) {
-        TStrategyChoice ch{o, worstCaseError(o, pose, m_world.landmarks, rig, err), -1};
+        TStrategyChoice ch{
+            o, worstCaseError(o, pose, m_world.landmarks, rig, err, giveUp), -1};
+        if (ch.err.gaveUp)
+            continue;
         if (!ch.err.ok) {
             ev.degenerate++;
             continue;
         }
-        ch.reach =
-            reachFrom(samples, i, ch.err.ePos, ch.err.dPhi, options.dead_reckoning);
+        ch.reach = reachFrom(samples, i, ch.err.ePos, ch.err.dPhi, dr);
         if (ch.reach < 0)
             continue;
         auto& slot = ev.perStrategy[size_t(o.strategy) - size_t('A')];
@@ -133,7 +153,7 @@ TPlanRow CViewpointPlanner::planPath(const std::vector<TPoint2D>& path, double S
     auto bestReach = [&](size_t i) {
         auto it = memo.find(i);
         if (it == memo.end())
-            it = memo.emplace(i, evaluate(samples, i)).first;
+            it = memo.emplace(i, evaluate(samples, i, true)).first;
         return it->second.best ? it->second.best->reach : -1.0;
     };
     const auto g = planViewpointsGreedy(
@@ -151,7 +171,8 @@ TPlanRow CViewpointPlanner::planPath(const std::vector<TPoint2D>& path, double S
     }
     for (size_t v = 0; v < g.viewpoints.size(); v++) {
         const size_t i = g.viewpoints[v];
-        TPlannedViewpoint pv{samples[i], memo.at(i), 0};
+        // The chosen viewpoints again in full: every strategy's best there.
+        TPlannedViewpoint pv{samples[i], evaluate(samples, i, false), 0};
         const double next = v + 1 < g.viewpoints.size() ? samples[g.viewpoints[v + 1]].s
                                                         : samples.back().s;
         pv.m = next - samples[i].s;

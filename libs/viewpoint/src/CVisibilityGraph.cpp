@@ -129,13 +129,33 @@ bool CVisibilityGraph::supports(size_t i, const TPoint2D& dir) const {
     return (c1 >= -tol && c2 >= -tol) || (c1 <= tol && c2 <= tol);
 }
 
+bool CVisibilityGraph::taut(const std::vector<size_t>& split) const {
+    // At a corner passed with the obstacle on the left (state 0) the path
+    // turns left, on the right it turns right (or goes straight on): it
+    // wraps the obstacle. Both edges being tangent on the same side is not
+    // enough: two supporting lines of one corner can also make a kink away
+    // from it.
+    for (size_t i = 1; i + 1 < split.size(); i++) {
+        const TPoint2D& a = m_nodes[split[i - 1] / 2].p;
+        const TPoint2D& b = m_nodes[split[i] / 2].p;
+        const TPoint2D& c = m_nodes[split[i + 1] / 2].p;
+        const TPoint2D ein{b.x - a.x, b.y - a.y}, eout{c.x - b.x, c.y - b.y};
+        const double turn = cross(ein, eout);
+        const double tol = 1e-12 * std::hypot(ein.x, ein.y) * std::hypot(eout.x, eout.y);
+        if (split[i] % 2 == 0 ? turn < -tol : turn > tol)
+            return false;
+    }
+    return true;
+}
+
 std::vector<std::vector<TPoint2D>> CVisibilityGraph::kShortestPaths(size_t k) const {
     std::vector<std::vector<TPoint2D>> out;
     if (!m_startFree || !m_goalFree)
         return out;
-    // A few more than k: paths that pass a corner both ways round are dropped.
+    // More than k: paths that pass a corner both ways round, or bend away
+    // from the obstacle they are said to wrap, are dropped.
     const auto paths = geometry::kShortestPaths(2 * m_nodes.size(), m_directed,
-                                                2 * m_start, 2 * m_goal, k + 4);
+                                                2 * m_start, 2 * m_goal, 3 * k + 4);
     for (const auto& p : paths) {
         std::vector<size_t> phys;
         for (size_t v : p.nodes)
@@ -143,6 +163,8 @@ std::vector<std::vector<TPoint2D>> CVisibilityGraph::kShortestPaths(size_t k) co
         std::vector<size_t> sorted = phys;
         std::sort(sorted.begin(), sorted.end());
         if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+            continue;
+        if (!taut(p.nodes))
             continue;
         std::vector<TPoint2D> poly;
         for (size_t v : phys)

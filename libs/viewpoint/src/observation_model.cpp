@@ -111,24 +111,37 @@ std::optional<TPose2D> solveTwoLandmark(const TObservation& o, const TMeasuremen
     return best;
 }
 
-// Residuals of the three bearings and their Jacobian w.r.t. (x, y, phi).
-void bearingResiduals(const TObservation& o, const TMeasurement& z,
-                      const std::vector<TLandmark>& lms, const TCameraRig& rig,
-                      const TPose2D& p, double r[3], double J[3][3]) {
-    for (int k = 0; k < 3; k++) {
-        const int side = k < 2 ? o.side : -o.side;
-        const double pan = o.pan[size_t(camIndex(side))];
-        const TLandmark& l = lms[size_t(o.lm[size_t(k)])];
-        const TPoint2D c = cameraCentre(p, side, rig.b_r);
-        const double dx = l.x - c.x, dy = l.y - c.y, q = dx * dx + dy * dy;
-        r[k] = wrap(std::atan2(dy, dx) -
-                    (p.phi + pan - std::atan(z[size_t(k)] / rig.focal)));
-        const double sb = side * rig.b_r;
-        J[k][0] = dy / q;
-        J[k][1] = -dx / q;
-        J[k][2] = (-dy * sb * std::cos(p.phi) + dx * sb * std::sin(p.phi)) / q - 1;
+// The three bearing equations, prepared once per solve: landmark position,
+// camera offset and the measured bearing relative to the robot's heading.
+struct TBearings {
+    double lx[3], ly[3], sb[3], meas[3];
+    TBearings(const TObservation& o, const TMeasurement& z,
+              const std::vector<TLandmark>& lms, const TCameraRig& rig) {
+        for (int k = 0; k < 3; k++) {
+            const int side = k < 2 ? o.side : -o.side;
+            const TLandmark& l = lms[size_t(o.lm[size_t(k)])];
+            lx[k] = l.x;
+            ly[k] = l.y;
+            sb[k] = side * rig.b_r;
+            meas[k] = o.pan[size_t(camIndex(side))] - std::atan(z[size_t(k)] / rig.focal);
+        }
     }
-}
+    // Residuals r_k = bearing(L_k from camera k) - (phi + measured), and
+    // their Jacobian w.r.t. (x, y, phi) when J is given.
+    void eval(const TPose2D& p, double r[3], double (*J)[3]) const {
+        const double s = std::sin(p.phi), c = std::cos(p.phi);
+        for (int k = 0; k < 3; k++) {
+            const double dx = lx[k] - (p.x - sb[k] * s), dy = ly[k] - (p.y + sb[k] * c);
+            r[k] = wrap(std::atan2(dy, dx) - (p.phi + meas[k]));
+            if (J) {
+                const double q = dx * dx + dy * dy;
+                J[k][0] = dy / q;
+                J[k][1] = -dx / q;
+                J[k][2] = (-dy * sb[k] * c + dx * sb[k] * s) / q - 1;
+            }
+        }
+    }
+};
 
 double det3(const double J[3][3]) {
     return J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
@@ -178,15 +191,13 @@ std::optional<TPose2D> resectionAtCentre(const TObservation& o, const TMeasureme
     return TPose2D{p.x, p.y, wrap(std::atan2(L[0].y - p.y, L[0].x - p.x) - b[0])};
 }
 
-std::optional<TPose2D> newtonThreeLandmark(const TObservation& o, const TMeasurement& z,
-                                           const std::vector<TLandmark>& lms,
-                                           const TCameraRig& rig, const TPose2D& start) {
+std::optional<TPose2D> newtonThreeLandmark(const TBearings& eq, const TPose2D& start) {
     TPose2D p = start;
     double r[3], J[3][3];
     auto norm = [](const double v[3]) {
         return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     };
-    bearingResiduals(o, z, lms, rig, p, r, J);
+    eq.eval(p, r, J);
     for (int it = 0; it < 60; it++) {
         if (norm(r) < 1e-14)
             break;
@@ -208,18 +219,19 @@ std::optional<TPose2D> newtonThreeLandmark(const TObservation& o, const TMeasure
                     M[i][j] = j == c ? -r[i] : J[i][j];
             d[c] = det3(M) / D;
         }
-        // Damped step: halve until the residual shrinks.
+        if (std::abs(d[0]) + std::abs(d[1]) + std::abs(d[2]) < 1e-14)
+            break;  // converged
+        // Damped step: halve (a few times) until the residual shrinks.
         const double n0 = norm(r);
-        double lam = 1;
+        double lam = 1, rq[3], Jq[3][3];
         TPose2D q;
-        double rq[3], Jq[3][3];
-        for (int h = 0; h < 30; h++, lam /= 2) {
+        bool descended = false;
+        for (int h = 0; h < 12 && !descended; h++, lam /= 2) {
             q = {p.x + lam * d[0], p.y + lam * d[1], wrap(p.phi + lam * d[2])};
-            bearingResiduals(o, z, lms, rig, q, rq, Jq);
-            if (norm(rq) < n0)
-                break;
+            eq.eval(q, rq, Jq);
+            descended = norm(rq) < n0;
         }
-        if (!(norm(rq) < n0))
+        if (!descended)
             break;  // no descent left: converged as far as doubles allow
         p = q;
         std::copy(rq, rq + 3, r);
@@ -233,25 +245,16 @@ std::optional<TPose2D> newtonThreeLandmark(const TObservation& o, const TMeasure
 std::optional<TPose2D> solveThreeLandmark(const TObservation& o, const TMeasurement& z,
                                           const std::vector<TLandmark>& lms,
                                           const TCameraRig& rig, const TPose2D& prior) {
-    // With the cameras off the centre the bearing equations can have more
-    // than one solution: Newton from the closed-form resection and from the
-    // dead-reckoning prior, and the solution nearest the prior is kept (the
-    // dead-reckoning history decides, as for the two-landmark roots).
-    std::optional<TPose2D> best;
-    double bestD = 0;
-    auto consider = [&](const std::optional<TPose2D>& p) {
-        if (!p)
-            return;
-        const double d = std::hypot(p->x - prior.x, p->y - prior.y);
-        if (!best || d < bestD) {
-            best = p;
-            bestD = d;
-        }
-    };
+    // Newton from the dead-reckoning prior (its basin holds the solution the
+    // robot is at: with the cameras off the centre the bearing equations can
+    // have others); from the closed-form resection when that does not
+    // converge.
+    const TBearings eq(o, z, lms, rig);
+    if (const auto p = newtonThreeLandmark(eq, prior))
+        return p;
     if (const auto init = resectionAtCentre(o, z, lms, rig))
-        consider(newtonThreeLandmark(o, z, lms, rig, *init));
-    consider(newtonThreeLandmark(o, z, lms, rig, prior));
-    return best;
+        return newtonThreeLandmark(eq, *init);
+    return std::nullopt;
 }
 }  // namespace
 
@@ -356,7 +359,8 @@ std::vector<double> measurementErrors(const TObservation& o, const TImageErrors&
 
 TWorstCase worstCaseError(const TObservation& o, const TPose2D& pose,
                           const std::vector<TLandmark>& lms, const TCameraRig& rig,
-                          const TImageErrors& e) {
+                          const TImageErrors& e,
+                          const std::function<bool(double, double)>& giveUp) {
     TWorstCase w;
     const TMeasurement z0 = predictMeasurement(o, pose, lms, rig);
     const auto p0 = solvePose(o, z0, lms, rig, pose);
@@ -374,6 +378,10 @@ TWorstCase worstCaseError(const TObservation& o, const TPose2D& pose,
             return w;
         w.ePos = std::max(w.ePos, std::hypot(p->x - pose.x, p->y - pose.y));
         w.dPhi = std::max(w.dPhi, std::abs(wrap(p->phi - pose.phi)));
+        if (giveUp && mask + 1 < (1u << n) && giveUp(w.ePos, w.dPhi)) {
+            w.gaveUp = true;
+            return w;
+        }
     }
     w.ok = true;
     return w;

@@ -91,8 +91,12 @@ class CViewpointPlanner {
     std::optional<std::pair<size_t, size_t>> optimal() const { return m_optimal; }
     size_t routeCount() const { return m_routeCount; }
 
-    /** Evaluates every observation at sample i of a path (worst cases, m_max). */
-    TPointEvaluation evaluate(const std::vector<TPathSample>& samples, size_t i) const;
+    /** Evaluates every observation at sample i of a path (worst cases,
+     * m_max). bestOnly: an observation's sign combinations stop as soon as
+     * it cannot beat the best found so far (the same best, much faster; the
+     * per-strategy bests and the degenerate count are then incomplete). */
+    TPointEvaluation evaluate(const std::vector<TPathSample>& samples, size_t i,
+                              bool bestOnly = false) const;
     /** Allowed error at a point: distance to the nearest obstacle minus R. */
     double allowedError(double x, double y) const;
     /** Plans the viewpoints of one path at margin S (used by plan()). */

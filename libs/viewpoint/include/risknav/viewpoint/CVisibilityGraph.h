@@ -66,12 +66,16 @@ class CVisibilityGraph {
 
     /** The k shortest simple paths start -> goal (Yen's algorithm, the shared
      * risknav::geometry code, on the directed tangent graph) as polylines;
-     * a path that passes one corner node twice (once each way round) is
-     * dropped. Empty when start or goal is not free or the goal cannot be
-     * reached. */
+     * a path that passes one corner node twice (once each way round), or
+     * that bends away from a corner it is tangent to, is dropped (Yen is
+     * asked for 3 k + 4 paths to make up for them). Empty when start or goal is not free
+     * or the goal cannot be reached. */
     std::vector<std::vector<mrpt::math::TPoint2D>> kShortestPaths(size_t k) const;
 
   private:
+    /** Does the path (split nodes) bend toward the obstacle at every corner? */
+    bool taut(const std::vector<size_t>& splitNodes) const;
+
     const TPolygonWorld& m_world;
     const geometry::CSegmentIndex& m_index;
     double m_d;

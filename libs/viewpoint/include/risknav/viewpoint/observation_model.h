@@ -5,6 +5,7 @@
 #include <mrpt/math/TPose2D.h>
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -121,12 +122,18 @@ std::vector<double> measurementErrors(const TObservation& o, const TImageErrors&
  * (e.g. robot and three landmarks on one circle or line), never NaN. */
 struct TWorstCase {
     bool ok = false;
-    double ePos = 0;  ///< [m]
-    double dPhi = 0;  ///< [rad]
+    bool gaveUp = false;  ///< stopped early by giveUp (not degenerate)
+    double ePos = 0;      ///< [m]
+    double dPhi = 0;      ///< [rad]
 };
-TWorstCase worstCaseError(const TObservation& o, const mrpt::math::TPose2D& pose,
-                          const std::vector<TLandmark>& lms, const TCameraRig& rig,
-                          const TImageErrors& e);
+/** giveUp(ePos, dPhi), when given, is asked after every sign combination
+ * with the largest errors so far (lower bounds of the final ones): true
+ * stops the evaluation (gaveUp, not ok), e.g. when the observation can no
+ * longer beat a better one already found. */
+TWorstCase worstCaseError(
+    const TObservation& o, const mrpt::math::TPose2D& pose,
+    const std::vector<TLandmark>& lms, const TCameraRig& rig, const TImageErrors& e,
+    const std::function<bool(double ePos, double dPhi)>& giveUp = {});
 
 /** E_ang,max(m): the position error after moving m with heading error dphi
  * (004 Fig. 6(b)): the chord 2 m sin(dphi / 2). */
