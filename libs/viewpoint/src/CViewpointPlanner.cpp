@@ -162,6 +162,8 @@ TPlanRow CViewpointPlanner::planPath(const std::vector<TPoint2D>& path, double S
     row.feasible = g.feasible;
     row.reach = g.reach;
     row.evaluations = g.evaluations;
+    for (const auto& [i, ev] : memo)
+        row.degenerate += ev.degenerate;
     // Where the plan fails: the sample at the reach.
     {
         size_t k = 0;

@@ -51,6 +51,7 @@ struct TPlanRow {
     mrpt::math::TPoint2D failAt;
     std::vector<TPlannedViewpoint> viewpoints;
     size_t evaluations = 0;  ///< strategy evaluations spent
+    size_t degenerate = 0;   ///< near-singular observations met (reported, never used)
 };
 
 struct TSweepPoint {

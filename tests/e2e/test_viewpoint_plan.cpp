@@ -1,0 +1,374 @@
+// End-to-end: risknav-viewpoint-plan on datasets/landmarks-*, the comparison
+// of robots R1 and R2 of Yamashita et al. (004 section V, Tables II/III) and
+// the maps beyond the paper's; bad input.
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/nav/reactive/TWaypoint.h>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include <filesystem>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "test_support.h"
+
+using namespace risknav::test;
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+json planRun(const std::string& ini, const std::string& out,
+             const std::string& extra = "") {
+    const auto r = run(binPath("risknav-viewpoint-plan") + " -q -o '" + out + "' " +
+                       extra + " '" + ini + "'");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return readJson(out + "/summary.json");
+}
+
+std::string twoRoutes(const std::string& robot) {
+    return sourcePath("datasets/landmarks-two-routes/" + robot + ".ini");
+}
+
+// Rows of a CSV file as maps column -> value.
+std::vector<std::map<std::string, std::string>> csvRows(const std::string& path) {
+    const auto lines = readLines(path);
+    std::vector<std::map<std::string, std::string>> rows;
+    auto split = [](const std::string& l) {
+        std::vector<std::string> c;
+        std::stringstream ss(l);
+        for (std::string t; std::getline(ss, t, ',');)
+            c.push_back(t);
+        return c;
+    };
+    const auto head = split(lines.at(0));
+    for (size_t i = 1; i < lines.size(); i++) {
+        if (lines[i].empty())
+            continue;
+        const auto c = split(lines[i]);
+        std::map<std::string, std::string> m;
+        for (size_t k = 0; k < head.size() && k < c.size(); k++)
+            m[head[k]] = c[k];
+        rows.push_back(m);
+    }
+    return rows;
+}
+}  // namespace
+
+TEST(ViewpointPlanE2E, R1TakesTheShortRouteR2TheLongOne) {
+    const json r1 = planRun(twoRoutes("r1"), freshDir("r1"));
+    const json r2 = planRun(twoRoutes("r2"), freshDir("r2"));
+    ASSERT_EQ(r1["status"], "ok");
+    ASSERT_EQ(r2["status"], "ok");
+    // Route 1 is the homotopy class of the shortest path (the lower corridor).
+    EXPECT_EQ(r1["optimal"]["route"], 1);
+    EXPECT_NE(r2["optimal"]["route"], 1);
+    EXPECT_GT(r2["optimal"]["length_m"].get<double>(),
+              r1["optimal"]["length_m"].get<double>() + 1.0);
+    // R1 needs few viewpoints on it, fewer than R2 on the long route.
+    EXPECT_LE(r1["optimal"]["viewpoints"].get<int>(), 6);
+    EXPECT_LT(r1["optimal"]["viewpoints"].get<int>(),
+              r2["optimal"]["viewpoints"].get<int>());
+    // R2 cannot take the short route at any S; R1 can from some S on, with
+    // fewer viewpoints as S grows (004 Table II's pattern).
+    int r1ShortFeasible = 0, prev = 1 << 30;
+    for (const auto& sp : r2["sweep"])
+        for (const auto& p : sp["paths"])
+            if (p["route"] == 1)
+                EXPECT_FALSE(p["feasible"].get<bool>()) << "R2, S " << sp["S"];
+    for (const auto& sp : r1["sweep"])
+        for (const auto& p : sp["paths"])
+            if (p["route"] == 1 && p["feasible"].get<bool>()) {
+                r1ShortFeasible++;
+                EXPECT_LE(p["viewpoints"].get<int>(), prev) << "S " << sp["S"];
+                prev = p["viewpoints"];
+            }
+    EXPECT_GE(r1ShortFeasible, 4);
+    // Small S is infeasible for both: the path hugs the obstacles, and the
+    // allowed error there is S.
+    for (const json* s : {&r1, &r2})
+        for (const auto& p : (*s)["sweep"][0]["paths"])
+            EXPECT_FALSE(p["feasible"].get<bool>());
+    // Every path keeps the allowed error >= S (C-obstacles grown by R + S).
+    for (const json* s : {&r1, &r2})
+        for (const auto& sp : (*s)["sweep"])
+            for (const auto& p : sp["paths"])
+                EXPECT_GE(p["min_allowed_error_m"].get<double>(),
+                          sp["S"].get<double>() - 1e-9);
+    // The worst-case errors bound a Monte Carlo of the image errors.
+    for (const json* s : {&r1, &r2}) {
+        EXPECT_GT((*s)["monte_carlo"]["draws"].get<int>(), 1000);
+        EXPECT_EQ((*s)["monte_carlo"]["failures"], 0);
+        EXPECT_LE((*s)["monte_carlo"]["max_ratio_position"].get<double>(), 1.0);
+        EXPECT_LE((*s)["monte_carlo"]["max_ratio_total"].get<double>(), 1.0);
+        EXPECT_GT((*s)["monte_carlo"]["max_ratio_total"].get<double>(), 0.5);  // tight
+    }
+}
+
+TEST(ViewpointPlanE2E, StrategiesFollowTheRuleAndThreeLandmarksAreUsed) {
+    // At every viewpoint the chosen observation is the one that lets the
+    // robot go furthest (eq. (1) at the distance it then travels); on the
+    // landmark-rich upper route the three-landmark observation is chosen
+    // where its geometry is good, and its error is then the smallest.
+    const std::string out = freshDir("r2");
+    const json s = planRun(twoRoutes("r2"), out);
+    std::map<std::string, std::vector<std::map<std::string, std::string>>> byVp;
+    for (const auto& r : csvRows(out + "/strategies.csv"))
+        byVp[r.at("viewpoint")].push_back(r);
+    ASSERT_EQ(byVp.size(), s["optimal"]["viewpoints"].get<size_t>());
+    int cChosen = 0, cAvailable = 0;
+    for (const auto& [vp, alts] : byVp) {
+        const std::map<std::string, std::string>* chosen = nullptr;
+        for (const auto& a : alts)
+            if (a.at("chosen") == "true")
+                chosen = &a;
+        ASSERT_TRUE(chosen) << "viewpoint " << vp;
+        for (const auto& a : alts)
+            EXPECT_GE(std::stod(chosen->at("reach_m")),
+                      std::stod(a.at("reach_m")) - 1e-12);
+        bool hasC = false;
+        for (const auto& a : alts)
+            hasC = hasC || a.at("strategy") == "C";
+        cAvailable += hasC;
+        if (chosen->at("strategy") == "C") {
+            cChosen++;
+            for (const auto& a : alts)
+                EXPECT_LE(std::stod(chosen->at("e_max_m")),
+                          std::stod(a.at("e_max_m")) + 1e-12);
+        }
+    }
+    EXPECT_GE(cAvailable, 3);
+    EXPECT_GE(cChosen, 1);
+    // The counts in summary.json are the CSV's.
+    EXPECT_EQ(s["optimal"]["strategies"]["C"].get<int>(), cChosen);
+}
+
+TEST(ViewpointPlanE2E, OutputsAreCompleteAndMrptReadsTheWaypoints) {
+    const std::string out = freshDir("r1");
+    const json s = planRun(twoRoutes("r1"), out);
+    for (const char* f : {"plan.png", "sweep.csv", "sweep.md", "strategies.csv",
+                          "waypoints.ini", "summary.json", "config_effective.ini"})
+        EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+    const cv::Mat img = cv::imread(out + "/plan.png");
+    ASSERT_FALSE(img.empty());
+    EXPECT_GT(img.cols, 600);
+    // sweep.csv: one row per (S, path).
+    size_t paths = 0;
+    for (const auto& sp : s["sweep"])
+        paths += sp["paths"].size();
+    EXPECT_EQ(csvRows(out + "/sweep.csv").size(), paths);
+    EXPECT_NE(readFile(out + "/sweep.md").find("(optimal)"), std::string::npos);
+    // MRPT's own TWaypointSequence reads the plan; the viewpoints are the
+    // waypoints that may not be skipped, in the [Viewpoints] section.
+    mrpt::config::CConfigFileMemory ini(readFile(out + "/waypoints.ini"));
+    mrpt::nav::TWaypointSequence seq;
+    seq.load(ini, "Waypoints");
+    ASSERT_EQ(seq.waypoints.size(), s["optimal"]["waypoints"].size());
+    size_t fixed = 0;
+    for (const auto& w : seq.waypoints)
+        fixed += !w.allow_skip;
+    EXPECT_EQ(fixed, s["optimal"]["viewpoints"].get<size_t>());
+    std::vector<std::string> keys;
+    ini.getAllKeys("Viewpoints", keys);
+    EXPECT_EQ(keys.size(), fixed);
+    EXPECT_NEAR(seq.waypoints.front().target.x, 0.45, 1e-9);
+    EXPECT_NEAR(seq.waypoints.back().target.x, 3.95, 1e-9);
+}
+
+TEST(ViewpointPlanE2E, EffectiveConfigAndSeedReproduceTheRun) {
+    const std::string a = freshDir("a"), b = freshDir("b");
+    planRun(twoRoutes("r2"), a, "--seed 7");
+    planRun(a + "/config_effective.ini", b);
+    EXPECT_EQ(readFile(a + "/sweep.csv"), readFile(b + "/sweep.csv"));
+    EXPECT_EQ(readFile(a + "/strategies.csv"), readFile(b + "/strategies.csv"));
+    const json ja = readJson(a + "/summary.json"), jb = readJson(b + "/summary.json");
+    EXPECT_EQ(ja["monte_carlo"], jb["monte_carlo"]);
+    EXPECT_EQ(jb["seed"], 7);
+    // One thread or two: the same plans.
+    const std::string c = freshDir("c");
+    planRun(twoRoutes("r2"), c, "--seed 7 --set ViewpointPlan.threads=1");
+    EXPECT_EQ(readFile(a + "/sweep.csv"), readFile(c + "/sweep.csv"));
+}
+
+TEST(ViewpointPlanE2E, MapsBeyondThePaper) {
+    // A room with pillars and a long corridor with sparse landmarks, both
+    // robots: feasible plans exist, keep the margin, and their bounds hold
+    // against the Monte Carlo; R2 never needs fewer viewpoints than R1.
+    for (const char* map : {"landmarks-pillars", "landmarks-corridor"}) {
+        json s[2];
+        for (int r = 0; r < 2; r++) {
+            s[r] = planRun(sourcePath(std::string("datasets/") + map + "/r" +
+                                      std::to_string(r + 1) + ".ini"),
+                           freshDir("m"));
+            ASSERT_EQ(s[r]["status"], "ok") << map;
+            EXPECT_LE(s[r]["monte_carlo"]["max_ratio_total"].get<double>(), 1.0) << map;
+            EXPECT_EQ(s[r]["monte_carlo"]["failures"], 0) << map;
+            for (const auto& sp : s[r]["sweep"])
+                for (const auto& p : sp["paths"])
+                    EXPECT_GE(p["min_allowed_error_m"].get<double>(),
+                              sp["S"].get<double>() - 1e-9);
+        }
+        EXPECT_GE(s[1]["optimal"]["viewpoints"].get<int>(),
+                  s[0]["optimal"]["viewpoints"].get<int>())
+            << map;
+    }
+}
+
+TEST(ViewpointPlanE2E, NoLandmarkVisibleIsReportedNotAnError) {
+    const std::string w = freshDir("w");
+    writeFile(w + "/world.txt", "bounds 0 0 6 3\nobstacle 2 0 3 0 3 1 2 1\n");
+    writeFile(w + "/p.ini",
+              "[ViewpointPlan]\nworld_file = world.txt\nstart_x = 0.5\nstart_y = 1.5\n"
+              "goal_x = 5.5\ngoal_y = 1.5\n[Robot]\nradius = 0.3\n");
+    const std::string out = freshDir("out");
+    const json s = planRun(w + "/p.ini", out);
+    EXPECT_EQ(s["status"], "no feasible plan");
+    EXPECT_TRUE(s["optimal"].is_null());
+    EXPECT_TRUE(fs::exists(out + "/plan.png"));
+    for (const auto& sp : s["sweep"]) {
+        ASSERT_FALSE(sp["paths"].empty());
+        for (const auto& p : sp["paths"])
+            EXPECT_FALSE(p["feasible"].get<bool>());
+    }
+}
+
+TEST(ViewpointPlanE2E, StartNearAnObstacleIsInfeasibleForLargeMarginsOnly) {
+    // The start 0.35 m from a wall, R = 0.3: free for S < 0.05, reported as
+    // "start within R + S" for the larger margins; exit 0.
+    const std::string w = freshDir("w");
+    fs::copy_file(sourcePath("datasets/landmarks-two-routes/world.txt"),
+                  w + "/world.txt");
+    std::string ini = readFile(twoRoutes("r1"));
+    ini = std::regex_replace(ini, std::regex("start_y = 0.6"), "start_y = 0.35");
+    writeFile(w + "/p.ini", ini);
+    const json s = planRun(w + "/p.ini", freshDir("out"));
+    int blocked = 0;
+    for (const auto& sp : s["sweep"]) {
+        const bool tooNear = sp["S"].get<double>() > 0.05 + 1e-9;
+        EXPECT_EQ(sp["start_free"].get<bool>(), !tooNear) << sp["S"];
+        if (tooNear) {
+            EXPECT_EQ(sp["note"], "start within R + S of an obstacle");
+            EXPECT_TRUE(sp["paths"].empty());
+            blocked++;
+        }
+    }
+    EXPECT_GE(blocked, 3);
+}
+
+TEST(ViewpointPlanE2E, CollinearLandmarksOnAWallGiveNoNaN) {
+    // Three (and more) landmarks in a row on one straight wall: the
+    // three-landmark geometry is fine off the wall's line and no number in
+    // the outputs is NaN or infinite.
+    const std::string w = freshDir("w");
+    writeFile(
+        w + "/world.txt",
+        "bounds 0 0 8 2\nlandmark A 2 2 -90\nlandmark B 2.2 2 -90\nlandmark C 2.4 2 -90\n"
+        "landmark D 4 2 -90\nlandmark E 4.2 2 -90\nlandmark F 6 2 -90\n"
+        "landmark G 6.2 2 -90\nlandmark H 6.4 2 -90\n");
+    writeFile(
+        w + "/p.ini",
+        "[ViewpointPlan]\nworld_file = world.txt\nstart_x = 0.5\nstart_y = 0.8\n"
+        "goal_x = 7.5\ngoal_y = 0.8\nsafety_margins = 0.05 0.1\n[Robot]\nradius = 0.3\n");
+    const std::string out = freshDir("out");
+    const json s = planRun(w + "/p.ini", out);
+    for (const char* f : {"sweep.csv", "strategies.csv"})
+        for (const auto& row : csvRows(out + "/" + f))
+            for (const auto& [col, v] : row)
+                EXPECT_TRUE(v != "nan" && v != "inf" && v != "-inf") << f << " " << col;
+    ASSERT_EQ(s["status"], "ok");
+    for (const auto& v : s["optimal"]["viewpoint_list"]) {
+        EXPECT_TRUE(v["e_pos_m"].is_number());  // a non-finite value would be null
+        EXPECT_TRUE(v["e_max_m"].is_number());
+    }
+    EXPECT_GE(s["optimal"]["strategies"]["C"].get<int>(), 1);
+}
+
+// Bad input: exit 2, one line naming the problem, earlier results untouched.
+namespace {
+struct TBad {
+    std::string name, world, iniFrom, iniTo, extra, expect;
+};
+std::ostream& operator<<(std::ostream& o, const TBad& b) {
+    return o << b.name;
+}
+class ViewpointPlanBadInput : public ::testing::TestWithParam<TBad> {};
+}  // namespace
+
+TEST_P(ViewpointPlanBadInput, ExitTwoOneLineOutputUntouched) {
+    const TBad& c = GetParam();
+    const std::string w = freshDir("w");
+    std::string world = readFile(sourcePath("datasets/landmarks-two-routes/world.txt"));
+    if (!c.world.empty())
+        world += c.world;
+    writeFile(w + "/world.txt", world);
+    std::string ini = readFile(twoRoutes("r1"));
+    if (!c.iniFrom.empty()) {
+        const std::string e = std::regex_replace(ini, std::regex(c.iniFrom), c.iniTo);
+        ASSERT_NE(e, ini) << "edit did not apply";
+        ini = e;
+    }
+    writeFile(w + "/p.ini", ini);
+    const std::string out = freshDir("out");
+    const TEarlierOutput earlier = {{"summary.json", "{\"earlier\": true}\n"},
+                                    {"plan.png", "not really a png"}};
+    writeEarlierOutput(out, earlier);
+    const auto r = run(binPath("risknav-viewpoint-plan") + " -q -o '" + out + "' " +
+                       c.extra + " '" + w + "/p.ini'");
+    expectBadInput(r, c.expect, out, earlier, "risknav-viewpoint-plan: error: ");
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    ViewpointPlan, ViewpointPlanBadInput,
+    ::testing::Values(
+        TBad{"start_inside_obstacle", "", "start_x = 0.45\nstart_y = 0.6",
+             "start_x = 2.0\nstart_y = 1.2", "",
+             "[ViewpointPlan] start_x = '2': the start (2, 1.2) lies inside an obstacle"},
+        TBad{"goal_too_near", "", "goal_y = 0.6", "goal_y = 0.2", "",
+             "the goal (3.95, 0.2) is nearer an obstacle than the robot radius 0.3 m"},
+        TBad{"start_outside", "", "start_x = 0.45", "start_x = -3", "",
+             "lies inside an obstacle or outside the bounds"},
+        TBad{"landmark_inside_obstacle", "landmark X 2.0 1.2 90\n", "", "", "",
+             "world.txt: landmark 'X' lies inside an obstacle or faces into its wall"},
+        TBad{"landmark_facing_wall", "landmark Y 0.0 1.5 180\n", "", "", "",
+             "landmark 'Y' lies inside an obstacle or faces into its wall"},
+        TBad{"malformed_polygon", "obstacle 3 3 3.2 3\n", "", "", "",
+             "world.txt:25: obstacle: a polygon needs >= 3 vertices"},
+        TBad{"self_crossing_polygon", "obstacle 0.2 2.5 0.6 2.9 0.6 2.5 0.2 2.9\n", "",
+             "", "", "world.txt:25: obstacle: the polygon is not simple"},
+        TBad{"not_a_number", "landmark Z 1.0 3.4 -90 0.05x\n", "", "", "",
+             "world.txt:25: landmark: RADIUS '0.05x' is not a decimal number"},
+        TBad{"unknown_keyword", "door 1 2 3\n", "", "", "",
+             "world.txt:25: unknown keyword 'door'"},
+        TBad{"missing_world", "", "world_file = world.txt", "world_file = nowhere.txt",
+             "", "nowhere.txt"},
+        TBad{"unknown_key", "", "k_paths = 10", "k_paths = 10\nk_path = 3", "",
+             "unknown key [ViewpointPlan] k_path"},
+        TBad{"unknown_section", "", "\\[Robot\\]", "[Robots]", "",
+             "unknown section [Robots]"},
+        TBad{"k_paths_zero", "", "k_paths = 10", "k_paths = 0", "",
+             "[ViewpointPlan] k_paths = '0': must be in [1, 100]"},
+        TBad{"margin_negative", "", "safety_margins = 0.01", "safety_margins = -0.01", "",
+             "[ViewpointPlan] safety_margins"},
+        TBad{"dead_reckoning_hex", "", "", "", "--set ViewpointPlan.dead_reckoning=0x1",
+             "[ViewpointPlan] dead_reckoning"},
+        TBad{"focal_zero", "", "\\[Camera\\]", "[Camera]\nfocal_px = 0", "",
+             "[Camera] focal_px = '0'"},
+        TBad{"goal_equals_start", "", "goal_x = 3.95\ngoal_y = 0.6",
+             "goal_x = 0.45\ngoal_y = 0.6", "", "the goal must differ from the start"},
+        TBad{"missing_start", "", "start_x = 0.45\n", "", "", "start_x"}),
+    [](const ::testing::TestParamInfo<TBad>& i) { return i.param.name; });
+
+TEST(ViewpointPlanE2E, BinaryOrHugeWorldFilesAreRefused) {
+    const std::string w = freshDir("w");
+    writeFile(w + "/world.txt", std::string("bounds 0 0 1 1\n\0\x01\x02", 19));
+    writeFile(w + "/p.ini",
+              "[ViewpointPlan]\nworld_file = world.txt\nstart_x = 0.5\nstart_y = 0.5\n"
+              "goal_x = 0.6\ngoal_y = 0.5\n");
+    const std::string out = freshDir("out");
+    const auto r =
+        run(binPath("risknav-viewpoint-plan") + " -q -o '" + out + "' '" + w + "/p.ini'");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("binary data"), std::string::npos) << r.err;
+}
