@@ -276,6 +276,7 @@ json writeViewpointReport(const CViewpointPlanner& p, COutputDir& out) {
                  {"min_allowed_error_m", finite(row.minAllowed)},
                  {"strategies", {{"A", cnt[0]}, {"B", cnt[1]}, {"C", cnt[2]}}},
                  {"evaluations", row.evaluations},
+                 {"degenerate_observations", row.degenerate},
                  {"optimal", isOpt}});
         }
         std::string note;
