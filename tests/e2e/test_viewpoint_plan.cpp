@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <filesystem>
 #include <map>
@@ -283,6 +284,41 @@ TEST(ViewpointPlanE2E, CollinearLandmarksOnAWallGiveNoNaN) {
         EXPECT_TRUE(v["e_max_m"].is_number());
     }
     EXPECT_GE(s["optimal"]["strategies"]["C"].get<int>(), 1);
+}
+
+TEST(ViewpointPlanE2E, GridMapIsTracedIntoPolygons) {
+    // A 5 x 3 m room as a bitmap (10 cm walls all round, a 1 x 1 m block):
+    // the walls become one obstacle with a hole (the room), the block another;
+    // landmarks given on the walls' faces are moved onto the traced contour.
+    const std::string w = freshDir("w");
+    cv::Mat img(60, 100, CV_8UC1, cv::Scalar(255));
+    cv::rectangle(img, cv::Rect(0, 0, 100, 60), cv::Scalar(0), 2);  // 2 px = 10 cm
+    cv::rectangle(img, cv::Rect(40, 20, 20, 20), cv::Scalar(0), cv::FILLED);
+    ASSERT_TRUE(cv::imwrite(w + "/room.png", img));
+    writeFile(
+        w + "/landmarks.txt",
+        "landmark Bw 2.0 1.5 180\nlandmark Be 3.0 1.5 0\nlandmark Bs 2.5 1.0 -90\n"
+        "landmark Bn 2.5 2.0 90\nlandmark W1 0.1 1.3 0\nlandmark W2 0.1 1.6 0\n"
+        "landmark E1 4.9 1.3 180\nlandmark E2 4.9 1.6 180\nlandmark S1 1.2 0.1 90\n"
+        "landmark S2 3.8 0.1 90\nlandmark N1 1.2 2.9 -90\nlandmark N2 3.8 2.9 -90\n");
+    writeFile(w + "/p.ini",
+              "[ViewpointPlan]\nworld_file = landmarks.txt\nmap_file = room.png\n"
+              "map_resolution = 0.05\nstart_x = 0.7\nstart_y = 0.7\ngoal_x = 4.3\n"
+              "goal_y = 2.3\nsafety_margins = 0.05 0.1\n[Robot]\nradius = 0.3\n");
+    const std::string out = freshDir("out");
+    const json s = planRun(w + "/p.ini", out);
+    EXPECT_EQ(s["world"]["obstacles"], 2);
+    EXPECT_EQ(s["world"]["landmarks"], 12);
+    ASSERT_EQ(s["status"], "ok");
+    EXPECT_EQ(s["routes"], 2);  // round the block either way
+    for (const auto& sp : s["sweep"])
+        for (const auto& p : sp["paths"]) {
+            EXPECT_GE(p["min_allowed_error_m"].get<double>(),
+                      sp["S"].get<double>() - 1e-9);
+            // Never through the block or its 10 cm surroundings.
+            for (const auto& v : p["vertices"])
+                EXPECT_FALSE(v[0] > 1.9 && v[0] < 3.1 && v[1] > 0.9 && v[1] < 2.1);
+        }
 }
 
 // Bad input: exit 2, one line naming the problem, earlier results untouched.

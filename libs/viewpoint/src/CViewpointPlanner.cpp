@@ -42,6 +42,10 @@ void CViewpointPlanner::loadFromConfigFile(const CIniConfig& c) {
         }
         for (auto& o : obstaclesFromGrid(grid, options.rule, options.contour_tolerance))
             w.obstacles.push_back(std::move(o));
+        // The traced contour runs up to a cell and a half (dilation, cell
+        // centres) plus the simplification outside the wall the user put the
+        // landmark on.
+        snapLandmarksToWalls(w, 2.0 * grid.getResolution() + options.contour_tolerance);
     }
     validateWorld(w, options.world_file);
     m_world = std::move(w);

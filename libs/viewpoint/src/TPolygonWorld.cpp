@@ -4,6 +4,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -240,6 +241,41 @@ void validateWorld(const TPolygonWorld& w, const std::string& where) {
             throw CBadInputError(where + ": landmark '" + l.id +
                                  "' lies inside an obstacle or faces into its wall");
     }
+}
+
+size_t snapLandmarksToWalls(TPolygonWorld& w, double tolerance) {
+    const auto edges = w.edges();
+    size_t moved = 0;
+    for (auto& l : w.landmarks) {
+        const TPoint2D front{l.x + 1e-3 * std::cos(l.facing),
+                             l.y + 1e-3 * std::sin(l.facing)};
+        if (!w.insideObstacle(front))
+            continue;
+        double best = tolerance;
+        TPoint2D to{l.x, l.y};
+        for (const auto& e : edges) {
+            const double vx = e.b.x - e.a.x, vy = e.b.y - e.a.y, L2 = vx * vx + vy * vy;
+            const double t =
+                L2 > 0
+                    ? std::clamp(((l.x - e.a.x) * vx + (l.y - e.a.y) * vy) / L2, 0.0, 1.0)
+                    : 0;
+            const TPoint2D q{e.a.x + t * vx, e.a.y + t * vy};
+            const double d = std::hypot(q.x - l.x, q.y - l.y);
+            // Onto an edge whose outside the landmark faces.
+            const double outx = vy,
+                         outy = -vx;  // right of the edge: outside the obstacle
+            if (d <= best && outx * std::cos(l.facing) + outy * std::sin(l.facing) > 0) {
+                best = d;
+                to = q;
+            }
+        }
+        if (to.x != l.x || to.y != l.y) {
+            l.x = to.x;
+            l.y = to.y;
+            moved++;
+        }
+    }
+    return moved;
 }
 
 std::vector<TObstacle> obstaclesFromGrid(const mrpt::maps::COccupancyGridMap2D& g,

@@ -76,6 +76,13 @@ std::vector<TObstacle> obstaclesFromGrid(const mrpt::maps::COccupancyGridMap2D& 
                                          const mapping::TObstacleRule& rule,
                                          double tolerance);
 
+/** Landmarks given on a grid's walls sit up to a cell inside the traced
+ * contour (which runs outside the obstacle cells): each landmark whose front
+ * is inside an obstacle and that lies within `tolerance` [m] of an obstacle
+ * edge is moved onto the nearest edge point (its facing kept). Returns how
+ * many moved; the others are left for validateWorld() to refuse. */
+size_t snapLandmarksToWalls(TPolygonWorld& w, double tolerance);
+
 /** Limits of what a world file may ask for (memory and time stay bounded). */
 struct TWorldLimits {
     static constexpr size_t kMaxVertices = 200000;  ///< all rings together
