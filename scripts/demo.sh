@@ -16,6 +16,9 @@ done
 "$BIN/risknav-risk-eval" datasets/risk-two-routes/risk.ini --out "$OUT/risk-eval"
 "$BIN/risknav-afraid-learn" datasets/corridor-doors/afraid.ini --out "$OUT/afraid-learn"
 "$BIN/risknav-explore" datasets/office/explore.ini --out "$OUT/explore"
+for robot in r1 r2; do
+  "$BIN/risknav-viewpoint-plan" "datasets/landmarks-two-routes/$robot.ini" --out "$OUT/viewpoint-$robot"
+done
 
 echo
 echo "demo results in $OUT/:"
@@ -35,3 +38,5 @@ echo "  $OUT/afraid-learn/speed_mask.yaml   Nav2 Speed Filter mask of the zones"
 echo "  $OUT/explore/trace.png              adaptive vs fixed speeds through the unknown office"
 echo "  $OUT/explore/speed_profile.png      speed vs distance, coloured by what limited it"
 echo "  $OUT/explore/snapshots/             the free-space map and the plans where the speed changes"
+echo "  $OUT/viewpoint-r1/plan.png          robot R1's optimal path, viewpoints and strategies (short route)"
+echo "  $OUT/viewpoint-r2/plan.png          robot R2's (long route); sweep.md: the paper's Tables II/III"
