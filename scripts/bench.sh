@@ -93,3 +93,22 @@ for laps in 1 10; do
   echo "afraid-learn, $laps lap(s), $frames frames: wall ${r% *} s, peak RSS $(( ${r#* } / 1024 )) MB"
 done
 rm -rf "$tmp"
+
+# Viewpoint planner (M4): the full sweep (9 safety margins, k = 10 paths each,
+# viewpoints planned on all) on bench_viewpoint's generated 20 x 14 m world;
+# issue's target <= 500 ms on 2 cores. Medians of 5 runs.
+json=$(mktemp)
+build/bin/risknav_bench_viewpoint --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+    --benchmark_format=json --benchmark_out="$json" --benchmark_out_format=json >/dev/null
+python3 - "$json" <<'PY'
+import json, os, sys
+b = {x["run_name"].split("/")[0]: x for x in json.load(open(sys.argv[1]))["benchmarks"]
+     if x.get("aggregate_name") == "median"}
+full, one = b["BM_ViewpointFullSweep"], b["BM_ViewpointFullSweep_1Thread"]
+print("viewpoint full sweep, 50 obstacles, 30 landmarks: %.0f ms (%d threads), %.0f ms (1 thread)"
+      % (full["real_time"], os.cpu_count(), one["real_time"]))
+print("  %d of %d (S, path) plans feasible, at %d of 9 S; optimal plan: %s; visibility graph %d nodes at S = 20 mm"
+      % (full["feasible_plans"], full["total_paths"], full["S_with_feasible"],
+         "yes" if full["optimal"] else "none", full["graph_nodes_first_S"]))
+PY
+rm -f "$json"

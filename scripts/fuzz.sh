@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer targets of tests/fuzz (issue 9) for a bounded time each:
-#   scripts/fuzz.sh [SECONDS] [TARGET...]     (default 60 s, all four targets)
+#   scripts/fuzz.sh [SECONDS] [TARGET...]     (default 60 s, all five targets)
 # Installs clang if missing, builds into build-fuzz (clang, ASan+UBSan,
 # -DRISKNAV_BUILD_FUZZERS=ON; the normal build/ is not touched), seeds the
 # corpora from config/ and datasets/, runs each target in libFuzzer's fork
@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET=${1:-60}
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_config fuzz_rawlog fuzz_map fuzz_afraid)
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_config fuzz_rawlog fuzz_map fuzz_afraid fuzz_world)
 BUILD_DIR=${BUILD_DIR:-build-fuzz}
 W=$BUILD_DIR/fuzz
 
@@ -32,7 +32,7 @@ BIN=$BUILD_DIR/bin
 # ---- seed corpora (rebuilt every run; the fuzzers add what they find) ----
 S=$W/seeds
 rm -rf "$S"
-mkdir -p "$S"/{fuzz_config,fuzz_rawlog,fuzz_map,fuzz_afraid} "$W"/logs "$W"/helper
+mkdir -p "$S"/{fuzz_config,fuzz_rawlog,fuzz_map,fuzz_afraid,fuzz_world} "$W"/logs "$W"/helper
 for f in config/*.ini datasets/*/*.ini; do
     cp "$f" "$S/fuzz_config/$(echo "$f" | tr / _)"
 done
@@ -52,6 +52,14 @@ done
 { printf '\x03'; printf 'image: map.png\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 1\nmode: scale\n'; } >"$S/fuzz_map/yaml-scale"
 # .afraid: uncompressed content (what decode() reads) made by the helper.
 cp "$W"/helper/small-*.afraid "$S/fuzz_afraid/"
+# polygon worlds (viewpoint planner): every dataset's world.txt
+# (landmarks-two-routes, ...), and a small one with a hole, a landmark radius
+# and a trailing comment (lines the datasets may have none of).
+for f in datasets/*/world.txt; do
+    cp "$f" "$S/fuzz_world/$(echo "$f" | tr / _)"
+done
+printf '# hole\nbounds -1 -1 6 5\nobstacle 0 0 4 0 4 3 0 3\nhole 1 1 1 2 3 2 3 1\nlandmark A 2 1 90 0.1\nlandmark B 0 1.5 180 # outer face\n' \
+    >"$S/fuzz_world/hole.txt"
 
 max_len() {
     case $1 in
@@ -59,6 +67,7 @@ max_len() {
         fuzz_rawlog) echo 204800 ;;
         fuzz_map) echo 125000 ;;
         fuzz_afraid) echo 32768 ;;
+        fuzz_world) echo 16384 ;;
     esac
 }
 
