@@ -4,6 +4,7 @@
 #include <limits>
 #include <queue>
 #include <set>
+#include <tuple>
 
 namespace risknav::geometry {
 namespace {
@@ -19,23 +20,30 @@ TAdjacency adjacency(size_t n, const std::vector<TGraphEdge>& edges) {
     return adj;
 }
 
-// Dijkstra over a prebuilt adjacency (Yen's spur searches reuse one).
+// Dijkstra over a prebuilt adjacency (Yen's spur searches reuse one); A*
+// when a heuristic h (a consistent lower bound of the distance to target) is
+// given: the queue is ordered by dist + h, the paths found are the same
+// lengths.
 TGraphPath dijkstra(const TAdjacency& adj, const std::vector<TGraphEdge>& edges,
                     size_t source, size_t target, const std::vector<bool>& edgeRemoved,
-                    const std::vector<bool>& nodeRemoved) {
+                    const std::vector<bool>& nodeRemoved,
+                    const std::vector<double>& h = {}) {
     const size_t n = adj.size();
     const double inf = std::numeric_limits<double>::infinity();
     std::vector<double> dist(n, inf);
     std::vector<size_t> viaEdge(n, size_t(-1));
-    using Q = std::pair<double, size_t>;
+    // (dist + h, dist, node): dist kept as pushed (recomputing it as f - h
+    // would round and make a fresh entry look stale).
+    using Q = std::tuple<double, double, size_t>;
     std::priority_queue<Q, std::vector<Q>, std::greater<Q>> pq;
     TGraphPath p;
     if (nodeRemoved[source] || nodeRemoved[target])
         return p;
+    auto hOf = [&](size_t v) { return h.empty() ? 0.0 : h[v]; };
     dist[source] = 0;
-    pq.push({0, source});
+    pq.push({hOf(source), 0.0, source});
     while (!pq.empty()) {
-        const auto [d, u] = pq.top();
+        const auto [f, d, u] = pq.top();
         pq.pop();
         if (d > dist[u])
             continue;
@@ -47,11 +55,11 @@ TGraphPath dijkstra(const TAdjacency& adj, const std::vector<TGraphEdge>& edges,
             const size_t v = edges[e].a == u ? edges[e].b : edges[e].a;
             if (nodeRemoved[v])
                 continue;
-            const double nd = d + edges[e].length;
+            const double nd = dist[u] + edges[e].length;
             if (nd < dist[v]) {
                 dist[v] = nd;
                 viaEdge[v] = e;
-                pq.push({nd, v});
+                pq.push({nd + hOf(v), nd, v});
             }
         }
     }
@@ -84,11 +92,12 @@ TGraphPath shortestPath(size_t n, const std::vector<TGraphEdge>& edges, size_t s
 }
 
 std::vector<TGraphPath> kShortestPaths(size_t n, const std::vector<TGraphEdge>& edges,
-                                       size_t source, size_t target, size_t k) {
+                                       size_t source, size_t target, size_t k,
+                                       const std::vector<double>& heuristic) {
     std::vector<TGraphPath> A;
     std::vector<bool> noEdge(edges.size(), false), noNode(n, false);
     const TAdjacency adj = adjacency(n, edges);  // built once for every spur search
-    TGraphPath first = dijkstra(adj, edges, source, target, noEdge, noNode);
+    TGraphPath first = dijkstra(adj, edges, source, target, noEdge, noNode, heuristic);
     if (first.nodes.empty() || k == 0)
         return A;
     A.push_back(first);
@@ -113,7 +122,7 @@ std::vector<TGraphPath> kShortestPaths(size_t n, const std::vector<TGraphEdge>& 
                 nr[last.nodes[j]] = true;
                 rootLen += edges[last.edges[j]].length;
             }
-            TGraphPath sp = dijkstra(adj, edges, spur, target, er, nr);
+            TGraphPath sp = dijkstra(adj, edges, spur, target, er, nr, heuristic);
             if (sp.nodes.empty())
                 continue;
             TGraphPath total;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 using mrpt::math::TPoint2D;
 
@@ -84,29 +85,49 @@ bool ringIsSimple(const std::vector<TPoint2D>& r) {
     const size_t n = r.size();
     if (n < 3)
         return false;
-    for (size_t i = 0; i < n; i++)
-        if (r[i].x == r[(i + 1) % n].x && r[i].y == r[(i + 1) % n].y)
+    auto pt = [&](size_t i) -> const TPoint2D& { return r[i % n]; };
+    // Zero-length edges, and adjacent edges folding back onto each other
+    // (collinear and overlapping): one pass.
+    for (size_t i = 0; i < n; i++) {
+        const TPoint2D &a = pt(i), &b = pt(i + 1), &c = pt(i + 2);
+        if (a.x == b.x && a.y == b.y)
             return false;
-    for (size_t i = 0; i < n; i++)
-        for (size_t j = i + 1; j < n; j++) {
-            const bool adjacent = j == i + 1 || (i == 0 && j == n - 1);
-            const auto &a = r[i], &b = r[(i + 1) % n], &c = r[j], &d = r[(j + 1) % n];
-            if (adjacent) {
-                // Adjacent edges share one vertex; they may not fold back onto
-                // each other (collinear and overlapping).
-                const TPoint2D& shared = j == i + 1 ? b : a;
-                const TPoint2D& far1 = j == i + 1 ? a : b;
-                const TPoint2D& far2 = j == i + 1 ? d : c;
-                if (orient(far1, shared, far2) == 0 &&
-                    (far2.x - shared.x) * (far1.x - shared.x) +
-                            (far2.y - shared.y) * (far1.y - shared.y) >
-                        0)
+        if (orient(a, b, c) == 0 &&
+            (c.x - b.x) * (a.x - b.x) + (c.y - b.y) * (a.y - b.y) > 0)
+            return false;
+    }
+    // Non-adjacent edges may not meet. Edges are bucketed in a grid of about
+    // n cells over the ring's box, and only edges sharing a cell are tested:
+    // O(n) for ordinary polygons (the input limits keep the worst case, every
+    // edge through one cell, bounded).
+    double x0 = r[0].x, x1 = x0, y0 = r[0].y, y1 = y0;
+    for (const auto& p : r) {
+        x0 = std::min(x0, p.x);
+        x1 = std::max(x1, p.x);
+        y0 = std::min(y0, p.y);
+        y1 = std::max(y1, p.y);
+    }
+    const int G = std::max(1, int(std::ceil(std::sqrt(double(n)))));
+    const double cw = std::max((x1 - x0) / G, 1e-300),
+                 ch = std::max((y1 - y0) / G, 1e-300);
+    auto cx = [&](double x) { return std::clamp(int((x - x0) / cw), 0, G - 1); };
+    auto cy = [&](double y) { return std::clamp(int((y - y0) / ch), 0, G - 1); };
+    std::vector<std::vector<uint32_t>> cells(size_t(G) * size_t(G));
+    for (size_t i = 0; i < n; i++) {
+        const TPoint2D &a = pt(i), &b = pt(i + 1);
+        for (int y = cy(std::min(a.y, b.y)); y <= cy(std::max(a.y, b.y)); y++)
+            for (int x = cx(std::min(a.x, b.x)); x <= cx(std::max(a.x, b.x)); x++)
+                cells[size_t(y) * size_t(G) + size_t(x)].push_back(uint32_t(i));
+    }
+    for (const auto& c : cells)
+        for (size_t u = 0; u < c.size(); u++)
+            for (size_t v = u + 1; v < c.size(); v++) {
+                const size_t i = std::min(c[u], c[v]), j = std::max(c[u], c[v]);
+                if (j == i + 1 || (i == 0 && j == n - 1))
+                    continue;  // adjacent: they share a vertex
+                if (segmentsIntersect(pt(i), pt(i + 1), pt(j), pt(j + 1)))
                     return false;
-                continue;
             }
-            if (segmentsIntersect(a, b, c, d))
-                return false;
-        }
     return true;
 }
 

@@ -152,25 +152,37 @@ std::vector<std::vector<TPoint2D>> CVisibilityGraph::kShortestPaths(size_t k) co
     std::vector<std::vector<TPoint2D>> out;
     if (!m_startFree || !m_goalFree)
         return out;
-    // More than k: paths that pass a corner both ways round, or bend away
-    // from the obstacle they are said to wrap, are dropped.
-    const auto paths = geometry::kShortestPaths(2 * m_nodes.size(), m_directed,
-                                                2 * m_start, 2 * m_goal, 3 * k + 4);
-    for (const auto& p : paths) {
-        std::vector<size_t> phys;
-        for (size_t v : p.nodes)
-            phys.push_back(v / 2);
-        std::vector<size_t> sorted = phys;
-        std::sort(sorted.begin(), sorted.end());
-        if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-            continue;
-        if (!taut(p.nodes))
-            continue;
-        std::vector<TPoint2D> poly;
-        for (size_t v : phys)
-            poly.push_back(m_nodes[v].p);
-        out.push_back(std::move(poly));
-        if (out.size() == k)
+    // Paths that pass a corner both ways round, or bend away from the
+    // obstacle they are said to wrap, are dropped: ask Yen for a few more
+    // than k, and for twice as many again while too many were dropped and
+    // more exist.
+    // A*: the straight-line distance to the goal bounds every split node's.
+    std::vector<double> h(2 * m_nodes.size());
+    const TPoint2D& g = m_nodes[m_goal].p;
+    for (size_t v = 0; v < h.size(); v++)
+        h[v] = std::hypot(m_nodes[v / 2].p.x - g.x, m_nodes[v / 2].p.y - g.y);
+    for (size_t want = 2 * k + 4;; want *= 2) {
+        out.clear();
+        const auto paths = geometry::kShortestPaths(2 * m_nodes.size(), m_directed,
+                                                    2 * m_start, 2 * m_goal, want, h);
+        for (const auto& p : paths) {
+            std::vector<size_t> phys;
+            for (size_t v : p.nodes)
+                phys.push_back(v / 2);
+            std::vector<size_t> sorted = phys;
+            std::sort(sorted.begin(), sorted.end());
+            if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+                continue;
+            if (!taut(p.nodes))
+                continue;
+            std::vector<TPoint2D> poly;
+            for (size_t v : phys)
+                poly.push_back(m_nodes[v].p);
+            out.push_back(std::move(poly));
+            if (out.size() == k)
+                break;
+        }
+        if (out.size() == k || paths.size() < want || want > 16 * (k + 4))
             break;
     }
     return out;

@@ -149,9 +149,11 @@ TPolygonWorld parsePolygonWorld(const std::string& text, const std::string& wher
                 fail(where, lineNo, kw + ": an odd number of coordinates (x y pairs)");
             if (tok.size() < 7)
                 fail(where, lineNo, kw + ": a polygon needs >= 3 vertices");
+            if ((tok.size() - 1) / 2 > TWorldLimits::kMaxRingVertices)
+                fail(where, lineNo, kw + ": more than 10000 vertices in one polygon");
             vertices += (tok.size() - 1) / 2;
             if (vertices > TWorldLimits::kMaxVertices)
-                fail(where, lineNo, "more than 200000 polygon vertices in all");
+                fail(where, lineNo, "more than 100000 polygon vertices in all");
             TRing r;
             for (size_t i = 1; i < tok.size(); i += 2)
                 r.push_back({number(i, "x"), number(i + 1, "y")});
@@ -223,11 +225,22 @@ void validateWorld(const TPolygonWorld& w, const std::string& where) {
     auto inBounds = [&](const TPoint2D& p) {
         return p.x >= w.xMin && p.x <= w.xMax && p.y >= w.yMin && p.y <= w.yMax;
     };
-    for (size_t i = 0; i < w.obstacles.size(); i++)
-        for (const auto& p : w.obstacles[i].outer)
+    for (size_t i = 0; i < w.obstacles.size(); i++) {
+        const auto& o = w.obstacles[i];
+        const std::string name = where + ": obstacle " + std::to_string(i + 1);
+        if (!geometry::ringIsSimple(o.outer))
+            throw CBadInputError(name + " is not a simple polygon");
+        for (const auto& p : o.outer)
             if (!inBounds(p))
-                throw CBadInputError(where + ": obstacle " + std::to_string(i + 1) +
-                                     " reaches outside the bounds");
+                throw CBadInputError(name + " reaches outside the bounds");
+        for (const auto& h : o.holes) {
+            if (!geometry::ringIsSimple(h))
+                throw CBadInputError(name + ": a hole is not a simple polygon");
+            for (const auto& p : h)
+                if (!geometry::pointInRing(o.outer, p))
+                    throw CBadInputError(name + ": a hole reaches outside it");
+        }
+    }
     std::set<std::string> ids;
     for (const auto& l : w.landmarks) {
         if (!ids.insert(l.id).second)

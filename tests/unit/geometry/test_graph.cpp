@@ -106,6 +106,37 @@ TEST(KShortestPaths, DirectedEdgesMatchExhaustiveEnumeration) {
     EXPECT_GT(nonEmpty, 20);
 }
 
+TEST(KShortestPaths, AStarHeuristicGivesTheSameLengths) {
+    // Random points in the plane, edges between near ones (lengths = the
+    // distance), the straight line to the target as the heuristic.
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(0, 10);
+    std::bernoulli_distribution directed(0.5);
+    for (int g = 0; g < 30; g++) {
+        const size_t n = 40;
+        std::vector<double> x(n), y(n);
+        for (size_t i = 0; i < n; i++) {
+            x[i] = u(rng);
+            y[i] = u(rng);
+        }
+        std::vector<TGraphEdge> edges;
+        for (size_t i = 0; i < n; i++)
+            for (size_t j = 0; j < n; j++)
+                if (i != j && std::hypot(x[i] - x[j], y[i] - y[j]) < 2.5 &&
+                    (i < j || directed(rng)))
+                    edges.push_back({i, j, std::hypot(x[i] - x[j], y[i] - y[j]), i > j});
+        std::vector<double> h(n);
+        for (size_t i = 0; i < n; i++)
+            h[i] = std::hypot(x[i] - x[n - 1], y[i] - y[n - 1]);
+        const auto plain = kShortestPaths(n, edges, 0, n - 1, 8);
+        const auto astar = kShortestPaths(n, edges, 0, n - 1, 8, h);
+        ASSERT_EQ(plain.size(), astar.size()) << "graph " << g;
+        for (size_t i = 0; i < plain.size(); i++)
+            EXPECT_NEAR(plain[i].length, astar[i].length, 1e-9)
+                << "graph " << g << " path " << i;
+    }
+}
+
 TEST(KShortestPaths, Unreachable) {
     EXPECT_TRUE(kShortestPaths(4, {{0, 1, 1.0}, {2, 3, 1.0}}, 0, 3, 3).empty());
 }

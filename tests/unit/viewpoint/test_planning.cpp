@@ -328,6 +328,65 @@ TEST(Greedy, StraightCorridorWithEvenlySpacedLandmarks) {
     EXPECT_TRUE(!rn.feasible || rn.viewpoints.size() > row.viewpoints.size());
 }
 
+TEST(World, RingSimplicityMatchesBruteForce) {
+    // The bucketed test against every pair of non-adjacent edges.
+    auto brute = [](const std::vector<TPoint2D>& r) {
+        const size_t n = r.size();
+        for (size_t i = 0; i < n; i++) {
+            const auto &a = r[i], &b = r[(i + 1) % n], &c = r[(i + 2) % n];
+            if (a.x == b.x && a.y == b.y)
+                return false;
+            if (risknav::geometry::orient(a, b, c) == 0 &&
+                (c.x - b.x) * (a.x - b.x) + (c.y - b.y) * (a.y - b.y) > 0)
+                return false;
+            for (size_t j = i + 2; j < n; j++) {
+                if (i == 0 && j == n - 1)
+                    continue;
+                if (risknav::geometry::segmentsIntersect(a, b, r[j], r[(j + 1) % n]))
+                    return false;
+            }
+        }
+        return true;
+    };
+    std::mt19937_64 rng(21);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::uniform_int_distribution<int> grid(0, 6);
+    int simple = 0, notSimple = 0;
+    for (int t = 0; t < 3000; t++) {
+        const size_t n = 3 + size_t(t % 9);
+        std::vector<TPoint2D> r;
+        if (t % 3 == 0) {
+            // Star-shaped (simple unless points coincide) with jitter.
+            for (size_t i = 0; i < n; i++) {
+                const double a = 2 * M_PI * (double(i) + 0.3 * u(rng)) / double(n);
+                const double rad = 0.5 + u(rng);
+                r.push_back({rad * std::cos(a), rad * std::sin(a)});
+            }
+        } else
+            for (size_t i = 0; i < n; i++)  // on a coarse lattice: collinear cases
+                r.push_back({double(grid(rng)), double(grid(rng))});
+        const bool b = brute(r);
+        EXPECT_EQ(risknav::geometry::ringIsSimple(r), b) << "case " << t;
+        (b ? simple : notSimple)++;
+    }
+    EXPECT_GT(simple, 500);
+    EXPECT_GT(notSimple, 500);
+    // A 10000-vertex circle (the per-polygon limit) is simple, and one more
+    // vertex than the limit is refused by the reader.
+    std::string line = "bounds 0 0 100 100\nobstacle";
+    std::vector<TPoint2D> circle;
+    for (int i = 0; i < 10000; i++) {
+        const double a = 2 * M_PI * i / 10000;
+        circle.push_back({50 + 40 * std::cos(a), 50 + 40 * std::sin(a)});
+        line +=
+            " " + std::to_string(circle.back().x) + " " + std::to_string(circle.back().y);
+    }
+    EXPECT_TRUE(risknav::geometry::ringIsSimple(circle));
+    EXPECT_NO_THROW(parsePolygonWorld(line + "\n", "w.txt"));
+    EXPECT_THROW(parsePolygonWorld(line + " 50 50.5\n", "w.txt"),
+                 risknav::common::CBadInputError);
+}
+
 TEST(World, ReaderAcceptsTheFormatAndOrientsRings) {
     const auto w = parsePolygonWorld(
         "# comment\nbounds 0 0 10 5\nobstacle 1 1 1 2 2 2 2 1  # clockwise\n"

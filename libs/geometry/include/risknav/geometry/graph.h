@@ -40,9 +40,15 @@ TGraphPath shortestPath(size_t nNodes, const std::vector<TGraphEdge>& edges,
 /** Yen's algorithm: the k shortest loopless paths from source to target, in
  * increasing length (ties in a deterministic order). Fewer if fewer exist.
  * (Yen 1971; the k-shortest-paths answer Yamashita et al. (M4) ask for, also
- * used for the GVG candidates of Irie et al. (M2).) */
+ * used for the GVG candidates of Irie et al. (M2).) `heuristic`, when not
+ * empty, holds per node a consistent lower bound of its distance to target
+ * (h(u) <= length(u, v) + h(v), h(target) = 0; e.g. the straight-line
+ * distance in a geometric graph): the spur searches are then A*, which finds
+ * the same lengths and visits far fewer nodes (equal-length paths may come
+ * in another order). */
 std::vector<TGraphPath> kShortestPaths(size_t nNodes,
                                        const std::vector<TGraphEdge>& edges,
-                                       size_t source, size_t target, size_t k);
+                                       size_t source, size_t target, size_t k,
+                                       const std::vector<double>& heuristic = {});
 
 }  // namespace risknav::geometry

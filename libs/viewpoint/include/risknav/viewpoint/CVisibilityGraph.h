@@ -68,7 +68,9 @@ class CVisibilityGraph {
      * risknav::geometry code, on the directed tangent graph) as polylines;
      * a path that passes one corner node twice (once each way round), or
      * that bends away from a corner it is tangent to, is dropped (Yen is
-     * asked for 3 k + 4 paths to make up for them). Empty when start or goal is not free
+     * asked for 2 k + 4 paths, then twice as many while that leaves fewer
+     * than k, up to 16 (k + 4)); its spur searches are A* with the
+     * straight-line distance to the goal. Empty when start or goal is not free
      * or the goal cannot be reached. */
     std::vector<std::vector<mrpt::math::TPoint2D>> kShortestPaths(size_t k) const;
 

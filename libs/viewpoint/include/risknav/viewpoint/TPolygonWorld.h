@@ -59,8 +59,9 @@ struct TPolygonWorld {
 TPolygonWorld parsePolygonWorld(const std::string& text, const std::string& where,
                                 bool requireBounds = true);
 TPolygonWorld loadPolygonWorld(const std::string& path, bool requireBounds = true);
-/** The checks of the whole world: bounds with positive area; every obstacle
- * simple, inside the bounds, holes inside their obstacle; every landmark
+/** The checks of the whole world (also of one built in code): bounds with
+ * positive area; every ring simple, obstacles inside the bounds, holes
+ * inside their obstacle; every landmark
  * inside the bounds with a unique id and its front (1 mm along its facing)
  * in free space (not inside an obstacle, not facing into its wall). */
 void validateWorld(const TPolygonWorld& w, const std::string& where);
@@ -85,7 +86,8 @@ size_t snapLandmarksToWalls(TPolygonWorld& w, double tolerance);
 
 /** Limits of what a world file may ask for (memory and time stay bounded). */
 struct TWorldLimits {
-    static constexpr size_t kMaxVertices = 200000;  ///< all rings together
+    static constexpr size_t kMaxVertices = 100000;     ///< all rings together
+    static constexpr size_t kMaxRingVertices = 10000;  ///< one polygon
     static constexpr size_t kMaxLandmarks = 2000;
     static constexpr double kMaxCoordinate = 1e5;  ///< [m]
 };
