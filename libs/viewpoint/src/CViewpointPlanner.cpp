@@ -9,8 +9,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <exception>
 #include <functional>
 #include <map>
+#include <mutex>
 #include <random>
 #include <thread>
 
@@ -192,23 +194,32 @@ void CViewpointPlanner::plan() {
     const TPoint2D start{options.start_x, options.start_y},
         goal{options.goal_x, options.goal_y};
     std::atomic<size_t> next{0};
+    std::mutex failMutex;
+    std::exception_ptr failure;  // the first worker's exception, rethrown after the join
     auto work = [&]() {
-        for (size_t k; (k = next++) < m_sweep.size();) {
-            TSweepPoint& sp = m_sweep[k];
-            sp.S = options.safety_margins[k];
-            const CVisibilityGraph g(m_world, m_index, robot.radius + sp.S,
-                                     options.corner_segments, start, goal);
-            sp.startFree = g.startFree();
-            sp.goalFree = g.goalFree();
-            sp.nodes = g.nodes().size();
-            sp.edges = g.edges().size();
-            for (const auto& e : g.edges())
-                sp.graphEdges.push_back({g.nodes()[e.a].p, g.nodes()[e.b].p});
-            const auto paths = g.kShortestPaths(size_t(options.k_paths));
-            for (size_t r = 0; r < paths.size(); r++) {
-                sp.rows.push_back(planPath(paths[r], sp.S));
-                sp.rows.back().rank = r;
+        try {
+            for (size_t k; (k = next++) < m_sweep.size();) {
+                TSweepPoint& sp = m_sweep[k];
+                sp.S = options.safety_margins[k];
+                const CVisibilityGraph g(m_world, m_index, robot.radius + sp.S,
+                                         options.corner_segments, start, goal);
+                sp.startFree = g.startFree();
+                sp.goalFree = g.goalFree();
+                sp.nodes = g.nodes().size();
+                sp.edges = g.edges().size();
+                for (const auto& e : g.edges())
+                    sp.graphEdges.push_back({g.nodes()[e.a].p, g.nodes()[e.b].p});
+                const auto paths = g.kShortestPaths(size_t(options.k_paths));
+                for (size_t r = 0; r < paths.size(); r++) {
+                    sp.rows.push_back(planPath(paths[r], sp.S));
+                    sp.rows.back().rank = r;
+                }
             }
+        } catch (...) {
+            const std::lock_guard<std::mutex> lock(failMutex);
+            if (!failure)
+                failure = std::current_exception();
+            next = m_sweep.size();  // the others stop too
         }
     };
     const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
@@ -220,6 +231,8 @@ void CViewpointPlanner::plan() {
     work();
     for (auto& t : pool)
         t.join();
+    if (failure)
+        std::rethrow_exception(failure);
     assignRoutes();
     // 004 section II: safe paths only; the shortest; then the fewest viewpoints;
     // then the larger margin (safer at the same cost).
