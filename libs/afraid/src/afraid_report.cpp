@@ -340,7 +340,6 @@ void runAfraidLearnApp(const TAppContext& ctx) {
     summary.update(writeAfraidReport(l, out));
     mrpt::config::CConfigFileMemory effective;
     l.saveToConfigFile(effective);
-    out.writeText("config_effective.ini", effectiveConfigText(ctx.cfg.path(), effective));
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     summary["timing"] = {{"wall_time_s", wall},
@@ -348,10 +347,7 @@ void runAfraidLearnApp(const TAppContext& ctx) {
                          {"frames_per_s", l.frames() && l.replaySeconds() > 0
                                               ? json(l.frames() / l.replaySeconds())
                                               : json(nullptr)}};
-    summary["outputs"] = out.stagedNames();
-    summary["outputs"].push_back("summary.json");
-    out.writeText("summary.json", jsonText(summary));
-    out.commit();
+    commitRun(ctx, out, summary, effective);
     // Without a route (a merge-only run, or too few localized frames) there is
     // no profile.png and speed.png: an earlier run's are removed, so that the
     // folder does not mix runs.

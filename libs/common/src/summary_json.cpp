@@ -1,3 +1,4 @@
+#include <risknav/common/config_read.h>
 #include <risknav/common/summary_json.h>
 #include <risknav/common/version.h>
 
@@ -15,6 +16,15 @@ nlohmann::json summaryHeader(const TAppContext& ctx, uint64_t seed) {
     j["overrides"] = ctx.args.sets;
     j["seed"] = seed;
     return j;
+}
+
+void commitRun(const TAppContext& ctx, COutputDir& out, nlohmann::json& summary,
+               const mrpt::config::CConfigFileMemory& effective) {
+    out.writeText("config_effective.ini", effectiveConfigText(ctx.cfg.path(), effective));
+    summary["outputs"] = out.stagedNames();
+    summary["outputs"].push_back("summary.json");
+    out.writeText("summary.json", jsonText(summary));
+    out.commit();
 }
 
 std::string jsonText(const nlohmann::json& j) {

@@ -334,16 +334,12 @@ void runRiskEvalApp(const TAppContext& ctx) {
     ev.evaluate();
     json summary = summaryHeader(ctx, ev.options.seed);
     summary.update(writeRiskReport(ev, out));
-    mrpt::config::CConfigFileMemory effective;
-    ev.saveToConfigFile(effective);
-    out.writeText("config_effective.ini", effectiveConfigText(ctx.cfg.path(), effective));
-    summary["outputs"] = out.stagedNames();
-    summary["outputs"].push_back("summary.json");
     summary["timing"] = {
         {"wall_time_s",
          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()}};
-    out.writeText("summary.json", jsonText(summary));
-    out.commit();
+    mrpt::config::CConfigFileMemory effective;
+    ev.saveToConfigFile(effective);
+    commitRun(ctx, out, summary, effective);
     if (!ctx.args.quiet) {
         if (ev.best() >= 0) {
             const auto& b = ev.rows()[size_t(ev.best())];

@@ -496,17 +496,13 @@ void runViewpointPlanApp(const TAppContext& ctx) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     json summary = summaryHeader(ctx, planner.options.seed);
     summary.update(writeViewpointReport(planner, out));
-    mrpt::config::CConfigFileMemory effective;
-    planner.saveToConfigFile(effective);
-    out.writeText("config_effective.ini", effectiveConfigText(ctx.cfg.path(), effective));
-    summary["outputs"] = out.stagedNames();
-    summary["outputs"].push_back("summary.json");
     summary["timing"] = {
         {"plan_s", planSeconds},
         {"wall_time_s",
          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()}};
-    out.writeText("summary.json", jsonText(summary));
-    out.commit();
+    mrpt::config::CConfigFileMemory effective;
+    planner.saveToConfigFile(effective);
+    commitRun(ctx, out, summary, effective);
     if (!ctx.args.quiet) {
         if (const auto o = planner.optimal()) {
             const auto& r = planner.sweep()[o->first].rows[o->second];
