@@ -366,9 +366,9 @@ INSTANTIATE_TEST_SUITE_P(
         TBad{"start_outside", "", "start_x = 0.45", "start_x = -3", "",
              "lies inside an obstacle or outside the bounds"},
         TBad{"landmark_inside_obstacle", "landmark X 2.0 1.2 90\n", "", "", "",
-             "world.txt: landmark 'X' lies inside an obstacle or faces into its wall"},
+             "world.txt:25: landmark 'X' lies inside an obstacle or faces into its wall"},
         TBad{"landmark_facing_wall", "landmark Y 0.0 1.5 180\n", "", "", "",
-             "landmark 'Y' lies inside an obstacle or faces into its wall"},
+             "world.txt:25: landmark 'Y' lies inside an obstacle or faces into its wall"},
         TBad{"malformed_polygon", "obstacle 3 3 3.2 3\n", "", "", "",
              "world.txt:25: obstacle: a polygon needs >= 3 vertices"},
         TBad{"self_crossing_polygon", "obstacle 0.2 2.5 0.6 2.9 0.6 2.5 0.2 2.9\n", "",
@@ -393,8 +393,58 @@ INSTANTIATE_TEST_SUITE_P(
              "[Camera] focal_px = '0'"},
         TBad{"goal_equals_start", "", "goal_x = 3.95\ngoal_y = 0.6",
              "goal_x = 0.45\ngoal_y = 0.6", "", "the goal must differ from the start"},
-        TBad{"missing_start", "", "start_x = 0.45\n", "", "", "start_x"}),
+        TBad{"missing_start", "", "start_x = 0.45\n", "", "", "start_x"},
+        TBad{"landmark_id_with_plus", "landmark A+B 1.0 3.4 -90\n", "", "", "",
+             "world.txt:25: landmark: ID 'A+B' must be 1 to 64 of"},
+        TBad{"landmark_id_twice", "landmark W0 1.0 3.4 -90\n", "", "", "",
+             "world.txt:25: landmark 'W0': the id is given twice"},
+        TBad{"facing_huge", "landmark Q 1.0 3.4 1e9\n", "", "", "",
+             "FACING_DEG '1e9' is beyond +-1e5 deg"},
+        TBad{"margins_twice", "", "safety_margins = 0.01 0.02",
+             "safety_margins = 0.02 0.02", "",
+             "[ViewpointPlan] safety_margins = '0.02': each margin at most once"}),
     [](const ::testing::TestParamInfo<TBad>& i) { return i.param.name; });
+
+TEST(ViewpointPlanE2E, WorkTheInputCannotJustifyIsRefused) {
+    // 400 small triangles: 6400 C-obstacle corner nodes (a quadratic pair
+    // loop per S); a 100 km world at 2 cm samples: both exit 2 at once.
+    const std::string w = freshDir("w");
+    std::string tri = "bounds 0 0 100 100\n";
+    for (int i = 0; i < 400; i++) {
+        const double x = 5 + (i % 20) * 4.5, y = 5 + (i / 20) * 4.5;
+        tri += "obstacle " + std::to_string(x) + " " + std::to_string(y) + " " +
+               std::to_string(x + 0.3) + " " + std::to_string(y) + " " +
+               std::to_string(x + 0.15) + " " + std::to_string(y + 0.3) + "\n";
+    }
+    writeFile(w + "/tri.txt", tri);
+    writeFile(w + "/huge.txt", "bounds -50000 -50000 50000 50000\n");
+    for (const auto& [world, key] :
+         {std::pair<std::string, std::string>{"tri.txt", "corner_segments"},
+          {"huge.txt", "sample_step"}}) {
+        writeFile(w + "/p.ini",
+                  "[ViewpointPlan]\nworld_file = " + world +
+                      "\nstart_x = 1\nstart_y = 1\ngoal_x = 99\ngoal_y = 99\n");
+        const std::string out = freshDir("out");
+        const TEarlierOutput earlier = {{"summary.json", "{}\n"}};
+        writeEarlierOutput(out, earlier);
+        const auto r = run(binPath("risknav-viewpoint-plan") + " -q -o '" + out + "' '" +
+                           w + "/p.ini'");
+        expectBadInput(r, "[ViewpointPlan] " + key, out, earlier);
+    }
+}
+
+TEST(ViewpointPlanE2E, ByteOrderMarkAndCrLfAreAccepted) {
+    const std::string w = freshDir("w");
+    std::string world = readFile(sourcePath("datasets/landmarks-two-routes/world.txt"));
+    world = std::regex_replace(world, std::regex("\n"), "\r\n");
+    writeFile(w + "/world.txt", "\xEF\xBB\xBF" + world);
+    writeFile(w + "/p.ini", readFile(twoRoutes("r1")));
+    const std::string out = freshDir("out");
+    const json s = planRun(w + "/p.ini", out);
+    const json ref = planRun(twoRoutes("r1"), freshDir("ref"));
+    EXPECT_EQ(s["optimal"]["length_m"], ref["optimal"]["length_m"]);
+    EXPECT_EQ(s["optimal"]["viewpoints"], ref["optimal"]["viewpoints"]);
+}
 
 TEST(ViewpointPlanE2E, BinaryOrHugeWorldFilesAreRefused) {
     const std::string w = freshDir("w");

@@ -52,6 +52,20 @@ void CViewpointPlanner::loadFromConfigFile(const CIniConfig& c) {
     validateWorld(w, options.world_file);
     m_world = std::move(w);
     prepare();
+    // Work the input cannot justify is refused before it starts.
+    if (const size_t n = cornerNodeCount(); n > kMaxGraphNodes)
+        throwBadKey(c, "ViewpointPlan", "corner_segments",
+                    std::to_string(options.corner_segments),
+                    "the world's convex corners give " + std::to_string(n) +
+                        " C-obstacle nodes (at most " + std::to_string(kMaxGraphNodes) +
+                        "): fewer or simpler obstacles, or fewer corner segments");
+    const double diagonal =
+        std::hypot(m_world.xMax - m_world.xMin, m_world.yMax - m_world.yMin);
+    if (diagonal / options.sample_step > kMaxSamplesPerPath / 4)
+        throwBadKey(
+            c, "ViewpointPlan", "sample_step", numberText(options.sample_step),
+            "the world's diagonal (" + numberText(diagonal) +
+                " m) would take more than 500000 samples per path; use a larger step");
     // The robot itself must fit at start and goal: a user error, not a result.
     for (const bool isStart : {true, false}) {
         const TPoint2D p = isStart ? TPoint2D{options.start_x, options.start_y}
@@ -81,6 +95,23 @@ void CViewpointPlanner::setWorld(TPolygonWorld w) {
     validateWorld(w, "(world)");
     m_world = std::move(w);
     prepare();
+}
+
+size_t CViewpointPlanner::cornerNodeCount() const {
+    const double step = 2 * M_PI / options.corner_segments;
+    size_t n = 0;
+    for (const auto& r : m_world.rings())
+        for (size_t i = 0; i < r.size(); i++) {
+            const TPoint2D& a = r[(i + r.size() - 1) % r.size()];
+            const TPoint2D& v = r[i];
+            const TPoint2D& b = r[(i + 1) % r.size()];
+            const double ein = std::atan2(v.y - a.y, v.x - a.x);
+            const double turn =
+                mrpt::math::wrapToPi(std::atan2(b.y - v.y, b.x - v.x) - ein);
+            if (turn > 0)
+                n += size_t(std::max(1.0, std::ceil(turn / step - 1e-12)));
+        }
+    return n;
 }
 
 void CViewpointPlanner::prepare() {
@@ -234,28 +265,33 @@ void CViewpointPlanner::plan() {
     if (failure)
         std::rethrow_exception(failure);
     assignRoutes();
-    // 004 section II: safe paths only; the shortest; then the fewest viewpoints;
-    // then the larger margin (safer at the same cost).
+    std::vector<const TPlanRow*> all;
+    for (const auto& sp : m_sweep)
+        for (const auto& row : sp.rows)
+            all.push_back(&row);
     m_optimal.reset();
-    for (size_t k = 0; k < m_sweep.size(); k++)
-        for (size_t r = 0; r < m_sweep[k].rows.size(); r++) {
-            const TPlanRow& row = m_sweep[k].rows[r];
-            if (!row.feasible)
-                continue;
-            if (!m_optimal) {
-                m_optimal = {k, r};
-                continue;
-            }
-            const TPlanRow& b = m_sweep[m_optimal->first].rows[m_optimal->second];
-            const double tol = options.length_tolerance;
-            const bool better =
-                row.length < b.length - tol ||
-                (std::abs(row.length - b.length) <= tol &&
-                 (row.viewpoints.size() < b.viewpoints.size() ||
-                  (row.viewpoints.size() == b.viewpoints.size() && row.S > b.S)));
-            if (better)
-                m_optimal = {k, r};
-        }
+    if (const TPlanRow* b = bestPlan(all, options.length_tolerance))
+        for (size_t k = 0; k < m_sweep.size(); k++)
+            for (size_t r = 0; r < m_sweep[k].rows.size(); r++)
+                if (&m_sweep[k].rows[r] == b)
+                    m_optimal = {k, r};
+}
+
+const TPlanRow* bestPlan(const std::vector<const TPlanRow*>& rows, double tolerance) {
+    double shortest = std::numeric_limits<double>::infinity();
+    for (const TPlanRow* r : rows)
+        if (r->feasible)
+            shortest = std::min(shortest, r->length);
+    const TPlanRow* best = nullptr;
+    for (const TPlanRow* r : rows) {
+        if (!r->feasible || r->length > shortest + tolerance)
+            continue;
+        if (!best || r->viewpoints.size() < best->viewpoints.size() ||
+            (r->viewpoints.size() == best->viewpoints.size() &&
+             (r->S > best->S || (r->S == best->S && r->length < best->length))))
+            best = r;
+    }
+    return best;
 }
 
 void CViewpointPlanner::assignRoutes() {
@@ -317,9 +353,10 @@ CViewpointPlanner::TMonteCarlo CViewpointPlanner::monteCarlo(const TPlanRow& row
             }
             const double ePos = std::hypot(p->x - pose.x, p->y - pose.y);
             const double dPhi = std::abs(mrpt::math::wrapToPi(p->phi - pose.phi));
-            if (ch.err.ePos > 0)
+            // Error-free images give bounds of rounding size: no ratio then.
+            if (ch.err.ePos > 1e-12)
                 mc.maxRatioPos = std::max(mc.maxRatioPos, ePos / ch.err.ePos);
-            if (bound > 0)
+            if (bound > 1e-12)
                 mc.maxRatioTotal =
                     std::max(mc.maxRatioTotal, (ePos + angularError(vp.m, dPhi)) / bound);
         }

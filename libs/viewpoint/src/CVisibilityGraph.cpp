@@ -129,6 +129,28 @@ bool CVisibilityGraph::supports(size_t i, const TPoint2D& dir) const {
     return (c1 >= -tol && c2 >= -tol) || (c1 <= tol && c2 <= tol);
 }
 
+std::vector<TPoint2D> CVisibilityGraph::canonicalPolyline(
+    const std::vector<size_t>& nodes) const {
+    std::vector<TPoint2D> p;
+    for (size_t v : nodes) {
+        const TPoint2D& q = m_nodes[v].p;
+        if (!p.empty() && std::hypot(q.x - p.back().x, q.y - p.back().y) <= 1e-9)
+            continue;  // coincident nodes of touching C-obstacles
+        // A point that only continues a straight line is no vertex.
+        if (p.size() >= 2) {
+            const TPoint2D& a = p[p.size() - 2];
+            const TPoint2D& b = p.back();
+            const TPoint2D u{b.x - a.x, b.y - a.y}, w{q.x - b.x, q.y - b.y};
+            if (std::abs(cross(u, w)) <=
+                    1e-12 * std::hypot(u.x, u.y) * std::hypot(w.x, w.y) &&
+                u.x * w.x + u.y * w.y > 0)
+                p.pop_back();
+        }
+        p.push_back(q);
+    }
+    return p;
+}
+
 bool CVisibilityGraph::taut(const std::vector<size_t>& split) const {
     // At a corner passed with the obstacle on the left (state 0) the path
     // turns left, on the right it turns right (or goes straight on): it
@@ -175,9 +197,20 @@ std::vector<std::vector<TPoint2D>> CVisibilityGraph::kShortestPaths(size_t k) co
                 continue;
             if (!taut(p.nodes))
                 continue;
-            std::vector<TPoint2D> poly;
-            for (size_t v : phys)
-                poly.push_back(m_nodes[v].p);
+            // The same route again (coincident nodes of overlapping
+            // obstacles, points on a straight line): dropped.
+            std::vector<TPoint2D> poly = canonicalPolyline(phys);
+            const bool seen =
+                std::any_of(out.begin(), out.end(), [&](const std::vector<TPoint2D>& q) {
+                    return q.size() == poly.size() &&
+                           std::equal(q.begin(), q.end(), poly.begin(),
+                                      [](const TPoint2D& a, const TPoint2D& b) {
+                                          return std::abs(a.x - b.x) <= 1e-9 &&
+                                                 std::abs(a.y - b.y) <= 1e-9;
+                                      });
+                });
+            if (seen)
+                continue;
             out.push_back(std::move(poly));
             if (out.size() == k)
                 break;

@@ -106,7 +106,9 @@ TPolygonWorld parsePolygonWorld(const std::string& text, const std::string& wher
     TPolygonWorld w;
     bool haveBounds = false;
     size_t vertices = 0;
-    std::istringstream in(text);
+    // A UTF-8 byte order mark (editors add one) is not part of the first line.
+    std::istringstream in(text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? text.substr(3)
+                                                                  : text);
     std::string line;
     size_t lineNo = 0;
     while (std::getline(in, line)) {
@@ -120,7 +122,7 @@ TPolygonWorld parsePolygonWorld(const std::string& text, const std::string& wher
         if (tok.empty())
             continue;
         const std::string& kw = tok[0];
-        auto number = [&](size_t i, const char* what) {
+        auto number = [&](size_t i, const char* what, const char* unit = "m") {
             double v = 0;
             if (i >= tok.size())
                 fail(where, lineNo, kw + ": missing " + what);
@@ -129,7 +131,7 @@ TPolygonWorld parsePolygonWorld(const std::string& text, const std::string& wher
                      kw + ": " + what + " '" + tok[i] + "' is not a decimal number");
             if (std::abs(v) > TWorldLimits::kMaxCoordinate)
                 fail(where, lineNo,
-                     kw + ": " + what + " '" + tok[i] + "' is beyond +-1e5 m");
+                     kw + ": " + what + " '" + tok[i] + "' is beyond +-1e5 " + unit);
             return v;
         };
         if (kw == "bounds") {
@@ -164,7 +166,7 @@ TPolygonWorld parsePolygonWorld(const std::string& text, const std::string& wher
             if (std::abs(geometry::signedArea(r)) <= 1e-12)
                 fail(where, lineNo, kw + ": the polygon has no area");
             if (kw == "obstacle") {
-                w.obstacles.push_back({oriented(r, true), {}});
+                w.obstacles.push_back({oriented(r, true), {}, lineNo});
             } else {
                 if (w.obstacles.empty())
                     fail(where, lineNo, "hole: no obstacle before it");
@@ -182,9 +184,18 @@ TPolygonWorld parsePolygonWorld(const std::string& text, const std::string& wher
                 fail(where, lineNo, "more than 2000 landmarks");
             TLandmark l;
             l.id = tok[1];
+            l.line = lineNo;
+            if (l.id.size() > TWorldLimits::kMaxIdLength ||
+                l.id.find_first_not_of(
+                    "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+                    "0123456789_.:-") != std::string::npos)
+                fail(where, lineNo,
+                     "landmark: ID '" + l.id.substr(0, 64) +
+                         (l.id.size() > 64 ? "..." : "") +
+                         "' must be 1 to 64 of A-Z a-z 0-9 _ . : -");
             l.x = number(2, "X");
             l.y = number(3, "Y");
-            l.facing = number(4, "FACING_DEG") * M_PI / 180.0;
+            l.facing = number(4, "FACING_DEG", "deg") * M_PI / 180.0;
             if (tok.size() == 6) {
                 l.radius = number(5, "RADIUS");
                 if (!(l.radius > 0 && l.radius <= 10))
@@ -227,7 +238,9 @@ void validateWorld(const TPolygonWorld& w, const std::string& where) {
     };
     for (size_t i = 0; i < w.obstacles.size(); i++) {
         const auto& o = w.obstacles[i];
-        const std::string name = where + ": obstacle " + std::to_string(i + 1);
+        const std::string name = o.line
+                                     ? where + ":" + std::to_string(o.line) + ": obstacle"
+                                     : where + ": obstacle " + std::to_string(i + 1);
         if (!geometry::ringIsSimple(o.outer))
             throw CBadInputError(name + " is not a simple polygon");
         for (const auto& p : o.outer)
@@ -243,16 +256,17 @@ void validateWorld(const TPolygonWorld& w, const std::string& where) {
     }
     std::set<std::string> ids;
     for (const auto& l : w.landmarks) {
+        const std::string at =
+            l.line ? where + ":" + std::to_string(l.line) + ": landmark '" + l.id + "'"
+                   : where + ": landmark '" + l.id + "'";
         if (!ids.insert(l.id).second)
-            throw CBadInputError(where + ": landmark id '" + l.id + "' given twice");
+            throw CBadInputError(at + ": the id is given twice");
         const TPoint2D front{l.x + 1e-3 * std::cos(l.facing),
                              l.y + 1e-3 * std::sin(l.facing)};
         if (!inBounds({l.x, l.y}))
-            throw CBadInputError(where + ": landmark '" + l.id +
-                                 "' lies outside the bounds");
+            throw CBadInputError(at + " lies outside the bounds");
         if (w.insideObstacle(front))
-            throw CBadInputError(where + ": landmark '" + l.id +
-                                 "' lies inside an obstacle or faces into its wall");
+            throw CBadInputError(at + " lies inside an obstacle or faces into its wall");
     }
 }
 

@@ -14,10 +14,11 @@ void TViewpointPlanOptions::loadFromConfigFile(const mrpt::config::CConfigFileBa
         map.loadFromConfigFile(c, s);
     rule.loadFromConfigFile(c, s);
     contour_tolerance = readDouble(c, s, "contour_tolerance", contour_tolerance);
-    start_x = requireDouble(c, s, "start_x", TRange::any("m"));
-    start_y = requireDouble(c, s, "start_y", TRange::any("m"));
-    goal_x = requireDouble(c, s, "goal_x", TRange::any("m"));
-    goal_y = requireDouble(c, s, "goal_y", TRange::any("m"));
+    const TRange coordinate = TRange::closed(-1e5, 1e5, "m");
+    start_x = requireDouble(c, s, "start_x", coordinate);
+    start_y = requireDouble(c, s, "start_y", coordinate);
+    goal_x = requireDouble(c, s, "goal_x", coordinate);
+    goal_y = requireDouble(c, s, "goal_y", coordinate);
     safety_margins = readNumbers(c, s, "safety_margins", safety_margins, {}, 1);
     k_paths = readInt(c, s, "k_paths", k_paths);
     corner_segments = readInt(c, s, "corner_segments", corner_segments);
@@ -78,6 +79,10 @@ void TViewpointPlanOptions::validate() const {
               "safety_margins", std::to_string(safety_margins.size()) + " values",
               "1 to 100 values");
     checkKey(section, "safety_margins", safety_margins, TRange::closed(0.001, 10, "m"));
+    for (size_t i = 0; i < safety_margins.size(); i++)
+        for (size_t j = 0; j < i; j++)
+            checkRule(safety_margins[i] != safety_margins[j], section, "safety_margins",
+                      numberText(safety_margins[i]), "each margin at most once");
     checkKey(section, "k_paths", k_paths, TRange::closed(1, 100));
     checkKey(section, "corner_segments", corner_segments, TRange::closed(4, 360));
     checkKey(section, "sample_step", sample_step, TRange::closed(0.001, 1, "m"));

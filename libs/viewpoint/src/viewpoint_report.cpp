@@ -5,7 +5,6 @@
 #include <risknav/viewpoint/viewpoint_report.h>
 
 #include <mrpt/config/CConfigFileMemory.h>
-#include <mrpt/nav/reactive/TWaypoint.h>
 
 #include <opencv2/imgproc.hpp>
 
@@ -59,12 +58,24 @@ mrpt::maps::COccupancyGridMap2D worldRaster(const TPolygonWorld& w, double res,
                              int(std::lround((p.y - g.getYMin()) / res - 0.5)));
         return pts;
     };
+    // Each obstacle (outer ring minus its holes) on its own, then OR-ed in:
+    // a hole must not clear another obstacle inside it.
     for (const auto& o : w.obstacles) {
-        cv::fillPoly(obstacleMask, std::vector<std::vector<cv::Point>>{toCells(o.outer)},
-                     cv::Scalar(255));
+        const auto outer = toCells(o.outer);
+        const cv::Rect box = cv::boundingRect(outer) & cv::Rect(0, 0, nx, ny);
+        if (box.empty())
+            continue;
+        auto shifted = [&](std::vector<cv::Point> pts) {
+            for (auto& q : pts)
+                q -= box.tl();
+            return std::vector<std::vector<cv::Point>>{pts};
+        };
+        cv::Mat one(box.size(), CV_8UC1, cv::Scalar(0));
+        cv::fillPoly(one, shifted(outer), cv::Scalar(255));
         for (const auto& h : o.holes)
-            cv::fillPoly(obstacleMask, std::vector<std::vector<cv::Point>>{toCells(h)},
-                         cv::Scalar(0));
+            cv::fillPoly(one, shifted(toCells(h)), cv::Scalar(0));
+        cv::Mat roi = obstacleMask(box);
+        cv::bitwise_or(roi, one, roi);
     }
     for (int cy = 0; cy < ny; cy++)
         for (int cx = 0; cx < nx; cx++)
@@ -75,7 +86,8 @@ mrpt::maps::COccupancyGridMap2D worldRaster(const TPolygonWorld& w, double res,
 void drawPlan(const CViewpointPlanner& p, const std::string& path) {
     const TPolygonWorld& w = p.world();
     const double span = std::max(w.xMax - w.xMin, w.yMax - w.yMin);
-    const double res = std::clamp(span / 1200, 0.002, 0.1);
+    // About 1200 cells on the longer side, whatever the world's size.
+    const double res = std::max(span / 1200, 0.002);
     cv::Mat obst;
     const auto grid = worldRaster(w, res, obst);
     CMapImage img(grid, 1400);
@@ -189,16 +201,12 @@ void drawPlan(const CViewpointPlanner& p, const std::string& path) {
     img.save(path);
 }
 
-// Per S: the path the paper's tables list (the shortest feasible one, then
-// the fewest viewpoints).
+// Per S: the path the paper's tables list (the same ranking within one S).
 const TPlanRow* bestOfS(const TSweepPoint& sp, double tol) {
-    const TPlanRow* b = nullptr;
+    std::vector<const TPlanRow*> rows;
     for (const auto& r : sp.rows)
-        if (r.feasible && (!b || r.length < b->length - tol ||
-                           (std::abs(r.length - b->length) <= tol &&
-                            r.viewpoints.size() < b->viewpoints.size())))
-            b = &r;
-    return b;
+        rows.push_back(&r);
+    return bestPlan(rows, tol);
 }
 }  // namespace
 
@@ -393,13 +401,23 @@ json writeViewpointReport(const CViewpointPlanner& p, COutputDir& out) {
     json wpts = json::array();
     if (opt) {
         const TPlanWaypoints pw = planWaypoints(*opt);
-        mrpt::nav::TWaypointSequence seq;
         mrpt::config::CConfigFileMemory ini;
-        std::string marks;
+        // The keys of MRPT's TWaypointSequence::save(), written here with
+        // every digit (MRPT's own save keeps 6 significant digits past 1e4 m).
+        ini.write("Waypoints", "waypoint_count", std::to_string(pw.points.size()));
         for (size_t i = 0; i < pw.points.size(); i++) {
             const bool vp = pw.viewpoint[i] >= 0;
-            seq.waypoints.emplace_back(pw.points[i].x, pw.points[i].y,
-                                       std::max(0.05, p.options.sample_step), !vp);
+            auto put = [&](const char* field, const std::string& v) {
+                char key[48];
+                std::snprintf(key, sizeof(key), "wp%03zu_%s", i, field);
+                ini.write("Waypoints", key, v);
+            };
+            put("allowed_distance", numberText(std::max(0.05, p.options.sample_step)));
+            put("allow_skip", vp ? "false" : "true");
+            put("target_x", numberText(pw.points[i].x));
+            put("target_y", numberText(pw.points[i].y));
+            put("target_frame_id", "map");
+            put("speed_ratio", "1");
             wpts.push_back({pw.points[i].x, pw.points[i].y});
             if (vp) {
                 const auto& b = *opt->viewpoints[size_t(pw.viewpoint[i])].eval.best;
@@ -410,7 +428,6 @@ json writeViewpointReport(const CViewpointPlanner& p, COutputDir& out) {
                               " pan_right_deg=" + numberText(deg(b.obs.pan[1])));
             }
         }
-        seq.save(ini, "Waypoints");
         out.writeText(
             "waypoints.ini",
             "// risknav-viewpoint-plan: the optimal plan as an MRPT "
@@ -465,10 +482,19 @@ json writeViewpointReport(const CViewpointPlanner& p, COutputDir& out) {
     drawPlan(p, out.stage("plan.png"));
 
     const auto& w = p.world();
-    j["world"] = {{"file", p.options.world_file},
-                  {"bounds", {w.xMin, w.yMin, w.xMax, w.yMax}},
-                  {"obstacles", w.obstacles.size()},
-                  {"landmarks", w.landmarks.size()}};
+    json lmList = json::array();
+    for (const auto& l : w.landmarks)
+        lmList.push_back({{"id", l.id},
+                          {"x", l.x},
+                          {"y", l.y},
+                          {"facing_deg", deg(l.facing)},
+                          {"radius", l.radius}});
+    j["world"] = {
+        {"file", p.options.world_file},
+        {"bounds", {w.xMin, w.yMin, w.xMax, w.yMax}},
+        {"obstacles", w.obstacles.size()},
+        {"landmarks", w.landmarks.size()},
+        {"landmark_list", lmList}};  // as planned with (moved onto a traced wall)
     const TCameraRig rig = p.camera.rig();
     j["parameters"] = {{"robot_radius", p.robot.radius},
                        {"camera_offset", rig.b_r},

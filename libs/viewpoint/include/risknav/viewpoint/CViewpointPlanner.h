@@ -62,6 +62,13 @@ struct TSweepPoint {
     std::vector<TPlanRow> rows;
 };
 
+/** 004 section II's ranking of feasible plans: the shortest first, then the
+ * fewest viewpoints. Plans no longer than the shortest one + tolerance [m]
+ * count as equally long (compared with the shortest, not with each other, so
+ * equal-length steps do not chain); among them the fewest viewpoints win,
+ * then the larger S, then the shorter. nullptr when none is feasible. */
+const TPlanRow* bestPlan(const std::vector<const TPlanRow*>& rows, double tolerance);
+
 /** Path and viewpoint planning with multiple observation strategies
  * (Yamashita et al. 004/003, M4): for each safety margin S, the C-obstacles
  * grown by R + S, the visibility graph, the k shortest paths, and greedy
@@ -112,6 +119,13 @@ class CViewpointPlanner {
         double maxRatioPos = 0, maxRatioTotal = 0;
     };
     TMonteCarlo monteCarlo(const TPlanRow& row, size_t draws, uint64_t seed) const;
+
+    /** Work limits (exit 2 naming the key that would exceed them): visibility
+     * graph nodes (the pair loop is quadratic in them) and samples per path. */
+    static constexpr size_t kMaxGraphNodes = 6000;
+    static constexpr double kMaxSamplesPerPath = 2e6;
+    /** The corner nodes corner_segments gives the world's convex corners. */
+    size_t cornerNodeCount() const;
 
   private:
     TPolygonWorld m_world;

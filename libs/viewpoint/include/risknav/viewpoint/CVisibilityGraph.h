@@ -66,8 +66,9 @@ class CVisibilityGraph {
 
     /** The k shortest simple paths start -> goal (Yen's algorithm, the shared
      * risknav::geometry code, on the directed tangent graph) as polylines;
-     * a path that passes one corner node twice (once each way round), or
-     * that bends away from a corner it is tangent to, is dropped (Yen is
+     * a path that passes one corner node twice (once each way round), that
+     * bends away from a corner it is tangent to, or that repeats an earlier
+     * path's polyline (coincident nodes, straight-on vertices) is dropped (Yen is
      * asked for 2 k + 4 paths, then twice as many while that leaves fewer
      * than k, up to 16 (k + 4)); its spur searches are A* with the
      * straight-line distance to the goal. Empty when start or goal is not free
@@ -75,6 +76,10 @@ class CVisibilityGraph {
     std::vector<std::vector<mrpt::math::TPoint2D>> kShortestPaths(size_t k) const;
 
   private:
+    /** The polyline of a node path without repeated points and straight-on
+     * vertices (so that one route has one polyline). */
+    std::vector<mrpt::math::TPoint2D> canonicalPolyline(
+        const std::vector<size_t>& nodes) const;
     /** Does the path (split nodes) bend toward the obstacle at every corner? */
     bool taut(const std::vector<size_t>& splitNodes) const;
 

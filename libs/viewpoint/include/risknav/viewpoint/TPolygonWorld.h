@@ -17,6 +17,7 @@ struct TLandmark {
     double x = 0, y = 0;   ///< [m] centre, on the wall
     double facing = 0;     ///< [rad] direction the landmark faces (its normal)
     double radius = 0.05;  ///< [m] (003 section 6: r = 50 mm)
+    size_t line = 0;       ///< line in the world file (0: built in code)
 };
 
 /** A solid obstacle: an outer ring and optional holes (free space inside it,
@@ -24,6 +25,7 @@ struct TLandmark {
 struct TObstacle {
     std::vector<mrpt::math::TPoint2D> outer;
     std::vector<std::vector<mrpt::math::TPoint2D>> holes;
+    size_t line = 0;  ///< line of its `obstacle` in the world file (0: built in code)
 };
 
 /** The known map of the viewpoint planner (M4): a rectangle with walls all
@@ -52,7 +54,8 @@ struct TPolygonWorld {
  *   bounds XMIN YMIN XMAX YMAX           (once: the outer walls)
  *   obstacle X1 Y1 X2 Y2 X3 Y3 ...       (a simple polygon, >= 3 vertices, any
  * orientation) hole X1 Y1 X2 Y2 X3 Y3 ...           (a hole in the obstacle just before)
- *   landmark ID X Y FACING_DEG [RADIUS]  (on a wall, facing free space; radius 0.05 m)
+ *   landmark ID X Y FACING_DEG [RADIUS]  (on a wall, facing free space; radius 0.05 m;
+ *                                         ID: up to 64 of A-Z a-z 0-9 _ . : -)
  * Every problem throws CBadInputError "file:line: what" (file alone for the
  * checks of the whole world).
  * @{ */
@@ -90,6 +93,7 @@ struct TWorldLimits {
     static constexpr size_t kMaxRingVertices = 10000;  ///< one polygon
     static constexpr size_t kMaxLandmarks = 2000;
     static constexpr double kMaxCoordinate = 1e5;  ///< [m]
+    static constexpr size_t kMaxIdLength = 64;     ///< landmark ids: [A-Za-z0-9_.:-]
 };
 
 }  // namespace risknav::viewpoint

@@ -35,8 +35,9 @@ struct TViewpointPlanOptions : public common::CValidatedOptions {
     double dead_reckoning = 0.10;  ///< dead-reckoning error, fraction of the distance
     double start_error = 0;        ///< [m] position error at the start
     double start_heading_error_deg = 0;  ///< [deg] heading error at the start
-    /** [m] ranking of feasible plans: lengths within this count as equal, and
-     * then the fewer viewpoints win (004's tables give lengths in mm: 0.001). */
+    /** [m] ranking of feasible plans (bestPlan()): plans at most this much
+     * longer than the shortest count as equally long, and then the fewer
+     * viewpoints win (004's tables give lengths in mm: 0.001). */
     double length_tolerance = 0.001;
     bool exhaustive =
         false;        ///< evaluate every candidate (no pruning; same result, slower)
