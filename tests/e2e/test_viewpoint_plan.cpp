@@ -174,6 +174,13 @@ TEST(ViewpointPlanE2E, OutputsAreCompleteAndMrptReadsTheWaypoints) {
     std::vector<std::string> keys;
     ini.getAllKeys("Viewpoints", keys);
     EXPECT_EQ(keys.size(), fixed);
+    // Every digit: the waypoints are the plan's (MRPT's own save rounds).
+    for (size_t i = 0; i < seq.waypoints.size(); i++) {
+        EXPECT_DOUBLE_EQ(seq.waypoints[i].target.x,
+                         s["optimal"]["waypoints"][i][0].get<double>());
+        EXPECT_DOUBLE_EQ(seq.waypoints[i].target.y,
+                         s["optimal"]["waypoints"][i][1].get<double>());
+    }
     EXPECT_NEAR(seq.waypoints.front().target.x, 0.45, 1e-9);
     EXPECT_NEAR(seq.waypoints.back().target.x, 3.95, 1e-9);
 }

@@ -328,6 +328,34 @@ TEST(Greedy, StraightCorridorWithEvenlySpacedLandmarks) {
     EXPECT_TRUE(!rn.feasible || rn.viewpoints.size() > row.viewpoints.size());
 }
 
+TEST(Ranking, ShortestFirstThenFewestViewpointsWithoutChaining) {
+    // 004 section II, with a length tolerance measured from the shortest
+    // plan: 28 mm steps must not chain into a plan 85 mm longer.
+    std::vector<TPlanRow> rows(5);
+    const double len[5] = {5.523, 5.551, 5.579, 5.608, 5.0};
+    const size_t vps[5] = {30, 19, 15, 13, 1};
+    for (int i = 0; i < 5; i++) {
+        rows[size_t(i)].length = len[i];
+        rows[size_t(i)].viewpoints.resize(vps[i]);
+        rows[size_t(i)].feasible = i < 4;  // the shortest is infeasible
+        rows[size_t(i)].S = 0.04 + 0.01 * i;
+    }
+    std::vector<const TPlanRow*> all;
+    for (const auto& r : rows)
+        all.push_back(&r);
+    EXPECT_EQ(bestPlan(all, 0.001), &rows[0]);
+    EXPECT_EQ(bestPlan(all, 0.03), &rows[1]);
+    EXPECT_EQ(bestPlan(all, 0.06), &rows[2]);
+    EXPECT_EQ(bestPlan(all, 1.0), &rows[3]);
+    // Equal lengths and viewpoints: the larger S.
+    rows[1].length = rows[0].length;
+    rows[1].viewpoints.resize(30);
+    EXPECT_EQ(bestPlan(all, 0.0), &rows[1]);
+    for (auto& r : rows)
+        r.feasible = false;
+    EXPECT_EQ(bestPlan(all, 1.0), nullptr);
+}
+
 TEST(World, RingSimplicityMatchesBruteForce) {
     // The bucketed test against every pair of non-adjacent edges.
     auto brute = [](const std::vector<TPoint2D>& r) {
