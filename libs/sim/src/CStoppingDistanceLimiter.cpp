@@ -42,18 +42,32 @@ void CStoppingDistanceLimiter::saveConfig(mrpt::config::CConfigFileBase& c,
 
 bool CStoppingDistanceLimiter::blocked(const mrpt::obs::CObservation2DRangeScan& scan,
                                        double v, const TRobotOptions& robot) const {
+    return blocked(mapping::scanToRobotFrame(scan), v, robot);
+}
+
+bool CStoppingDistanceLimiter::blocked(const std::vector<mrpt::math::TPoint2D>& pts,
+                                       double v, const TRobotOptions& robot) const {
     if (!options.enabled || v <= 0)
         return false;
     const double reach = stoppingDistance(v, robot.t_delay, robot.decel) + options.margin;
     const double halfW = robot.radius + options.lateral_margin;
-    for (const auto& p : mapping::scanToRobotFrame(scan))
+    for (const auto& p : pts)
         if (p.x > 0 && std::abs(p.y) <= halfW && p.x - robot.radius < reach)
             return true;
     return false;
 }
 
 TSpeedLimit CStoppingDistanceLimiter::impl_limit(const TSpeedLimitInput& in) const {
-    if (in.scan && blocked(*in.scan, in.desiredSpeed, *in.robot))
+    bool stop = in.scan && blocked(*in.scan, in.desiredSpeed, *in.robot);
+    if (!stop && in.obstacles) {
+        std::vector<mrpt::math::TPoint2D> pts;
+        const auto& xs = in.obstacles->getPointsBufferRef_x();
+        const auto& ys = in.obstacles->getPointsBufferRef_y();
+        for (size_t i = 0; i < xs.size(); i++)
+            pts.push_back({double(xs[i]), double(ys[i])});
+        stop = blocked(pts, in.desiredSpeed, *in.robot);
+    }
+    if (stop)
         return {0.0, "obstacle within the stopping distance"};
     return {in.desiredSpeed, ""};
 }

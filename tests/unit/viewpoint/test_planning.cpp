@@ -248,8 +248,9 @@ TEST(Greedy, ConstantErrorsGiveEvenlySpacedViewpoints) {
         EXPECT_NEAR(double(g.viewpoints.size()), double(expect), 1.0);
         for (size_t v = 1; v < g.viewpoints.size(); v++)
             EXPECT_NEAR(s[g.viewpoints[v]].s - s[g.viewpoints[v - 1]].s, step, 0.011);
-        if (prune)
+        if (prune) {
             EXPECT_LT(g.evaluations, exhaustiveEvaluations / 2);
+        }
     }
 }
 

@@ -2,6 +2,7 @@
 #include <risknav/common/TRobotOptions.h>
 
 #include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/math/TPose2D.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/rtti/CObject.h>
@@ -16,6 +17,9 @@ struct TSpeedLimitInput {
     double desiredSpeed = 0;               ///< [m/s] what the controller wants
     /** The latest scan (robot frame through its sensor pose); may be null. */
     const mrpt::obs::CObservation2DRangeScan* scan = nullptr;
+    /** Sensed obstacle points in the robot frame (what MRPT's reactive
+     * navigator senses, CReactiveNavigationSystem's obstacles); may be null. */
+    const mrpt::maps::CSimplePointsMap* obstacles = nullptr;
 };
 
 /** A limiter's answer: the highest speed it allows and why. */

@@ -32,6 +32,9 @@ class CStoppingDistanceLimiter : public common::CSpeedLimiter {
      * (002) eq. (4), measured from the robot's front, plus the margin. */
     bool blocked(const mrpt::obs::CObservation2DRangeScan& scan, double v,
                  const common::TRobotOptions& robot) const;
+    /** The same for obstacle points already in the robot frame. */
+    bool blocked(const std::vector<mrpt::math::TPoint2D>& robotFramePoints, double v,
+                 const common::TRobotOptions& robot) const;
 
     void loadConfig(const mrpt::config::CConfigFileBase& c,
                     const std::string& section) override;

@@ -1,0 +1,80 @@
+#pragma once
+#include <risknav/common/CSpeedLimiter.h>
+#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/TRobotOptions.h>
+
+#include <mrpt/nav/reactive/CReactiveNavigationSystem.h>
+
+#include <string>
+#include <vector>
+
+namespace risknav::nav {
+/** MRPT's reactive navigation engine with risknav's speed limiters inside it
+ * (DESIGN.md "Plugins inside MRPT's reactive engine"): a
+ * CReactiveNavigationSystem that keeps all of MRPT's config sections and
+ * behaviour (a config that works with the bare engine works with it), and
+ * each cycle asks its limiters, created by class name from
+ * [CRiskAwareReactiveNav] speed_limiters through MRPT's class registry, for
+ * the highest speed they allow. The smallest limit wins and scales the
+ * command MRPT chose (v and w together, the curvature kept) in the
+ * engine's own generate_vel_cmd(); the winning limiter, its limit and reason
+ * go into the cycle's navlog record (CLogFileRecord::additional_debug_msgs
+ * "speed_limiter", values "speed_limit" / "speed_desired"), so MRPT's
+ * navlog-viewer shows them. Each limiter reads its options from the section
+ * named after its class (e.g. [CStoppingDistanceLimiter]); the robot's
+ * stopping model from [Robot]. */
+class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
+  public:
+    struct TOptions : public common::CValidatedOptions {
+        /** Limiter class names, applied in this order (the first of equal
+         * limits is the one recorded). Empty: the bare MRPT engine. */
+        std::vector<std::string> speed_limiters;
+
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                const std::string& section) override;
+        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                              const std::string& section) const override;
+        void validate() const override;
+    };
+
+    /** What limited the last command. */
+    struct TLimitRecord {
+        std::string limiter;  ///< class name; "" when none limited
+        std::string reason;
+        double desired = 0;  ///< [m/s] |v| MRPT chose
+        double limit = 0;    ///< [m/s] the smallest limit (desired when none limited)
+    };
+
+    CRiskAwareReactiveNav(mrpt::nav::CRobot2NavInterface& robot,
+                          bool enableConsoleOutput = false, bool enableLogFile = false,
+                          const std::string& logFileDirectory = "reactivenav.logs");
+
+    TOptions riskOptions;         ///< [CRiskAwareReactiveNav]
+    common::TRobotOptions robot;  ///< [Robot]: radius, decel, t_delay for the limiters
+
+    /** MRPT's loadConfigFile() plus [CRiskAwareReactiveNav], [Robot] and each
+     * limiter's section. An unknown limiter name throws CBadInputError
+     * naming the known ones. */
+    void loadConfigFile(const mrpt::config::CConfigFileBase& c) override;
+    void saveConfigFile(mrpt::config::CConfigFileBase& c) const override;
+
+    const std::vector<common::CSpeedLimiter::Ptr>& limiters() const { return m_limiters; }
+    const TLimitRecord& lastLimit() const { return m_last; }
+
+  protected:
+    /** MRPT's command, then the smallest limit of the limiters applied to it. */
+    double generate_vel_cmd(const mrpt::nav::TCandidateMovementPTG& in_movement,
+                            mrpt::kinematics::CVehicleVelCmd::Ptr& new_vel_cmd) override;
+    /** MRPT's record, plus the limiter that won this cycle. */
+    void loggingGetWSObstaclesAndShape(mrpt::nav::CLogFileRecord& out_log) override;
+
+  private:
+    std::vector<common::CSpeedLimiter::Ptr> m_limiters;
+    TLimitRecord m_last;
+};
+
+/** Registers libs/nav's MRPT classes and the limiters of the libraries below
+ * (see registerAllClasses_sim()). Idempotent. */
+void registerAllClasses_nav();
+
+}  // namespace risknav::nav
