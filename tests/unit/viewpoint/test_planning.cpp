@@ -160,9 +160,11 @@ TEST(VisibilityGraph, EveryPathPointKeepsTheSafetyDistance) {
         const CSegmentIndex idx(segs, 0.5);
         for (double S : {0.01, 0.05, 0.2}) {
             const CVisibilityGraph g(w, idx, R + S, 8, {1, 3}, {9, 3});
-            for (const auto& n : g.nodes())
-                if (n.corner)
+            for (const auto& n : g.nodes()) {
+                if (n.corner) {
                     EXPECT_GE(bruteDistance(segs, n.p), R + S - 1e-9);
+                }
+            }
             for (const auto& path : g.kShortestPaths(5))
                 for (size_t i = 0; i + 1 < path.size(); i++)
                     for (int k = 0; k <= 200; k++) {
@@ -515,9 +517,10 @@ TEST(World, GridObstaclesAreTracedWithTheirHoles) {
     // inside (away from the walls) and the open space are free.
     for (int cy = 0; cy < int(g.getSizeY()); cy++)
         for (int cx = 0; cx < int(g.getSizeX()); cx++)
-            if (g.getCell(cx, cy) < 0.5f)
+            if (g.getCell(cx, cy) < 0.5f) {
                 EXPECT_TRUE(w.insideObstacle({g.idx2x(cx), g.idx2y(cy)}))
                     << cx << "," << cy;
+            }
     EXPECT_FALSE(w.insideObstacle({2.75, 1.5}));
     EXPECT_FALSE(w.insideObstacle({1.5, 2.0}));
 }
