@@ -1,5 +1,6 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/config_read.h>
+#include <risknav/nav/CAfraidSpeedLimiter.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
 #include <risknav/sim/CStoppingDistanceLimiter.h>
 
@@ -116,6 +117,7 @@ void CRiskAwareReactiveNav::loggingGetWSObstaclesAndShape(
 
 void registerAllClasses_nav() {
     sim::registerAllClasses_sim();
+    mrpt::rtti::registerClass(CLASS_ID(CAfraidSpeedLimiter));
 }
 
 }  // namespace risknav::nav

@@ -2,6 +2,7 @@
 // inside it, driving the office world through CSimRobotInterface.
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/CIniConfig.h>
+#include <risknav/nav/CAfraidSpeedLimiter.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
 #include <risknav/sim/CSimRobotInterface.h>
 #include <risknav/sim/CSimWorld.h>
@@ -179,4 +180,58 @@ TEST(RiskAwareNav, OwnOptionsRoundTripThroughSaveConfigFile) {
     EXPECT_DOUBLE_EQ(l->options.margin, 0.35);
     EXPECT_DOUBLE_EQ(b.robot.radius, 0.3);
     EXPECT_EQ(b.riskOptions.speed_limiters, a.riskOptions.speed_limiters);
+}
+
+TEST(AfraidLimiter, SlowsAheadOfAZoneOnlyWhenHeadingIntoIt) {
+    // A 10 x 4 m corridor grid, 20 passes along y = 2 and a door at x = 5
+    // where obstacles burst out on half of them.
+    mrpt::maps::COccupancyGridMap2D map(0, 10, 0, 4, 0.1f);
+    afraid::CAfraidGrid g(map);
+    for (int pass = 0; pass < 20; pass++) {
+        g.addPass(0.5, 2.0);
+        g.addTraversal(0.5, 2.0, 9.5, 2.0);
+        if (pass % 2 == 0)
+            g.addObstacleEvent(5.0, 2.0);
+    }
+    nav::registerAllClasses_nav();
+    auto made = common::CSpeedLimiter::Factory("CAfraidSpeedLimiter");
+    auto* l = dynamic_cast<nav::CAfraidSpeedLimiter*>(made.get());
+    ASSERT_TRUE(l);
+    l->setGrid(g);
+    EXPECT_GT(l->levelAt(5.0, 2.0), l->options.zone_threshold);
+    EXPECT_LT(l->levelAt(1.0, 2.0), l->options.zone_threshold);
+    common::TRobotOptions robot;  // d_stop(0.8) = 1.04 m, radius 0.25
+    auto limitAt = [&](double x, double phi) {
+        common::TSpeedLimitInput in;
+        in.robot = &robot;
+        in.pose = TPose2D(x, 2.0, phi);
+        in.desiredSpeed = 0.8;
+        return made->limit(in);
+    };
+    EXPECT_DOUBLE_EQ(limitAt(1.0, 0).maxSpeed, 0.8);  // far from the door
+    EXPECT_DOUBLE_EQ(limitAt(3.9, 0).maxSpeed, 0.2);  // the door within d_stop ahead
+    EXPECT_NE(limitAt(3.9, 0).reason.find("afraid zone"), std::string::npos);
+    EXPECT_DOUBLE_EQ(limitAt(3.9, M_PI).maxSpeed, 0.8);  // driving away from it
+    EXPECT_DOUBLE_EQ(limitAt(5.0, M_PI).maxSpeed, 0.2);  // inside it
+}
+
+TEST(AfraidLimiter, BadFilesAndKeysAreClearErrors) {
+    const std::string d = test::freshDir("afraid");
+    test::writeFile(d + "/bad.afraid", "not an afraid file");
+    nav::registerAllClasses_nav();
+    for (const auto& [text, expect] : std::vector<std::pair<std::string, std::string>>{
+             {"[CAfraidSpeedLimiter]\nafraid_file = " + d + "/bad.afraid\n",
+              "bad.afraid"},
+             {"[CAfraidSpeedLimiter]\nafraid_file = " + d + "/none.afraid\n",
+              "none.afraid"},
+             {"[CAfraidSpeedLimiter]\n", "afraid_file"}}) {
+        mrpt::config::CConfigFileMemory c(text);
+        auto l = common::CSpeedLimiter::Factory("CAfraidSpeedLimiter");  // a fresh one
+        try {
+            l->loadConfig(c, "CAfraidSpeedLimiter");
+            ADD_FAILURE() << "accepted: " << text;
+        } catch (const common::CBadInputError& e) {
+            EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
+        }
+    }
 }

@@ -1,0 +1,93 @@
+#include <risknav/afraid/afraid_level.h>
+#include <risknav/afraid/afraid_zones.h>
+#include <risknav/common/config_read.h>
+#include <risknav/common/stopping.h>
+#include <risknav/nav/CAfraidSpeedLimiter.h>
+
+#include <cmath>
+#include <cstdio>
+
+using namespace risknav::common;
+
+namespace risknav::nav {
+IMPLEMENTS_MRPT_OBJECT(CAfraidSpeedLimiter, risknav::common::CSpeedLimiter, risknav::nav)
+
+void CAfraidSpeedLimiter::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s) {
+    afraid_file = readPath(c, s, "afraid_file", afraid_file, true);
+    v_max = readDouble(c, s, "v_max", v_max);
+    v_safe = readDouble(c, s, "v_safe", v_safe);
+    zone_threshold = readDouble(c, s, "zone_threshold", zone_threshold);
+    sample_bin = readDouble(c, s, "sample_bin", sample_bin);
+    krr.loadFromConfigFile(c, s);
+}
+
+void CAfraidSpeedLimiter::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                                     const std::string& s) const {
+    writeKey(c, s, "afraid_file", afraid_file);
+    writeKey(c, s, "v_max", v_max);
+    writeKey(c, s, "v_safe", v_safe);
+    writeKey(c, s, "zone_threshold", zone_threshold);
+    writeKey(c, s, "sample_bin", sample_bin);
+    krr.saveToConfigFile(c, s);
+}
+
+void CAfraidSpeedLimiter::TOptions::validate() const {
+    const std::string s = "CAfraidSpeedLimiter";
+    checkRule(!afraid_file.empty(), s, "afraid_file", afraid_file, "required");
+    checkKey(s, "v_max", v_max, TRange::closed(0.01, 5, "m/s"));
+    checkKey(s, "v_safe", v_safe, TRange::closed(0, 5, "m/s"));
+    checkRule(v_safe <= v_max, s, "v_safe", numberText(v_safe), "must be <= v_max");
+    checkKey(s, "zone_threshold", zone_threshold,
+             TRange::closed(0, 1, "events per pass"));
+    checkKey(s, "sample_bin", sample_bin, TRange::closed(0.01, 10, "m"));
+    krr.validate();
+}
+
+void CAfraidSpeedLimiter::loadConfig(const mrpt::config::CConfigFileBase& c,
+                                     const std::string& section) {
+    options.krr.section = section;
+    loadOptions(options, c, section);
+    setGrid(
+        afraid::CAfraidGrid::load(options.afraid_file));  // CBadInputError on a bad file
+}
+
+void CAfraidSpeedLimiter::saveConfig(mrpt::config::CConfigFileBase& c,
+                                     const std::string& section) const {
+    options.saveToConfigFile(c, section);
+}
+
+void CAfraidSpeedLimiter::setGrid(const afraid::CAfraidGrid& g) {
+    m_grid = g;
+    m_level = afraid::afraidLevel(m_grid, options.krr, options.sample_bin);
+}
+
+double CAfraidSpeedLimiter::levelAt(double x, double y) const {
+    const int cx = m_grid.xToCol(x), cy = m_grid.yToRow(y);
+    if (cx < 0 || cy < 0 || cx >= m_grid.sizeX() || cy >= m_grid.sizeY() ||
+        m_level.empty())
+        return 0;
+    return m_level[size_t(cy) * size_t(m_grid.sizeX()) + size_t(cx)];
+}
+
+TSpeedLimit CAfraidSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const {
+    // The path ahead: the heading's straight line over the stopping distance
+    // at v_max (afraidSpeedLimit samples it up to there) plus the radius.
+    const double reach =
+        stoppingDistance(options.v_max, in.robot->t_delay, in.robot->decel) +
+        in.robot->radius;
+    const mrpt::math::TPoint2D a{in.pose.x, in.pose.y};
+    const mrpt::math::TPoint2D b{in.pose.x + reach * std::cos(in.pose.phi),
+                                 in.pose.y + reach * std::sin(in.pose.phi)};
+    const double v = afraid::afraidSpeedLimit(
+        [&](double x, double y) { return levelAt(x, y); }, {a, b}, in.desiredSpeed,
+        options.v_max, options.v_safe, options.zone_threshold, in.robot->t_delay,
+        in.robot->decel);
+    if (v >= in.desiredSpeed)
+        return {in.desiredSpeed, ""};
+    char why[96];
+    std::snprintf(why, sizeof(why), "afraid zone within %.2f m ahead", reach);
+    return {v, why};
+}
+
+}  // namespace risknav::nav
