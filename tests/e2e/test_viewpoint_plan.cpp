@@ -200,6 +200,39 @@ TEST(ViewpointPlanE2E, EffectiveConfigAndSeedReproduceTheRun) {
     EXPECT_EQ(readFile(a + "/sweep.csv"), readFile(c + "/sweep.csv"));
 }
 
+TEST(ViewpointPlanE2E, TheDocumentedConfigRunsAndListsEveryKey) {
+    // config/risknav-viewpoint-plan.ini runs as it is (R1 on two-routes), and
+    // every key the app writes to config_effective.ini is documented there.
+    const std::string d = freshDir("cfg");
+    const json s = planRun(sourcePath("config/risknav-viewpoint-plan.ini"), d);
+    EXPECT_EQ(s["status"], "ok");
+    auto keys = [](const std::string& path) {
+        std::set<std::string> out;
+        std::string section;
+        for (const auto& l : readLines(path)) {
+            if (l.empty() || l[0] == ';' || l[0] == '#' || l[0] == '/')
+                continue;
+            if (l[0] == '[') {
+                section = l.substr(0, l.find(']') + 1);
+                continue;
+            }
+            const auto eq = l.find('=');
+            if (eq == std::string::npos)
+                continue;
+            std::string k = l.substr(0, eq);
+            k.erase(k.find_last_not_of(" \t") + 1);
+            out.insert(section + k);
+        }
+        return out;
+    };
+    const auto documented = keys(sourcePath("config/risknav-viewpoint-plan.ini"));
+    const auto written = keys(d + "/config_effective.ini");
+    EXPECT_GT(written.size(), 30u);
+    for (const auto& k : written)
+        EXPECT_TRUE(documented.count(k))
+            << k << " is not in config/risknav-viewpoint-plan.ini";
+}
+
 TEST(ViewpointPlanE2E, MapsBeyondThePaper) {
     // A room with pillars and a long corridor with sparse landmarks, both
     // robots: feasible plans exist, keep the margin, and their bounds hold
