@@ -206,27 +206,8 @@ TEST(ExploreE2E, EveryKeyInTheDocumentedConfigIsKnown) {
     };
     EXPECT_EQ(withoutTimes(d + "/cycles.csv"), withoutTimes(d2 + "/cycles.csv"));
     // and the other way round: every key the app writes is documented there
-    auto keys = [](const std::string& path) {
-        std::set<std::string> out;
-        std::string section;
-        for (const auto& l : readLines(path)) {
-            if (l.empty() || l[0] == ';' || l[0] == '#')
-                continue;
-            if (l[0] == '[') {
-                section = l.substr(0, l.find(']') + 1);
-                continue;
-            }
-            const auto eq = l.find('=');
-            if (eq == std::string::npos)
-                continue;
-            std::string k = l.substr(0, eq);
-            k.erase(k.find_last_not_of(" \t") + 1);
-            out.insert(section + k);
-        }
-        return out;
-    };
-    const auto documented = keys(sourcePath("config/risknav-explore.ini"));
-    for (const auto& k : keys(d + "/config_effective.ini"))
+    const auto documented = iniKeys(sourcePath("config/risknav-explore.ini"));
+    for (const auto& k : iniKeys(d + "/config_effective.ini"))
         EXPECT_TRUE(documented.count(k)) << k << " is not in config/risknav-explore.ini";
 }
 

@@ -206,27 +206,8 @@ TEST(ViewpointPlanE2E, TheDocumentedConfigRunsAndListsEveryKey) {
     const std::string d = freshDir("cfg");
     const json s = planRun(sourcePath("config/risknav-viewpoint-plan.ini"), d);
     EXPECT_EQ(s["status"], "ok");
-    auto keys = [](const std::string& path) {
-        std::set<std::string> out;
-        std::string section;
-        for (const auto& l : readLines(path)) {
-            if (l.empty() || l[0] == ';' || l[0] == '#' || l[0] == '/')
-                continue;
-            if (l[0] == '[') {
-                section = l.substr(0, l.find(']') + 1);
-                continue;
-            }
-            const auto eq = l.find('=');
-            if (eq == std::string::npos)
-                continue;
-            std::string k = l.substr(0, eq);
-            k.erase(k.find_last_not_of(" \t") + 1);
-            out.insert(section + k);
-        }
-        return out;
-    };
-    const auto documented = keys(sourcePath("config/risknav-viewpoint-plan.ini"));
-    const auto written = keys(d + "/config_effective.ini");
+    const auto documented = iniKeys(sourcePath("config/risknav-viewpoint-plan.ini"));
+    const auto written = iniKeys(d + "/config_effective.ini");
     EXPECT_GT(written.size(), 30u);
     for (const auto& k : written)
         EXPECT_TRUE(documented.count(k))

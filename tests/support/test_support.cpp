@@ -105,4 +105,24 @@ void expectBadInput(const TRun& r, const std::string& expect, const std::string&
         EXPECT_EQ(readFile(outDir + "/" + name), content) << name;
 }
 
+std::set<std::string> iniKeys(const std::string& path) {
+    std::set<std::string> out;
+    std::string section;
+    for (const auto& l : readLines(path)) {
+        if (l.empty() || l[0] == ';' || l[0] == '#' || l[0] == '/')
+            continue;
+        if (l[0] == '[') {
+            section = l.substr(0, l.find(']') + 1);
+            continue;
+        }
+        const auto eq = l.find('=');
+        if (eq == std::string::npos)
+            continue;
+        std::string k = l.substr(0, eq);
+        k.erase(k.find_last_not_of(" \t") + 1);
+        out.insert(section + k);
+    }
+    return out;
+}
+
 }  // namespace risknav::test

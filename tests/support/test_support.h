@@ -2,6 +2,7 @@
 #include <nlohmann/json.hpp>
 
 #include <map>
+#include <set>
 
 #include <string>
 #include <vector>
@@ -29,6 +30,9 @@ void writeFile(const std::string& path, const std::string& content);
 nlohmann::json readJson(const std::string& path);
 /** Lines of a text file. */
 std::vector<std::string> readLines(const std::string& path);
+/** "[section]key" of every KEY = VALUE line of an .ini file (comment lines
+ * starting with ';', '#' or '/' skipped): what a documented config lists. */
+std::set<std::string> iniKeys(const std::string& path);
 /** Names of the files in a folder (sorted). */
 std::vector<std::string> listDir(const std::string& dir);
 
