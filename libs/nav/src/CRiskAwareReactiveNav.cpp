@@ -1,8 +1,7 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/config_read.h>
-#include <risknav/nav/CAfraidSpeedLimiter.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
-#include <risknav/sim/CStoppingDistanceLimiter.h>
+#include <risknav/sim/CSimRobotInterface.h>
 
 #include <mrpt/nav/reactive/CLogFileRecord.h>
 
@@ -91,6 +90,16 @@ double CRiskAwareReactiveNav::generate_vel_cmd(
     in.pose = m_curPoseVel.pose;
     in.desiredSpeed = desired;
     in.obstacles = &m_WS_Obstacles;
+    in.time = mrpt::Clock::toDouble(mrpt::Clock::now());
+    if (m_navigationParams)
+        in.target = mrpt::math::TPoint2D(m_navigationParams->target.target_coords.x,
+                                         m_navigationParams->target.target_coords.y);
+    // The raw scans (rays, not only their end points) when the robot is a
+    // risknav world: the adaptive limiter maps free space along them.
+    if (const auto* sim = dynamic_cast<const sim::CSimRobotInterface*>(&m_robot)) {
+        in.scan = sim->lastScans().laser.get();
+        in.scan2 = sim->lastScans().range2.get();
+    }
     for (size_t i = 0; i < m_limiters.size(); i++) {
         const TSpeedLimit l = m_limiters[i]->limit(in);
         if (l.maxSpeed < m_last.limit) {
@@ -113,11 +122,6 @@ void CRiskAwareReactiveNav::loggingGetWSObstaclesAndShape(
     out.values["speed_limit"] = m_last.limit;
     out.additional_debug_msgs["speed_limiter"] =
         m_last.limiter.empty() ? "none" : m_last.limiter + ": " + m_last.reason;
-}
-
-void registerAllClasses_nav() {
-    sim::registerAllClasses_sim();
-    mrpt::rtti::registerClass(CLASS_ID(CAfraidSpeedLimiter));
 }
 
 }  // namespace risknav::nav

@@ -3,10 +3,12 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/math/TPoint2D.h>
 #include <mrpt/math/TPose2D.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/rtti/CObject.h>
 
+#include <optional>
 #include <string>
 
 namespace risknav::common {
@@ -20,6 +22,13 @@ struct TSpeedLimitInput {
     /** Sensed obstacle points in the robot frame (what MRPT's reactive
      * navigator senses, CReactiveNavigationSystem's obstacles); may be null. */
     const mrpt::maps::CSimplePointsMap* obstacles = nullptr;
+    /** A second range sensor's latest scan (e.g. RANGE2); may be null. */
+    const mrpt::obs::CObservation2DRangeScan* scan2 = nullptr;
+    /** Where the robot is heading (the navigator's current target, world
+     * frame); nullopt when it has none. */
+    std::optional<mrpt::math::TPoint2D> target;
+    /** [s] the controller's clock (simulated time in risknav's loops). */
+    double time = 0;
 };
 
 /** A limiter's answer: the highest speed it allows and why. */
