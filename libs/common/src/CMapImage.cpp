@@ -91,6 +91,20 @@ void CMapImage::heatOverlay(const std::vector<float>& v, float vmin, float vmax,
     m_bars.push_back({vmin, vmax, label, colormap});
 }
 
+void CMapImage::colourBar(float vmin, float vmax, const std::string& label,
+                          int colormap) {
+    m_bars.push_back({vmin, vmax > vmin ? vmax : vmin + 1.0f, label, colormap});
+}
+
+TRgb CMapImage::colourOf(double v, double vmin, double vmax, int colormap) {
+    const double t =
+        vmax > vmin && std::isfinite(v) ? std::clamp((v - vmin) / (vmax - vmin), 0.0, 1.0) : 0.0;
+    cv::Mat one(1, 1, CV_8UC1, cv::Scalar(std::lround(255 * t))), col;
+    cv::applyColorMap(one, col, colormap);
+    const auto p = col.at<cv::Vec3b>(0, 0);
+    return TRgb{p[2], p[1], p[0]};
+}
+
 void CMapImage::paintCells(const std::vector<uint8_t>& mask, TRgb c) {
     if (mask.size() != size_t(m_cellsX) * m_cellsY)
         throw std::logic_error("paintCells: mask size does not match the grid");

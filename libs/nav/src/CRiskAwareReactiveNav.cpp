@@ -1,8 +1,10 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/config_read.h>
+#include <risknav/nav/CLayeredConfig.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
 #include <risknav/sim/CSimRobotInterface.h>
 
+#include <mrpt/kinematics/CVehicleVelCmd_DiffDriven.h>
 #include <mrpt/nav/reactive/CLogFileRecord.h>
 
 #include <cmath>
@@ -51,7 +53,10 @@ CRiskAwareReactiveNav::CRiskAwareReactiveNav(mrpt::nav::CRobot2NavInterface& r,
 }
 
 void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& c) {
-    mrpt::nav::CReactiveNavigationSystem::loadConfigFile(c);
+    if (m_engine)
+        mrpt::nav::CReactiveNavigationSystem::loadConfigFile(CLayeredConfig(c, *m_engine));
+    else
+        mrpt::nav::CReactiveNavigationSystem::loadConfigFile(c);
     loadOptions(riskOptions, c, kSection);
     loadOptions(robot, c, "Robot");
     std::vector<CSpeedLimiter::Ptr> made;
@@ -111,6 +116,14 @@ double CRiskAwareReactiveNav::generate_vel_cmd(
     if (m_last.limit >= desired)
         return scale;
     const double s = std::max(0.0, m_last.limit / desired);
+    auto* dd = dynamic_cast<mrpt::kinematics::CVehicleVelCmd_DiffDriven*>(new_vel_cmd.get());
+    if (s == 0 && dd) {
+        // Stopped: keep MRPT's turn, in place (a disc robot sweeps nothing
+        // new), so that it can turn away from what stopped it; scaling the
+        // turn too would hold it facing the obstacle for ever.
+        dd->lin_vel = 0;
+        return scale;
+    }
     new_vel_cmd->cmdVel_scale(s);
     return scale * s;
 }

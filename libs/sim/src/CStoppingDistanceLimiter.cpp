@@ -4,6 +4,8 @@
 #include <risknav/sim/CStoppingDistanceLimiter.h>
 
 #include <cmath>
+#include <cstdio>
+#include <limits>
 
 using namespace risknav::common;
 
@@ -57,19 +59,41 @@ bool CStoppingDistanceLimiter::blocked(const std::vector<mrpt::math::TPoint2D>& 
     return false;
 }
 
+double CStoppingDistanceLimiter::freeDistance(const std::vector<mrpt::math::TPoint2D>& pts,
+                                              const TRobotOptions& robot) const {
+    const double halfW = robot.radius + options.lateral_margin;
+    double d = std::numeric_limits<double>::infinity();
+    for (const auto& p : pts)
+        if (p.x > 0 && std::abs(p.y) <= halfW)
+            d = std::min(d, p.x - robot.radius - options.margin);
+    return d;
+}
+
 TSpeedLimit CStoppingDistanceLimiter::impl_limit(const TSpeedLimitInput& in) const {
-    bool stop = in.scan && blocked(*in.scan, in.desiredSpeed, *in.robot);
-    if (!stop && in.obstacles) {
+    if (!options.enabled || in.desiredSpeed <= 0)
+        return {in.desiredSpeed, ""};
+    // The nearest sensed point in the swept corridor ahead: the highest speed
+    // that still stops before it (eqs. 1-4 solved for v). A robot slower
+    // than that is not limited, exactly when blocked() is false.
+    double d = std::numeric_limits<double>::infinity();
+    if (in.scan)
+        d = freeDistance(mapping::scanToRobotFrame(*in.scan), *in.robot);
+    if (in.obstacles) {
         std::vector<mrpt::math::TPoint2D> pts;
         const auto& xs = in.obstacles->getPointsBufferRef_x();
         const auto& ys = in.obstacles->getPointsBufferRef_y();
         for (size_t i = 0; i < xs.size(); i++)
             pts.push_back({double(xs[i]), double(ys[i])});
-        stop = blocked(pts, in.desiredSpeed, *in.robot);
+        d = std::min(d, freeDistance(pts, *in.robot));
     }
-    if (stop)
-        return {0.0, "obstacle within the stopping distance"};
-    return {in.desiredSpeed, ""};
+    if (!(stoppingDistance(in.desiredSpeed, in.robot->t_delay, in.robot->decel) > d))
+        return {in.desiredSpeed, ""};
+    const double v = std::min(in.desiredSpeed,
+                              maxStoppableSpeed(d, in.robot->t_delay, in.robot->decel));
+    char why[96];
+    std::snprintf(why, sizeof(why), "obstacle within the stopping distance (%.2f m free)",
+                  std::max(0.0, d));
+    return {v, why};
 }
 
 void registerAllClasses_sim() {

@@ -41,6 +41,14 @@ class CMapImage {
                      const std::string& label, double alpha = 0.6,
                      float showFrom = -1e30f, int colormap = 2 /* cv::COLORMAP_JET */);
 
+    /** A colour bar "label [units]" from vmin to vmax for things drawn in
+     * colourOf() colours (e.g. a path coloured by speed). */
+    void colourBar(float vmin, float vmax, const std::string& label,
+                   int colormap = 2 /* cv::COLORMAP_JET */);
+    /** The colour of value v on the bar vmin..vmax (clamped). */
+    static TRgb colourOf(double v, double vmin, double vmax,
+                         int colormap = 2 /* cv::COLORMAP_JET */);
+
     /** Paints the cells where mask (row-major, one byte per cell) is non-zero. */
     void paintCells(const std::vector<uint8_t>& mask, TRgb c);
 

@@ -1,5 +1,6 @@
 #pragma once
 #include <algorithm>
+#include <cmath>
 
 namespace risknav::common {
 /** Stopping distance of a robot moving at speed v [m/s]:
@@ -12,6 +13,16 @@ namespace risknav::common {
 inline double stoppingDistance(double v, double tDelay, double decel) {
     v = std::max(0.0, v);
     return tDelay * v + v * v / (2.0 * decel);
+}
+
+/** The highest speed that stops within d [m]: the root v >= 0 of
+ * d_stop(v) = d, v = a (sqrt(t_delay^2 + 2 d / a) - t_delay); 0 for d <= 0.
+ * The inverse of stoppingDistance() (so stoppingDistance(v) <= d for every
+ * v <= maxStoppableSpeed(d)). */
+inline double maxStoppableSpeed(double d, double tDelay, double decel) {
+    if (!(d > 0))
+        return 0.0;
+    return decel * (std::sqrt(tDelay * tDelay + 2.0 * d / decel) - tDelay);
 }
 
 }  // namespace risknav::common

@@ -57,6 +57,10 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
      * naming the known ones. */
     void loadConfigFile(const mrpt::config::CConfigFileBase& c) override;
     void saveConfigFile(mrpt::config::CConfigFileBase& c) const override;
+    /** MRPT's engine sections from `engine` (e.g. the user's MRPT
+     * reactive-navigation file), keys of the config given to loadConfigFile()
+     * overriding its keys; nullptr: that config alone. Not owned. */
+    void setEngineConfig(const mrpt::config::CConfigFileBase* engine) { m_engine = engine; }
 
     const std::vector<common::CSpeedLimiter::Ptr>& limiters() const { return m_limiters; }
     const TLimitRecord& lastLimit() const { return m_last; }
@@ -71,6 +75,7 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
   private:
     std::vector<common::CSpeedLimiter::Ptr> m_limiters;
     TLimitRecord m_last;
+    const mrpt::config::CConfigFileBase* m_engine = nullptr;
 };
 
 /** Registers libs/nav's MRPT classes and the limiters of the libraries below

@@ -4,6 +4,8 @@
 #include <mrpt/nav/reactive/CRobot2NavInterfaceForSimulator.h>
 
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace risknav::sim {
 /** MRPT's robot interface on a risknav world, so that MRPT's
@@ -30,17 +32,44 @@ class CSimRobotInterface : public mrpt::nav::CRobot2NavInterfaceForSimulator_Dif
     bool senseObstacles(mrpt::maps::CSimplePointsMap& obstacles,
                         mrpt::system::TTimeStamp& timestamp) override;
 
+    /** An event the navigator sent (MRPT's send*Event() calls), at world time t. */
+    struct TNavEvent {
+        double t = 0;
+        std::string kind;  ///< navigation_start | navigation_end | waypoint_reached |
+                           ///< waypoint_skipped | new_waypoint_target |
+                           ///< navigation_error | way_seems_blocked |
+                           ///< apparent_collision | cannot_get_closer
+        int waypoint = -1;
+    };
+    void sendNavigationStartEvent() override;
+    void sendNavigationEndEvent() override;
+    void sendWaypointReachedEvent(int waypoint_index, bool reached_nSkipped) override;
+    void sendNewWaypointTargetEvent(int waypoint_index) override;
+    void sendNavigationEndDueToErrorEvent() override;
+    void sendWaySeemsBlockedEvent() override;
+    void sendApparentCollisionEvent() override;
+    void sendCannotGetCloserToBlockedTargetEvent() override;
+    /** Every event since construction, in order. */
+    const std::vector<TNavEvent>& navEvents() const { return m_events; }
+
     /** The pose to report instead of the truth (e.g. MCL); nullopt: the truth. */
     void setLocalization(const std::optional<mrpt::math::TPose2D>& pose) {
         m_localization = pose;
     }
-    /** The scans of the latest senseObstacles() call. */
+    /** Senses the world now; the next senseObstacles() returns these scans
+     * instead of sensing again (so a localizer can use the scan the navigator
+     * will see, before the navigator asks for the pose). */
+    const CSimWorld::TScans& senseNow();
+    /** The scans of the latest senseNow() / senseObstacles() call. */
     const CSimWorld::TScans& lastScans() const { return m_last; }
 
   private:
     CSimWorld& m_world;
     std::optional<mrpt::math::TPose2D> m_localization;
     CSimWorld::TScans m_last;
+    bool m_fresh = false;
+    std::vector<TNavEvent> m_events;
+    void record(const char* kind, int waypoint = -1);  // m_last sensed by senseNow(), not yet handed out
 };
 
 }  // namespace risknav::sim

@@ -36,6 +36,13 @@ class CStoppingDistanceLimiter : public common::CSpeedLimiter {
     bool blocked(const std::vector<mrpt::math::TPoint2D>& robotFramePoints, double v,
                  const common::TRobotOptions& robot) const;
 
+    /** Free distance [m] ahead: from the robot's front, less the margin, to
+     * the nearest point inside the swept corridor (+inf when none). The
+     * limit is the highest speed whose d_stop fits in it (maxStoppableSpeed),
+     * so a speed is limited exactly when blocked() says it is blocked. */
+    double freeDistance(const std::vector<mrpt::math::TPoint2D>& robotFramePoints,
+                        const common::TRobotOptions& robot) const;
+
     void loadConfig(const mrpt::config::CConfigFileBase& c,
                     const std::string& section) override;
     void saveConfig(mrpt::config::CConfigFileBase& c,

@@ -1,0 +1,139 @@
+#pragma once
+#include <risknav/common/CIniConfig.h>
+#include <risknav/localization/CRawlogMcl.h>
+#include <risknav/nav/TNavigateOptions.h>
+#include <risknav/sim/CAgentsSim.h>
+#include <risknav/sim/CSafetyMonitor.h>
+#include <risknav/sim/CSimRobotInterface.h>
+#include <risknav/sim/CSimWorld.h>
+
+#include <mrpt/math/TPoint2D.h>
+#include <mrpt/nav/reactive/TWaypoint.h>
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace risknav::nav {
+/** One navigation cycle, as cycles.csv shows it. */
+struct TNavCycle {
+    int cycle = 0;
+    double t = 0;                                ///< [s] world time at the cycle's start
+    mrpt::math::TPose2D truePose, believedPose;  ///< what the navigator was given
+    double poseError = 0;     ///< [m] |believed - true| position
+    double speed = 0;         ///< [m/s] the robot's actual forward speed
+    double command = 0;       ///< [m/s] the forward speed sent this cycle
+    double desired = 0;       ///< [m/s] what MRPT's engine chose
+    double limit = 0;         ///< [m/s] the smallest limit (= desired if none)
+    std::string limiter;      ///< winning limiter, "" if none limited
+    std::string reason;       ///< its reason
+    double clearance = 0;     ///< [m] robot edge to the nearest map obstacle
+    int waypoint = -1;        ///< the waypoint being approached
+    double distance = 0;      ///< [m] travelled so far
+    double stepMs = 0;        ///< wall time of navigationStep()
+};
+
+/** A waypoint the route tags: a viewpoint (M4) or a sensing point (M2). */
+struct TWaypointTag {
+    std::string kind;    ///< viewpoint | sensing
+    std::string detail;  ///< strategy and landmarks, or the sensing point's name
+    double sigmaX = 0, sigmaY = 0, sigmaPhi = 0;  ///< sensing: the pose fix's sigmas
+};
+
+/** A timed event of a run (navigator events, tagged waypoints, fixes). */
+struct TNavRunEvent {
+    double t = 0;
+    std::string kind;
+    int waypoint = -1;
+    double x = 0, y = 0;
+    std::string detail;
+};
+
+/** Everything one closed-loop run produced. */
+struct TNavRunResult {
+    std::string status;  ///< goal_reached | navigation_error | timeout
+    std::string navError;  ///< MRPT's error code and message ("" if none)
+    std::vector<TNavCycle> cycles;
+    std::vector<TNavRunEvent> events;
+    std::vector<mrpt::math::TPoint2D> track;  ///< true path, every physics step
+    std::map<int, std::vector<mrpt::math::TPoint2D>> people;  ///< tracks by disc id
+    std::vector<sim::TAgentEvent> agentEvents;
+    sim::CSafetyMonitor safety;
+    double time = 0, distance = 0;
+    int waypointsReached = 0, waypointsSkipped = 0, waypointCount = 0;
+    std::map<std::string, double> timePerLimiter;  ///< [s] "none" = no limit
+    double finalPoseError = 0, maxPoseError = 0;   ///< [m]
+    double navStepSeconds = 0;  ///< wall time inside navigationStep()
+    double wallSeconds = 0;
+    size_t rawlogFrames = 0;
+    std::string navlogFile;  ///< MRPT's file (in the run's log folder), "" if none
+    int collisions() const { return safety.collisions() + safety.collisionsStatic(); }
+};
+
+/** What may differ between the runs of one config (experiments). */
+struct TNavRunSetup {
+    uint64_t seed = 1;
+    std::optional<double> maxSpeed;  ///< [m/s] the engine's robotMax_V_mps
+    /** Limiter class names instead of [CRiskAwareReactiveNav] speed_limiters. */
+    std::optional<std::vector<std::string>> limiters;
+    std::optional<std::string> afraidFile;  ///< [CAfraidSpeedLimiter] afraid_file
+    std::optional<int> laps;
+    std::string navlogDir;    ///< "" = no navlog
+    std::string rawlogPath;   ///< "" = no rawlog
+    std::string groundtruthPath;  ///< "t x y phi" per rawlog frame ("" = none)
+    bool quiet = true;
+    std::string label;  ///< progress label
+};
+
+/** risknav-navigate's closed loop (issue 12): MRPT's reactive engine with
+ * risknav's limiters (CRiskAwareReactiveNav) drives the steppable world
+ * (CSimWorld, people included) through MRPT's robot interface on MRPT's
+ * simulated clock. Each cycle of nav_period: the world is sensed, the
+ * localizer (ground truth, the drifting odometry with fixes at sensing
+ * points, or MCL on the laser) gives the pose the navigator sees, the
+ * frame goes to the rawlog, navigationStep() runs, and the world advances in
+ * sim_dt steps while a CSafetyMonitor counts collisions and near misses.
+ *
+ * Config: [Navigate] (TNavigateOptions), the world's sections (CSimWorld),
+ * MRPT's engine sections ([CAbstractNavigator], [CWaypointsNavigator],
+ * [CAbstractPTGBasedReactive], [CReactiveNavigationSystem], the holonomic
+ * method's, ...), [CRiskAwareReactiveNav] and each limiter's section, and
+ * for localization = mcl [Localization] [PF_options] [KLD_options]. */
+class CNavigationRun {
+  public:
+    TNavigateOptions options;  ///< [Navigate]
+    sim::CSimWorld world;
+    localization::CRawlogMcl mcl;  ///< [Localization] etc. (localization = mcl)
+    mrpt::nav::TWaypointSequence waypoints;   ///< one lap of the route
+    std::map<size_t, TWaypointTag> tags;      ///< by waypoint index
+    std::string routeName;                    ///< where the route came from
+
+    /** Loads and checks everything (the world, the route against the map,
+     * MRPT's engine and the limiters through a probe navigator), before any
+     * output. Keeps a reference to `c` for the runs. Sections the caller
+     * loads itself are listed in `otherSections` (not reported unknown). */
+    void loadFromConfigFile(common::CIniConfig& c, std::optional<uint64_t> seed,
+                            const std::vector<std::string>& otherSections = {});
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c) const;
+
+    /** The waypoints of a run of `laps` laps (mode back_and_forth / loop). */
+    mrpt::nav::TWaypointSequence lapWaypoints(int laps) const;
+    /** Runs one closed loop from the start. */
+    TNavRunResult run(const TNavRunSetup& setup);
+    /** The PTG cache folder used. */
+    std::string ptgCacheDir() const;
+
+  private:
+    common::CIniConfig* m_cfg = nullptr;
+    std::unique_ptr<common::CIniConfig> m_engine;  // [Navigate] engine_config
+    void loadRoute(common::CIniConfig& c);
+    void checkAgainstMap(const common::CIniConfig& c) const;
+};
+
+/** Sections the engine (MRPT) and the navigator read: never "unknown". */
+bool isEngineSection(const std::string& section);
+
+}  // namespace risknav::nav

@@ -1,0 +1,46 @@
+#pragma once
+#include <risknav/common/CValidatedOptions.h>
+
+#include <mrpt/math/TPose2D.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace risknav::nav {
+/** [Navigate]: one closed-loop run of risknav-navigate (keys documented in
+ * config/risknav-navigate.ini). The route is one of: `goals` (points),
+ * `route_file` (an MRPT TWaypointSequence file, e.g. risknav-viewpoint-plan's
+ * waypoints.ini) or `risk_config` (risknav-risk-eval's config: the route of
+ * the lowest U, or the one `risk_route` names). */
+struct TNavigateOptions : public common::CValidatedOptions {
+    mrpt::math::TPose2D start;      ///< start x [m], y [m], heading (radians in code)
+    std::vector<double> goals;      ///< x0 y0 x1 y1 ... [m]
+    std::string route_file;         ///< MRPT waypoints ini ([Waypoints])
+    std::string risk_config;        ///< risknav-risk-eval config
+    std::string risk_route = "best";  ///< best | worst | a route name
+    double goal_tolerance = 0.3;    ///< [m] allowed distance to each waypoint
+    std::string mode = "once";      ///< once | back_and_forth | loop
+    int laps = 1;                   ///< passes of the route (mode != once)
+    std::string localization = "ground_truth";  ///< ground_truth | odometry | mcl
+    double sim_dt = 0.05;       ///< [s] physics step
+    double nav_period = 0.2;    ///< [s] one navigation cycle (and rawlog frame)
+    double duration_max = 600;  ///< [s] simulated; then status "timeout"
+    uint64_t seed = 1;
+    double start_time = 1.6e9;       ///< [s] UNIX time of t = 0
+    double near_miss_distance = 0.2;  ///< [m]
+    bool navlog = true;               ///< write the .reactivenavlog
+    bool rawlog = true;               ///< write the run's rawlog
+    /** An MRPT reactive-navigation config for the engine's sections ("" = they
+     * are in this file); keys of this file override it. */
+    std::string engine_config;
+    std::string ptg_cache_dir;  ///< MRPT's PTG grid cache ("" = system temp)
+
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                            const std::string& s) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                          const std::string& s) const override;
+    void validate() const override;
+};
+
+}  // namespace risknav::nav

@@ -1,0 +1,471 @@
+#include <risknav/afraid/CAfraidLearner.h>
+#include <risknav/afraid/afraid_speed.h>
+#include <risknav/common/CBadInputError.h>
+#include <risknav/common/CCsvWriter.h>
+#include <risknav/common/CPlotImage.h>
+#include <risknav/common/config_read.h>
+#include <risknav/common/summary_json.h>
+#include <risknav/nav/CAfraidExperiment.h>
+#include <risknav/nav/CAfraidSpeedLimiter.h>
+#include <risknav/nav/CNavigationRun.h>
+#include <risknav/nav/navigate_report.h>
+
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+
+using namespace risknav::common;
+using mrpt::math::TPoint2D;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace risknav::nav {
+namespace {
+const char* kSec = "AfraidExperiment";
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+json numOrNull(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+
+struct TRunFigures {
+    double sectionTime = kNaN;  ///< [s] first pass through the section (+axis)
+    int doorCollisions = 0, collisions = 0, nearMisses = 0, insideStopping = 0;
+    std::string status;
+    double time = 0;
+};
+
+// Time of the first pass through [s0, s1] along the axis, in the +axis
+// direction, interpolated between cycles.
+double sectionTime(const TNavRunResult& r, const afraid::TRouteAxis& a, double s0,
+                   double s1) {
+    double tIn = kNaN;
+    for (size_t i = 1; i < r.cycles.size(); i++) {
+        const auto& p = r.cycles[i - 1].truePose;
+        const auto& q = r.cycles[i].truePose;
+        const double u = a.along(p.x, p.y) + a.offset(), v = a.along(q.x, q.y) + a.offset();
+        auto cross = [&](double s) {
+            return r.cycles[i - 1].t +
+                   (s - u) / (v - u) * (r.cycles[i].t - r.cycles[i - 1].t);
+        };
+        if (std::isnan(tIn) && u < s0 && v >= s0)
+            tIn = cross(s0);
+        else if (!std::isnan(tIn) && u < s1 && v >= s1)
+            return cross(s1) - tIn;
+    }
+    return kNaN;
+}
+
+TRunFigures figures(const TNavRunResult& r, const afraid::TRouteAxis& a, double s0,
+                    double s1) {
+    TRunFigures f;
+    f.sectionTime = sectionTime(r, a, s0, s1);
+    for (const auto& e : r.safety.events())
+        if (e.kind == "collision" && e.object.rfind("DoorPedestrian", 0) == 0)
+            f.doorCollisions++;
+    f.collisions = r.collisions();
+    f.nearMisses = r.safety.nearMisses();
+    f.insideStopping = int(r.safety.corridorEntries().size());
+    f.status = r.status;
+    f.time = r.time;
+    return f;
+}
+
+struct TStat {
+    double mean = kNaN, lo = kNaN, hi = kNaN;
+    int n = 0;
+};
+TStat stat(const std::vector<double>& v) {
+    TStat s;
+    double sum = 0;
+    for (double x : v)
+        if (std::isfinite(x)) {
+            sum += x;
+            s.lo = s.n ? std::min(s.lo, x) : x;
+            s.hi = s.n ? std::max(s.hi, x) : x;
+            s.n++;
+        }
+    if (s.n)
+        s.mean = sum / s.n;
+    return s;
+}
+std::string statText(const TStat& s, int decimals) {
+    if (!s.n)
+        return "-";
+    char b[96];
+    std::snprintf(b, sizeof(b), "%.*f [%.*f, %.*f]", decimals, s.mean, decimals, s.lo,
+                  decimals, s.hi);
+    return b;
+}
+std::string fmt(double v, int decimals) {
+    if (!std::isfinite(v))
+        return "-";
+    char b[48];
+    std::snprintf(b, sizeof(b), "%.*f", decimals, v);
+    return b;
+}
+}  // namespace
+
+void TAfraidExperimentOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                                  const std::string& s) {
+    const auto sd = readNumbers(c, s, "seeds", {}, TRange::closed(0, 9007199254740992.0));
+    if (!sd.empty()) {
+        seeds.clear();
+        for (double v : sd) {
+            if (v != std::floor(v))
+                throwBadKey(c, s, "seeds", readString(c, s, "seeds", ""),
+                            "seeds are whole numbers");
+            seeds.push_back(uint64_t(v));
+        }
+    }
+    learning_laps = readInt(c, s, "learning_laps", learning_laps);
+    test_laps = readInt(c, s, "test_laps", test_laps);
+    v_safe = readDouble(c, s, "v_safe", v_safe);
+    v_max = readDouble(c, s, "v_max", v_max);
+    section_length = readDouble(c, s, "section_length", section_length);
+    lead_in = readDouble(c, s, "lead_in", lead_in);
+}
+
+void TAfraidExperimentOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                                const std::string& s) const {
+    std::string list;
+    for (auto v : seeds)
+        list += (list.empty() ? "" : " ") + std::to_string(v);
+    writeKey(c, s, "seeds", list);
+    writeKey(c, s, "learning_laps", learning_laps);
+    writeKey(c, s, "test_laps", test_laps);
+    writeKey(c, s, "v_safe", v_safe);
+    writeKey(c, s, "v_max", v_max);
+    writeKey(c, s, "section_length", section_length);
+    writeKey(c, s, "lead_in", lead_in);
+}
+
+void TAfraidExperimentOptions::validate() const {
+    checkRule(!seeds.empty() && seeds.size() <= 100, kSec, "seeds",
+              std::to_string(seeds.size()) + " seeds", "1 to 100 seeds");
+    checkKey(kSec, "learning_laps", learning_laps, TRange::closed(1, 100, "laps"));
+    checkKey(kSec, "test_laps", test_laps, TRange::closed(1, 100, "laps"));
+    checkKey(kSec, "v_safe", v_safe, TRange::closed(0.05, 5, "m/s"));
+    checkKey(kSec, "v_max", v_max, TRange::closed(0.05, 5, "m/s"));
+    checkRule(v_safe <= v_max, kSec, "v_safe", numberText(v_safe), "must be <= v_max");
+    checkKey(kSec, "section_length", section_length, TRange::closed(0.5, 1000, "m"));
+    checkKey(kSec, "lead_in", lead_in, TRange::closed(0, 100, "m"));
+}
+
+void runAfraidExperiment(const TAppContext& ctx) {
+    CIniConfig& c = ctx.cfg;
+    TAfraidExperimentOptions xo;
+    loadOptions(xo, c, kSec);
+    if (ctx.args.seed)
+        xo.seeds = {*ctx.args.seed};
+    const std::vector<std::string> own = {kSec,         "AfraidDetector", "Localization",
+                                          "PF_options", "KLD_options",    "CAfraidSpeedLimiter"};
+    CNavigationRun nr;
+    nr.loadFromConfigFile(c, ctx.args.seed, own);
+    for (const auto& n : [&] {
+             std::vector<std::string> v;
+             std::istringstream in(readString(c, "CRiskAwareReactiveNav", "speed_limiters", ""));
+             for (std::string w; in >> w;)
+                 v.push_back(w);
+             return v;
+         }())
+        if (n.find("CAfraidSpeedLimiter") != std::string::npos)
+            throwBadKey(c, "CRiskAwareReactiveNav", "speed_limiters", n,
+                        "the experiment adds CAfraidSpeedLimiter itself (with the map "
+                        "it learns); list only the other limiters");
+    std::vector<std::string> baseLimiters;
+    {
+        std::istringstream in(readString(c, "CRiskAwareReactiveNav", "speed_limiters", ""));
+        for (std::string w; in >> w;)
+            baseLimiters.push_back(w);
+    }
+    // The limiter's options (its file is the one learned here).
+    CAfraidSpeedLimiter::TOptions lo;
+    lo.krr.section = "CAfraidSpeedLimiter";
+    lo.loadFromConfigFile(c, "CAfraidSpeedLimiter");
+    if (c.hasKey("CAfraidSpeedLimiter", "afraid_file"))
+        throwBadKey(c, "CAfraidSpeedLimiter", "afraid_file", lo.afraid_file,
+                    "in an experiment the afraid map is the one learned; remove the key");
+    lo.afraid_file = "learned";
+    try {
+        lo.validate();
+    } catch (const CConfigKeyError& e) {
+        throw CBadInputError(configWhere(c, e.section, e.key) + e.what());
+    }
+    afraid::CAfraidLearner proto;
+    proto.detector.loadFromConfigFile(c);
+    proto.mcl.loadFromConfigFile(c);
+    c.throwOnUnreadKeys(own);
+
+    COutputDir out(ctx.args.outDir, ctx.info.name);
+    const std::string scratch =
+        (fs::path(out.dir()) / (".experiment-" + std::to_string(::getpid()))).string();
+    fs::remove_all(scratch);
+    fs::create_directories(scratch);
+    struct TCleanup {
+        std::string p;
+        ~TCleanup() {
+            std::error_code ec;
+            fs::remove_all(p, ec);
+        }
+    } cleanup{scratch};
+
+    json perSeed = json::array();
+    std::vector<double> tSafe, tWith, tWithout, speedup;
+    int doorWith = 0, doorWithout = 0, stopWith = 0, stopWithout = 0;
+    CCsvWriter csv(out.stage("experiment.csv"),
+                   {"seed", "section_from_m", "section_to_m", "t_v_safe_s", "t_with_s",
+                    "t_without_s", "speedup_with", "speedup_without", "door_collisions_with",
+                    "door_collisions_without", "collisions_with", "collisions_without",
+                    "inside_stopping_distance_with", "inside_stopping_distance_without",
+                    "near_misses_with", "near_misses_without", "zones", "afraid_events",
+                    "mcl_error_mean_m", "status_learning", "status_with", "status_without"});
+    CPlotImage plot;
+    plot.setTitle("risknav-navigate afraid experiment: speed along the corridor (first pass)");
+    plot.setXLabel("position along the route axis [m]");
+    plot.setYLabel("speed [m/s]");
+    for (size_t k = 0; k < xo.seeds.size(); k++) {
+        const uint64_t seed = xo.seeds[k];
+        const bool first = k == 0;
+        const std::string tag = "seed " + std::to_string(seed);
+        // 1. Learning laps at v_safe, recorded.
+        TNavRunSetup learn;
+        learn.seed = seed;
+        learn.maxSpeed = xo.v_safe;
+        learn.limiters = baseLimiters;
+        learn.laps = xo.learning_laps;
+        learn.quiet = ctx.args.quiet;
+        learn.label = "learn " + tag;
+        learn.rawlogPath = first ? out.stage("learning.rawlog")
+                                 : scratch + "/learning_" + std::to_string(seed) + ".rawlog";
+        learn.groundtruthPath = first ? out.stage("learning_groundtruth.txt")
+                                      : scratch + "/gt_" + std::to_string(seed) + ".txt";
+        const TNavRunResult rl = nr.run(learn);
+        // 2. The afraid map from that rawlog (MCL on the map, as risknav-afraid-learn).
+        afraid::CAfraidLearner learner;
+        learner.detector = proto.detector;
+        learner.mcl.options = proto.mcl.options;
+        learner.mcl.pfOptions = proto.mcl.pfOptions;
+        learner.mcl.kldOptions = proto.mcl.kldOptions;
+        learner.mcl.options.initPose = nr.options.start;
+        learner.options.map = nr.world.mapSource;
+        learner.options.rawlogs = {learn.rawlogPath};
+        learner.options.groundtruth_files = {learn.groundtruthPath};
+        learner.options.krr = lo.krr;
+        learner.options.sample_bin = lo.sample_bin;
+        learner.options.zone_threshold = lo.zone_threshold;
+        learner.options.v_max = xo.v_max;
+        learner.options.v_safe = xo.v_safe;
+        learner.options.seed = seed;
+        learner.prepare();
+        learner.run(true);
+        learner.generalize();
+        const std::string afraidPath =
+            first ? out.stage("learned.afraid")
+                  : scratch + "/learned_" + std::to_string(seed) + ".afraid";
+        learner.grid().save(afraidPath);
+        // 3. Test laps at v_max with the learned limiter and without it.
+        TNavRunSetup with;
+        with.seed = seed;
+        with.maxSpeed = xo.v_max;
+        with.limiters = baseLimiters;
+        with.limiters->insert(with.limiters->begin(), "CAfraidSpeedLimiter");
+        with.afraidFile = afraidPath;
+        with.laps = xo.test_laps;
+        with.quiet = ctx.args.quiet;
+        with.label = "with limiter " + tag;
+        const std::string navDir = scratch + "/navlog";
+        if (first && nr.options.navlog)
+            with.navlogDir = navDir;
+        const TNavRunResult rw = nr.run(with);
+        TNavRunSetup without = with;
+        without.limiters = baseLimiters;
+        without.afraidFile.reset();
+        without.navlogDir.clear();
+        without.label = "without limiter " + tag;
+        const TNavRunResult ro = nr.run(without);
+
+        // The section: lead_in before the first zone on the learning run's axis.
+        std::vector<TPoint2D> traj;
+        for (const auto& cy : rl.cycles)
+            traj.emplace_back(cy.truePose.x, cy.truePose.y);
+        const auto axis = afraid::routeAxis(traj, 0.1);
+        double zFirst = std::numeric_limits<double>::infinity();
+        for (const auto& z : learner.zones())
+            zFirst = std::min(zFirst, afraid::zoneSpan(z, axis).first);
+        const double pos0 = axis.pos.front(), posLast = axis.pos.back();
+        double s0 = kNaN, s1 = kNaN;
+        if (std::isfinite(zFirst)) {
+            s0 = std::max(pos0, zFirst - xo.lead_in);
+            s1 = std::min(s0 + xo.section_length, posLast);
+        }
+        const TRunFigures fl = figures(rl, axis, s0, s1), fw = figures(rw, axis, s0, s1),
+                          fo = figures(ro, axis, s0, s1);
+        const double up = fl.sectionTime / fw.sectionTime;
+        tSafe.push_back(fl.sectionTime);
+        tWith.push_back(fw.sectionTime);
+        tWithout.push_back(fo.sectionTime);
+        speedup.push_back(up);
+        doorWith += fw.doorCollisions;
+        doorWithout += fo.doorCollisions;
+        stopWith += fw.insideStopping;
+        stopWithout += fo.insideStopping;
+        unsigned events = 0;
+        for (const auto& z : learner.zones())
+            events += z.obstacleEvents;
+        csv.row({std::to_string(seed), CCsvWriter::num(s0), CCsvWriter::num(s1),
+                 CCsvWriter::num(fl.sectionTime), CCsvWriter::num(fw.sectionTime),
+                 CCsvWriter::num(fo.sectionTime), CCsvWriter::num(up),
+                 CCsvWriter::num(fl.sectionTime / fo.sectionTime),
+                 std::to_string(fw.doorCollisions), std::to_string(fo.doorCollisions),
+                 std::to_string(fw.collisions), std::to_string(fo.collisions),
+                 std::to_string(fw.insideStopping), std::to_string(fo.insideStopping),
+                 std::to_string(fw.nearMisses), std::to_string(fo.nearMisses),
+                 std::to_string(learner.zones().size()), std::to_string(learner.events().size()),
+                 CCsvWriter::num(learner.mclErrorMean()), fl.status, fw.status, fo.status});
+        auto runJson = [&](const TRunFigures& f) {
+            return json{{"section_time_s", numOrNull(f.sectionTime)},
+                        {"door_collisions", f.doorCollisions},
+                        {"collisions", f.collisions},
+                        {"near_misses", f.nearMisses},
+                        {"inside_stopping_distance", f.insideStopping},
+                        {"status", f.status},
+                        {"time_s", f.time}};
+        };
+        perSeed.push_back({{"seed", seed},
+                           {"section", {numOrNull(s0), numOrNull(s1)}},
+                           {"zones", learner.zones().size()},
+                           {"afraid_events", learner.events().size()},
+                           {"mcl_error_mean_m", numOrNull(learner.mclErrorMean())},
+                           {"mcl_diverged", learner.diverged()},
+                           {"learning", runJson(fl)},
+                           {"with_limiter", runJson(fw)},
+                           {"without_limiter", runJson(fo)},
+                           {"speedup_with", numOrNull(up)}});
+        // The figure: speed vs axis position on the first outbound pass.
+        auto series = [&](const TNavRunResult& r, const std::string& label, TRgb col) {
+            std::vector<double> x, y;
+            double prev = -1e300;
+            for (const auto& cy : r.cycles) {
+                const double p = axis.along(cy.truePose.x, cy.truePose.y) + axis.offset();
+                if (p < prev - 0.5)
+                    break;  // turned back: the first pass is over
+                prev = std::max(prev, p);
+                x.push_back(p);
+                y.push_back(cy.speed);
+            }
+            plot.addSeries(first ? label : "", x, y, col, first ? 2 : 1);
+        };
+        series(rl, "v_safe throughout (learning)", {120, 120, 120});
+        series(ro, "v_max without the afraid limiter", {220, 30, 30});
+        series(rw, "v_max with the learned afraid limiter", {0, 110, 220});
+        if (first) {
+            if (std::isfinite(s0)) {
+                plot.addVLine(s0, "section", {0, 150, 0});
+                plot.addVLine(s1, "", {0, 150, 0});
+            }
+            if (!rw.navlogFile.empty())
+                fs::rename(rw.navlogFile, out.stage("navigation.reactivenavlog"));
+            writeCyclesCsv(rw, nr.options.start_time, out.stage("cycles.csv"));
+            writeEventsCsv(rw, nr.options.start_time, out.stage("events.csv"));
+            std::vector<uint8_t> mask;
+            const auto& g = learner.grid();
+            if (g.sizeX() == int(nr.world.grid().getSizeX()) &&
+                g.sizeY() == int(nr.world.grid().getSizeY())) {
+                mask.assign(size_t(g.sizeX()) * size_t(g.sizeY()), 0);
+                for (const auto& z : learner.zones())
+                    for (int i : z.mask)
+                        mask[size_t(i)] = 1;
+            }
+            char title[300];
+            std::snprintf(title, sizeof(title),
+                          "risknav-navigate, %s, with the learned afraid limiter: %s, "
+                          "section %.1f s (v_safe %.1f s), %d collisions",
+                          tag.c_str(), rw.status.c_str(), fw.sectionTime, fl.sectionTime,
+                          rw.collisions());
+            drawTrajectory(nr, rw, title, out.stage("trajectory.png"),
+                           mask.empty() ? nullptr : &mask);
+            drawSpeedProfile(rw, title, out.stage("speed_profile.png"));
+        }
+        if (!ctx.args.quiet)
+            std::fprintf(stderr,
+                         "%s: %s: section %.1f s at v_safe, %.1f s with the limiter "
+                         "(%.2fx), %.1f s without; door collisions %d with, %d without\n",
+                         ctx.info.name.c_str(), tag.c_str(), fl.sectionTime,
+                         fw.sectionTime, up, fo.sectionTime, fw.doorCollisions,
+                         fo.doorCollisions);
+    }
+    csv.close();
+    plot.save(out.stage("experiment_speed.png"));
+
+    const TStat sS = stat(tSafe), sW = stat(tWith), sO = stat(tWithout), sU = stat(speedup);
+    std::ostringstream md;
+    md << "| seed | section time at v_safe [s] | with the learned limiter [s] | speed-up | "
+          "without (v_max) [s] | door collisions with / without | inside d_stop with / "
+          "without |\n|---|---|---|---|---|---|---|\n";
+    for (const auto& p : perSeed)
+        md << "| " << p["seed"].get<uint64_t>() << " | "
+           << fmt(p["learning"]["section_time_s"].is_null()
+                      ? kNaN
+                      : p["learning"]["section_time_s"].get<double>(),
+                  1)
+           << " | "
+           << fmt(p["with_limiter"]["section_time_s"].is_null()
+                      ? kNaN
+                      : p["with_limiter"]["section_time_s"].get<double>(),
+                  1)
+           << " | "
+           << fmt(p["speedup_with"].is_null() ? kNaN : p["speedup_with"].get<double>(), 2)
+           << "x | "
+           << fmt(p["without_limiter"]["section_time_s"].is_null()
+                      ? kNaN
+                      : p["without_limiter"]["section_time_s"].get<double>(),
+                  1)
+           << " | " << p["with_limiter"]["door_collisions"].get<int>() << " / "
+           << p["without_limiter"]["door_collisions"].get<int>() << " | "
+           << p["with_limiter"]["inside_stopping_distance"].get<int>() << " / "
+           << p["without_limiter"]["inside_stopping_distance"].get<int>() << " |\n";
+    md << "| **mean [min, max]** | " << statText(sS, 1) << " | " << statText(sW, 1) << " | "
+       << statText(sU, 2) << " | " << statText(sO, 1) << " | " << doorWith << " / "
+       << doorWithout << " (total) | " << stopWith << " / " << stopWithout
+       << " (total) |\n| paper (002 section 3) | 51.3 | 24.3 | 2.11x | - | 0 / - | - |\n";
+    out.writeText("experiment.md", md.str());
+
+    json summary = summaryHeader(ctx, xo.seeds.front());
+    auto statJson = [](const TStat& s) {
+        return json{{"mean", numOrNull(s.mean)},
+                    {"min", numOrNull(s.lo)},
+                    {"max", numOrNull(s.hi)},
+                    {"n", s.n}};
+    };
+    summary["experiment"] = "afraid";
+    summary["seeds"] = xo.seeds;
+    summary["per_seed"] = perSeed;
+    summary["section_time_v_safe_s"] = statJson(sS);
+    summary["section_time_with_limiter_s"] = statJson(sW);
+    summary["section_time_without_limiter_s"] = statJson(sO);
+    summary["speedup_with_limiter"] = statJson(sU);
+    summary["door_collisions_with_limiter"] = doorWith;
+    summary["door_collisions_without_limiter"] = doorWithout;
+    summary["inside_stopping_distance_with_limiter"] = stopWith;
+    summary["inside_stopping_distance_without_limiter"] = stopWithout;
+    summary["paper"] = {{"section_time_before_s", 51.3}, {"section_time_after_s", 24.3}};
+    mrpt::config::CConfigFileMemory effective;
+    xo.saveToConfigFile(effective, kSec);
+    nr.saveToConfigFile(effective);
+    lo.saveToConfigFile(effective, "CAfraidSpeedLimiter");
+    proto.detector.saveToConfigFile(effective);
+    proto.mcl.saveToConfigFile(effective);
+    commitRun(ctx, out, summary, effective);
+    if (!ctx.args.quiet)
+        std::fprintf(stderr, "%s: speed-up %s, door collisions %d with / %d without -> %s\n",
+                     ctx.info.name.c_str(), statText(sU, 2).c_str(), doorWith, doorWithout,
+                     out.dir().c_str());
+}
+
+}  // namespace risknav::nav

@@ -1,0 +1,542 @@
+#include <risknav/common/CAppRunner.h>
+#include <risknav/common/CBadInputError.h>
+#include <risknav/common/CProgress.h>
+#include <risknav/common/CSpeedLimiter.h>
+#include <risknav/common/config_read.h>
+#include <risknav/common/stopping.h>
+#include <risknav/nav/CNavigationRun.h>
+#include <risknav/nav/CRiskAwareReactiveNav.h>
+#include <risknav/risk/CRiskEvaluator.h>
+#include <risknav/sim/CRawlogWriter.h>
+
+#include <mrpt/math/CPolygon.h>
+#include <mrpt/math/wrap2pi.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/poses/CPose2D.h>
+#include <mrpt/system/filesystem.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <set>
+#include <sstream>
+
+using namespace risknav::common;
+using mrpt::math::TPoint2D;
+using mrpt::math::TPose2D;
+namespace fs = std::filesystem;
+
+namespace risknav::nav {
+namespace {
+const char* kSec = "Navigate";
+
+// MRPT's reactive engine sections (2.5.8): read by MRPT with its own rules,
+// so risknav reports none of their keys as unknown.
+const std::set<std::string> kEngineSections = {
+    "CAbstractNavigator",          "CWaypointsNavigator",
+    "CAbstractPTGBasedReactive",   "CReactiveNavigationSystem",
+    "CPointCloudFilterByDistance", "CHolonomicFullEval",
+    "CHolonomicND",                "CHolonomicVFF",
+    "CMultiObjectiveMotionOptimizerBase", "CMultiObjMotionOpt_Scalarization"};
+
+std::string pointText(double x, double y) {
+    char b[64];
+    std::snprintf(b, sizeof(b), "(%.2f, %.2f)", x, y);
+    return b;
+}
+
+// The scoped simulated clock: MRPT's navigator times itself on mrpt::Clock.
+struct TSimClock {
+    explicit TSimClock(double t0) {
+        mrpt::Clock::setSimulatedTime(mrpt::Clock::fromDouble(t0));
+        mrpt::Clock::setActiveClock(mrpt::Clock::Simulated);
+    }
+    ~TSimClock() { mrpt::Clock::setActiveClock(mrpt::Clock::Realtime); }
+    void set(double t) { mrpt::Clock::setSimulatedTime(mrpt::Clock::fromDouble(t)); }
+};
+}  // namespace
+
+bool isEngineSection(const std::string& s) { return kEngineSections.count(s) > 0; }
+
+void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> seed,
+                                        const std::vector<std::string>& otherSections) {
+    registerAllClasses_nav();
+    m_cfg = &c;
+    if (!c.sectionExists(kSec))
+        throw CBadInputError(c.path() + ": missing section [Navigate] (start, goals)");
+    if (!c.sectionExists("World"))
+        throw CBadInputError(c.path() + ": missing section [World] (map_file)");
+    loadOptions(options, c, kSec);
+    if (seed)
+        options.seed = *seed;
+    world.loadFromConfigFile(c);
+    m_engine.reset();
+    if (!options.engine_config.empty())
+        m_engine = std::make_unique<CIniConfig>(options.engine_config);
+    if (options.localization == "mcl")
+        mcl.loadFromConfigFile(c);
+    loadRoute(c);
+    checkAgainstMap(c);
+
+    // The engine and the limiters, through a navigator that never runs: an
+    // unknown limiter, a missing section or key, a bad .afraid file, or a
+    // config MRPT refuses are all exit 2 here, before any output.
+    {
+        sim::CSimRobotInterface probeRobot(world);
+        probeRobot.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+        CRiskAwareReactiveNav probe(probeRobot);
+        probe.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+        probe.setEngineConfig(m_engine.get());
+        const_cast<mrpt::system::CTimeLogger&>(probe.getDelaysTimeLogger()).disable();
+        try {
+            probe.loadConfigFile(c);
+        } catch (const CBadInputError&) {
+            throw;
+        } catch (const std::exception& e) {
+            throw CBadInputError((m_engine ? m_engine->path() + " (engine_config) + " : "") +
+                                 c.path() + ": MRPT's reactive engine refused the config: " +
+                                 firstLine(e.what()));
+        }
+        // Only the limiters named are read; the sections of the others must
+        // not be silently ignored.
+        std::set<std::string> known(kEngineSections);
+        for (const auto* s : {"Navigate", "World", "Robot", "Odometry", "Laser",
+                              "RangeSensor2", "CRiskAwareReactiveNav"})
+            known.insert(s);
+        if (options.localization == "mcl")
+            for (const auto* s : {"Localization", "PF_options", "KLD_options"})
+                known.insert(s);
+        for (const auto& n : probe.riskOptions.speed_limiters)
+            known.insert(n.substr(n.rfind(':') == std::string::npos ? 0 : n.rfind(':') + 1));
+        for (const auto& s : otherSections)
+            known.insert(s);
+        std::vector<std::string> checked;
+        for (const auto& s : c.sections()) {
+            if (!known.count(s) && !sim::CAgentsSim::ownsSection(s))
+                throw CBadInputError(
+                    c.path() + ": unknown section [" + s +
+                    "] (known: Navigate, World, Robot, Odometry, Laser, RangeSensor2, "
+                    "people and clutter, CRiskAwareReactiveNav and the sections of the "
+                    "limiters it names, MRPT's engine sections" +
+                    std::string(options.localization == "mcl"
+                                    ? ", Localization, PF_options, KLD_options"
+                                    : "") +
+                    ")");
+            if (!kEngineSections.count(s) &&
+                std::find(otherSections.begin(), otherSections.end(), s) ==
+                    otherSections.end())
+                checked.push_back(s);
+        }
+        c.throwOnUnreadKeys(checked);
+    }
+}
+
+void CNavigationRun::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
+    options.saveToConfigFile(c, kSec);
+    world.saveToConfigFile(c);
+    if (options.localization == "mcl")
+        mcl.saveToConfigFile(c);
+}
+
+void CNavigationRun::loadRoute(CIniConfig& c) {
+    waypoints = {};
+    tags.clear();
+    const double tol = options.goal_tolerance;
+    if (!options.goals.empty()) {
+        routeName = "goals";
+        for (size_t i = 0; i + 1 < options.goals.size(); i += 2)
+            waypoints.waypoints.emplace_back(options.goals[i], options.goals[i + 1], tol,
+                                             false);
+        return;
+    }
+    if (!options.route_file.empty()) {
+        routeName = options.route_file;
+        std::unique_ptr<CIniConfig> f;
+        try {
+            f = std::make_unique<CIniConfig>(options.route_file);
+        } catch (const CBadInputError& e) {
+            throw CBadInputError(std::string("[Navigate] route_file: ") + e.what());
+        }
+        if (!f->sectionExists("Waypoints"))
+            throw CBadInputError(options.route_file +
+                                 ": no [Waypoints] section (MRPT's TWaypointSequence)");
+        const int n = readInt(*f, "Waypoints", "waypoint_count", -1, TRange::closed(1, 10000));
+        if (n < 1)
+            throw CBadInputError(options.route_file +
+                                 ": [Waypoints] waypoint_count: required key is missing");
+        for (int i = 0; i < n; i++) {
+            const std::string k = "waypoint_" + std::to_string(i);
+            const auto v = readNumbers(*f, "Waypoints", k + "_x", {}, {}, 0);
+            const auto w = readNumbers(*f, "Waypoints", k + "_y", {}, {}, 0);
+            if (v.size() != 1 || w.size() != 1 || !std::isfinite(v[0]) ||
+                !std::isfinite(w[0]))
+                throw CBadInputError(options.route_file + ": [Waypoints] " + k +
+                                     "_x / _y: required, one number each");
+            const double d =
+                readDouble(*f, "Waypoints", k + "_allowed_distance", tol,
+                           TRange::closed(0.01, 100, "m"));
+            const bool skip = readBool(*f, "Waypoints", k + "_allow_skip", false);
+            waypoints.waypoints.emplace_back(v[0], w[0], d, skip);
+            if (f->sectionExists("Viewpoints") && f->hasKey("Viewpoints", k))
+                tags[size_t(i)] = {"viewpoint", readString(*f, "Viewpoints", k, "")};
+        }
+        return;
+    }
+    // risk_config: the risk evaluator's ranking, evaluated here.
+    risk::CRiskEvaluator ev;
+    CIniConfig rc(options.risk_config);
+    ev.loadFromConfigFile(rc);
+    ev.evaluate();
+    const auto& rows = ev.rows();
+    long pick = -1;
+    if (options.risk_route == "best")
+        pick = ev.best();
+    else if (options.risk_route == "worst") {
+        for (size_t i = 0; i < rows.size(); i++)
+            if (!rows[i].excluded && rows[i].feasible &&
+                (pick < 0 || rows[i].result.U > rows[size_t(pick)].result.U))
+                pick = long(i);
+    } else {
+        std::string names;
+        for (size_t r = 0; r < ev.routes().size(); r++) {
+            names += (names.empty() ? "" : ", ") + ev.routes()[r].name;
+            if (ev.routes()[r].name == options.risk_route)
+                pick = long(&ev.plainRow(r) - rows.data());
+        }
+        if (pick < 0)
+            throwBadKey(c, kSec, "risk_route", options.risk_route,
+                        "no such route in " + options.risk_config + " (routes: " + names +
+                            "; or best, worst)");
+    }
+    if (pick < 0)
+        throwBadKey(c, kSec, "risk_config", options.risk_config,
+                    "the risk evaluator found no usable route");
+    const auto& row = rows[size_t(pick)];
+    routeName = ev.routes()[row.route].name + " (" + ev.sensingName(row) + ", U = " +
+                numberText(row.result.U) + ")";
+    for (size_t i = 1; i < row.path.size(); i++)
+        waypoints.waypoints.emplace_back(row.path[i].x, row.path[i].y, tol, false);
+    for (size_t s : row.sensing) {
+        const auto& sp = ev.sensingPoints[s];
+        size_t best = 0;
+        double bestD = 1e300;
+        for (size_t i = 0; i < waypoints.waypoints.size(); i++) {
+            const double d = std::hypot(waypoints.waypoints[i].target.x - sp.x,
+                                        waypoints.waypoints[i].target.y - sp.y);
+            if (d < bestD)
+                bestD = d, best = i;
+        }
+        tags[best] = {"sensing", sp.name, sp.sigma_x, sp.sigma_y,
+                      sp.sigma_theta_deg * M_PI / 180.0};
+    }
+}
+
+void CNavigationRun::checkAgainstMap(const CIniConfig& c) const {
+    const auto& g = world.grid();
+    auto onMap = [&](double x, double y) {
+        return x >= g.getXMin() && x <= g.getXMax() && y >= g.getYMin() &&
+               y <= g.getYMax();
+    };
+    const auto& s = options.start;
+    const std::string startText = readString(c, kSec, "start", "");
+    if (!onMap(s.x, s.y))
+        throwBadKey(c, kSec, "start", startText,
+                    "start " + pointText(s.x, s.y) + " is outside the map");
+    const double cl = world.pointClearance(s.x, s.y);
+    if (cl < world.robot.radius) {
+        char b[200];
+        std::snprintf(b, sizeof(b),
+                      "the robot is spawned in collision at %s (clearance %.2f m < "
+                      "robot radius %.2f m)",
+                      pointText(s.x, s.y).c_str(), cl, world.robot.radius);
+        throwBadKey(c, kSec, "start", startText, b);
+    }
+    for (const auto& w : waypoints.waypoints)
+        if (!onMap(w.target.x, w.target.y))
+            throwBadKey(c, kSec,
+                        !options.goals.empty()
+                            ? "goals"
+                            : (!options.route_file.empty() ? "route_file" : "risk_config"),
+                        !options.goals.empty() ? readString(c, kSec, "goals", "")
+                                               : routeName,
+                        "waypoint " + pointText(w.target.x, w.target.y) +
+                            " is outside the map");
+}
+
+mrpt::nav::TWaypointSequence CNavigationRun::lapWaypoints(int laps) const {
+    mrpt::nav::TWaypointSequence out;
+    const auto& w = waypoints.waypoints;
+    out.waypoints = w;
+    if (options.mode == "once")
+        return out;
+    const mrpt::nav::TWaypoint start(options.start.x, options.start.y,
+                                     options.goal_tolerance, false);
+    for (int lap = 1; lap < laps; lap++) {
+        if (options.mode == "loop") {
+            out.waypoints.push_back(start);
+            out.waypoints.insert(out.waypoints.end(), w.begin(), w.end());
+        } else {  // back_and_forth: back along the route, then out again
+            for (size_t i = w.size() - 1; i-- > 0;)
+                out.waypoints.push_back(w[i]);
+            out.waypoints.push_back(start);
+            if (++lap >= laps)
+                break;
+            out.waypoints.insert(out.waypoints.end(), w.begin(), w.end());
+        }
+    }
+    return out;
+}
+
+std::string CNavigationRun::ptgCacheDir() const {
+    if (!options.ptg_cache_dir.empty())
+        return options.ptg_cache_dir;
+    return (fs::temp_directory_path() / "risknav-ptg-cache").string();
+}
+
+TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
+    const auto wall0 = std::chrono::steady_clock::now();
+    if (!m_cfg)
+        throw std::logic_error("CNavigationRun::run() before loadFromConfigFile()");
+    CIniConfig& c = *m_cfg;
+    if (setup.limiters) {
+        std::string list;
+        for (const auto& n : *setup.limiters)
+            list += (list.empty() ? "" : " ") + n;
+        c.write("CRiskAwareReactiveNav", "speed_limiters", list);
+    }
+    if (setup.afraidFile)
+        c.write("CAfraidSpeedLimiter", "afraid_file", *setup.afraidFile);
+
+    TNavRunResult r;
+    world.reset(options.start, setup.seed, options.start_time);
+    sim::CSimRobotInterface robotIf(world);
+    robotIf.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+    const bool navlog = !setup.navlogDir.empty();
+    if (navlog)
+        fs::create_directories(setup.navlogDir);
+    CRiskAwareReactiveNav nav(robotIf, false, false, navlog ? setup.navlogDir : ".");
+    nav.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+    const_cast<mrpt::system::CTimeLogger&>(nav.getDelaysTimeLogger()).disable();
+    nav.setEngineConfig(m_engine.get());
+    nav.loadConfigFile(c);
+    nav.params_abstract_ptg_navigator.ptg_cache_files_directory = ptgCacheDir();
+    fs::create_directories(ptgCacheDir());
+    if (setup.maxSpeed)
+        nav.changeCurrentRobotSpeedLimits().robotMax_V_mps = *setup.maxSpeed;
+    mrpt::math::CPolygon shape;  // the world's robot: a disc
+    for (int i = 0; i < 24; i++)
+        shape.AddVertex(world.robot.radius * std::cos(i * M_PI / 12),
+                        world.robot.radius * std::sin(i * M_PI / 12));
+    nav.changeRobotShape(shape);
+    nav.initialize();
+    if (navlog) {
+        nav.setLogFileDirectory(setup.navlogDir);
+        nav.enableLogFile(true);
+        nav.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+    }
+
+    const auto wps = lapWaypoints(setup.laps.value_or(options.laps));
+    r.waypointCount = int(wps.waypoints.size());
+    const size_t lapLen = waypoints.waypoints.size();
+    auto tagOf = [&](int i) -> const TWaypointTag* {
+        if (i < 0 || lapLen == 0 || options.mode != "once")
+            return nullptr;  // tags of laps beyond the first: the route's order
+        const auto it = tags.find(size_t(i));
+        return it == tags.end() ? nullptr : &it->second;
+    };
+
+    std::unique_ptr<sim::CRawlogWriter> rawlog;
+    std::ofstream gt;
+    if (!setup.rawlogPath.empty())
+        rawlog = std::make_unique<sim::CRawlogWriter>(setup.rawlogPath);
+    if (!setup.groundtruthPath.empty()) {
+        gt.open(setup.groundtruthPath);
+        gt << "% t x y phi  (ground truth at each rawlog frame; t = UNIX time [s], phi "
+              "[rad])\n";
+    }
+    const bool useMcl = options.localization == "mcl";
+    if (useMcl) {
+        mcl.options.initPose = options.start;
+        mcl.initialize(world.grid(), setup.seed);
+    }
+    mrpt::poses::CPose2D odoFix;  // believed = odoFix (+) odometry (odometry mode)
+    std::mt19937_64 fixRng(setup.seed ^ 0x5EED5EEDull);
+    TPose2D lastOdo = world.odometricPose();
+    TPose2D believed = options.start;
+
+    nav.navigateWaypoints(wps);
+    const double dt = options.sim_dt;
+    const int stepsPerCycle = int(std::lround(options.nav_period / dt));
+    const double t0 = options.start_time;
+    TSimClock clock(t0);
+    CProgress progress(setup.label.empty() ? "navigate" : setup.label,
+                       size_t(options.duration_max), "s", setup.quiet);
+    size_t eventsSeen = 0;
+    r.track.emplace_back(world.truePose().x, world.truePose().y);
+    for (int cycle = 0;; cycle++) {
+        const double t = world.time();
+        const auto& scans = robotIf.senseNow();
+        const TPose2D truth = world.truePose(), odo = world.odometricPose();
+        mrpt::obs::CActionCollection acts;
+        mrpt::obs::CActionRobotMovement2D mv;
+        mv.timestamp = world.timestamp();
+        mv.computeFromOdometry(mrpt::poses::CPose2D(odo) - mrpt::poses::CPose2D(lastOdo),
+                               mrpt::obs::CActionRobotMovement2D::TMotionModelOptions());
+        acts.insert(mv);
+        mrpt::obs::CSensoryFrame sf;
+        sf.insert(scans.laser);
+        if (scans.range2)
+            sf.insert(scans.range2);
+        lastOdo = odo;
+        if (useMcl)
+            believed = mcl.step(acts, sf).mean;
+        else if (options.localization == "odometry")
+            believed = (odoFix + mrpt::poses::CPose2D(odo)).asTPose();
+        else
+            believed = truth;
+        robotIf.setLocalization(options.localization == "ground_truth"
+                                    ? std::nullopt
+                                    : std::optional<TPose2D>(believed));
+        if (rawlog) {
+            rawlog->write(acts, sf);
+            r.rawlogFrames = rawlog->frames();
+        }
+        if (gt) {
+            char b[128];
+            std::snprintf(b, sizeof(b), "%.3f %.6f %.6f %.6f\n", t0 + t, truth.x, truth.y,
+                          truth.phi);
+            gt << b;
+        }
+
+        const auto s0 = std::chrono::steady_clock::now();
+        nav.navigationStep();
+        const double stepS =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - s0).count();
+        r.navStepSeconds += stepS;
+
+        TNavCycle rec;
+        rec.cycle = cycle;
+        rec.t = t;
+        rec.truePose = truth;
+        rec.believedPose = believed;
+        rec.poseError = std::hypot(believed.x - truth.x, believed.y - truth.y);
+        rec.speed = world.speed();
+        rec.command = world.commandedSpeed();
+        const auto& lim = nav.lastLimit();
+        rec.desired = lim.desired;
+        rec.limit = lim.limit;
+        rec.limiter = lim.limiter;
+        rec.reason = lim.reason;
+        rec.clearance = world.pointClearance(truth.x, truth.y) - world.robot.radius;
+        rec.waypoint = nav.getWaypointNavStatus().waypoint_index_current_goal;
+        rec.distance = r.distance;
+        rec.stepMs = 1e3 * stepS;
+        r.maxPoseError = std::max(r.maxPoseError, rec.poseError);
+        r.cycles.push_back(rec);
+
+        // The navigator's events of this step, and what tagged waypoints do.
+        const auto& ev = robotIf.navEvents();
+        for (; eventsSeen < ev.size(); eventsSeen++) {
+            const auto& e = ev[eventsSeen];
+            TNavRunEvent out{e.t, e.kind, e.waypoint, truth.x, truth.y, ""};
+            if (e.kind == "waypoint_reached")
+                r.waypointsReached++;
+            if (e.kind == "waypoint_skipped")
+                r.waypointsSkipped++;
+            r.events.push_back(out);
+            const TWaypointTag* tag =
+                e.kind == "waypoint_reached" ? tagOf(e.waypoint) : nullptr;
+            if (!tag)
+                continue;
+            TNavRunEvent te{e.t, tag->kind, e.waypoint, truth.x, truth.y, tag->detail};
+            if (tag->kind == "sensing" && options.localization == "odometry") {
+                // The paper's sensing point: the pose is measured there with the
+                // point's sigmas (001 section 5.2), so the belief is reset.
+                std::normal_distribution<double> n(0, 1);
+                const TPose2D fix(truth.x + tag->sigmaX * n(fixRng),
+                                  truth.y + tag->sigmaY * n(fixRng),
+                                  truth.phi + tag->sigmaPhi * n(fixRng));
+                odoFix = mrpt::poses::CPose2D(fix) -
+                         mrpt::poses::CPose2D(world.odometricPose());
+                char b[120];
+                std::snprintf(b, sizeof(b), "%s: pose fixed (error before %.3f m)",
+                              tag->detail.c_str(), rec.poseError);
+                te.detail = b;
+            }
+            r.events.push_back(te);
+        }
+
+        const auto st = nav.getCurrentState();
+        if (st == mrpt::nav::CAbstractNavigator::NAV_ERROR) {
+            r.status = "navigation_error";
+            const auto& er = nav.getErrorReason();
+            r.navError = std::to_string(int(er.error_code)) + ": " + er.error_msg;
+            break;
+        }
+        if (st == mrpt::nav::CAbstractNavigator::IDLE && cycle > 0) {
+            r.status = nav.getWaypointNavStatus().final_goal_reached ? "goal_reached"
+                                                                     : "stopped";
+            break;
+        }
+        if (t >= options.duration_max) {
+            r.status = "timeout";
+            nav.cancel();
+            break;
+        }
+        r.timePerLimiter[lim.limiter.empty() ? "none" : lim.limiter] += options.nav_period;
+        for (const auto& d : world.agents.discs())
+            r.people[d.objectId].emplace_back(d.x, d.y);
+        for (int k = 0; k < stepsPerCycle; k++) {
+            const TPose2D before = world.truePose();
+            world.step(dt);
+            const TPose2D now = world.truePose();
+            r.distance += std::hypot(now.x - before.x, now.y - before.y);
+            r.track.emplace_back(now.x, now.y);
+            const double tn = world.time();
+            r.safety.update(tn, now, world.robot.radius, world.agents,
+                            world.pointClearance(now.x, now.y));
+            const auto& rb = world.robot;
+            // People entering the stopping corridor: the robot cannot stop
+            // before them (Choi et al. (002) eqs. 1-5, no beta margin).
+            r.safety.updateCorridor(tn, now, world.speed(), rb.radius,
+                                    stoppingDistance(world.speed(), rb.t_delay, rb.decel),
+                                    rb.radius, world.agents);
+        }
+        clock.set(t0 + world.time());
+        progress.update(size_t(world.time()));
+    }
+    progress.finish();
+    r.time = world.time();
+    r.finalPoseError = r.cycles.empty() ? 0 : r.cycles.back().poseError;
+    r.agentEvents = world.agentEvents();
+    // Static clutter is a disc too: keep the tracks of things that moved.
+    for (auto it = r.people.begin(); it != r.people.end();) {
+        const auto& p = it->second;
+        bool moved = false;
+        for (const auto& q : p)
+            moved |= std::hypot(q.x - p.front().x, q.y - p.front().y) > 0.05;
+        it = moved ? std::next(it) : r.people.erase(it);
+    }
+    if (rawlog)
+        rawlog->close();
+    if (gt.is_open()) {
+        gt.close();
+        if (!gt)
+            throw std::runtime_error("cannot write " + setup.groundtruthPath);
+    }
+    if (navlog) {
+        nav.enableLogFile(false);  // closes MRPT's file
+        for (const auto& e : fs::directory_iterator(setup.navlogDir))
+            if (e.path().extension() == ".reactivenavlog")
+                r.navlogFile = e.path().string();
+    }
+    r.wallSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    return r;
+}
+
+}  // namespace risknav::nav

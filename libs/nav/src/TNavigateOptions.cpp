@@ -1,0 +1,101 @@
+#include <risknav/common/config_read.h>
+#include <risknav/nav/TNavigateOptions.h>
+
+#include <cmath>
+
+using namespace risknav::common;
+
+namespace risknav::nav {
+namespace {
+const char* kSec = "Navigate";
+
+// An optional file key: absent is fine, named means it must exist.
+std::string optionalFile(const mrpt::config::CConfigFileBase& c, const std::string& s,
+                         const std::string& k, const std::string& def) {
+    return readString(c, s, k, def).empty() ? def : readPath(c, s, k, def, true);
+}
+}  // namespace
+
+void TNavigateOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                          const std::string& s) {
+    const auto st = readNumbers(c, s, "start", {}, {}, 0);
+    if (!st.empty()) {
+        if (st.size() != 3)
+            throwBadKey(c, s, "start", readString(c, s, "start", ""),
+                        "expected x [m] y [m] heading [deg]");
+        start = mrpt::math::TPose2D(st[0], st[1], st[2] * M_PI / 180.0);
+    } else
+        throw CBadInputError(configWhere(c, s, "start") + "[" + s +
+                             "] start: required key is missing (x y heading_deg)");
+    goals = readNumbers(c, s, "goals", goals, {}, 0, 2);
+    route_file = optionalFile(c, s, "route_file", route_file);
+    risk_config = optionalFile(c, s, "risk_config", risk_config);
+    risk_route = readString(c, s, "risk_route", risk_route);
+    goal_tolerance = readDouble(c, s, "goal_tolerance", goal_tolerance);
+    mode = readChoice(c, s, "mode", mode, {"once", "back_and_forth", "loop"});
+    laps = readInt(c, s, "laps", laps);
+    localization =
+        readChoice(c, s, "localization", localization, {"ground_truth", "odometry", "mcl"});
+    sim_dt = readDouble(c, s, "sim_dt", sim_dt);
+    nav_period = readDouble(c, s, "nav_period", nav_period);
+    duration_max = readDouble(c, s, "duration_max", duration_max);
+    seed = static_cast<uint64_t>(
+        readDouble(c, s, "seed", double(seed), TRange::closed(0, 9007199254740992.0)));
+    start_time = readDouble(c, s, "start_time", start_time);
+    near_miss_distance = readDouble(c, s, "near_miss_distance", near_miss_distance);
+    navlog = readBool(c, s, "navlog", navlog);
+    rawlog = readBool(c, s, "rawlog", rawlog);
+    engine_config = optionalFile(c, s, "engine_config", engine_config);
+    ptg_cache_dir = readPath(c, s, "ptg_cache_dir", ptg_cache_dir, false);
+}
+
+void TNavigateOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                        const std::string& s) const {
+    writeKey(c, s, "start",
+             std::vector<double>{start.x, start.y, start.phi * 180.0 / M_PI});
+    writeKey(c, s, "goals", goals);
+    writeKey(c, s, "route_file", route_file);
+    writeKey(c, s, "risk_config", risk_config);
+    writeKey(c, s, "risk_route", risk_route);
+    writeKey(c, s, "goal_tolerance", goal_tolerance);
+    writeKey(c, s, "mode", mode);
+    writeKey(c, s, "laps", laps);
+    writeKey(c, s, "localization", localization);
+    writeKey(c, s, "sim_dt", sim_dt);
+    writeKey(c, s, "nav_period", nav_period);
+    writeKey(c, s, "duration_max", duration_max);
+    writeKey(c, s, "seed", std::to_string(seed));
+    writeKey(c, s, "start_time", start_time);
+    writeKey(c, s, "near_miss_distance", near_miss_distance);
+    writeKey(c, s, "navlog", navlog);
+    writeKey(c, s, "rawlog", rawlog);
+    writeKey(c, s, "engine_config", engine_config);
+    writeKey(c, s, "ptg_cache_dir", ptg_cache_dir);
+}
+
+void TNavigateOptions::validate() const {
+    const std::string s = kSec;
+    checkKey(s, "start", std::vector<double>{start.x, start.y},
+             TRange::closed(-1e5, 1e5, "m"));
+    checkKey(s, "goals", goals, TRange::closed(-1e5, 1e5, "m"));
+    checkRule(goals.size() <= 2 * 10000, s, "goals",
+              std::to_string(goals.size() / 2) + " points", "at most 10000 points");
+    const int sources =
+        int(!goals.empty()) + int(!route_file.empty()) + int(!risk_config.empty());
+    checkRule(sources == 1, s, "goals", std::to_string(sources) + " route sources",
+              "give exactly one of goals, route_file, risk_config");
+    checkRule(!risk_route.empty(), s, "risk_route", risk_route,
+              "best, worst or a route name");
+    checkKey(s, "goal_tolerance", goal_tolerance, TRange::closed(0.05, 10, "m"));
+    checkKey(s, "laps", laps, TRange::closed(1, 1000, "laps"));
+    checkKey(s, "sim_dt", sim_dt, TRange::closed(0.001, 0.5, "s"));
+    checkKey(s, "nav_period", nav_period, TRange::closed(0.01, 2, "s"));
+    const double ratio = nav_period / sim_dt;
+    checkRule(std::abs(ratio - std::round(ratio)) <= 1e-6, s, "nav_period",
+              numberText(nav_period), "must be a whole multiple of sim_dt");
+    checkKey(s, "duration_max", duration_max, TRange::closed(1, 1e5, "s"));
+    checkKey(s, "start_time", start_time, TRange::closed(0, 4e9, "s"));
+    checkKey(s, "near_miss_distance", near_miss_distance, TRange::closed(0, 5, "m"));
+}
+
+}  // namespace risknav::nav
