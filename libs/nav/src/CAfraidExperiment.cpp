@@ -36,6 +36,7 @@ json numOrNull(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
 struct TRunFigures {
     double sectionTime = kNaN;  ///< [s] first pass through the section (+axis)
     int doorCollisions = 0, collisions = 0, nearMisses = 0, insideStopping = 0;
+    int emergences = 0;  ///< people who burst out of a door during the run
     std::string status;
     double time = 0;
 };
@@ -71,6 +72,8 @@ TRunFigures figures(const TNavRunResult& r, const afraid::TRouteAxis& a, double 
     f.collisions = r.collisions();
     f.nearMisses = r.safety.nearMisses();
     f.insideStopping = int(r.safety.corridorEntries().size());
+    for (const auto& e : r.agentEvents)
+        f.emergences += e.kind == "emerge";
     f.status = r.status;
     f.time = r.time;
     return f;
@@ -334,6 +337,7 @@ void runAfraidExperiment(const TAppContext& ctx) {
                         {"collisions", f.collisions},
                         {"near_misses", f.nearMisses},
                         {"inside_stopping_distance", f.insideStopping},
+                        {"emergences", f.emergences},
                         {"status", f.status},
                         {"time_s", f.time}};
         };

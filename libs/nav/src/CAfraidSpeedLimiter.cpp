@@ -14,7 +14,9 @@ IMPLEMENTS_MRPT_OBJECT(CAfraidSpeedLimiter, risknav::common::CSpeedLimiter, risk
 
 void CAfraidSpeedLimiter::TOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& c, const std::string& s) {
-    afraid_file = readPath(c, s, "afraid_file", afraid_file, true);
+    // Missing: validate() says it is required (an experiment sets it itself).
+    if (!readString(c, s, "afraid_file", "").empty())
+        afraid_file = readPath(c, s, "afraid_file", afraid_file, true);
     v_max = readDouble(c, s, "v_max", v_max);
     v_safe = readDouble(c, s, "v_safe", v_safe);
     zone_threshold = readDouble(c, s, "zone_threshold", zone_threshold);

@@ -4,6 +4,7 @@
 #include <risknav/common/CSpeedLimiter.h>
 #include <risknav/common/config_read.h>
 #include <risknav/common/stopping.h>
+#include <risknav/nav/CAfraidSpeedLimiter.h>
 #include <risknav/nav/CNavigationRun.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
 #include <risknav/risk/CRiskEvaluator.h>
@@ -101,6 +102,26 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
                                  c.path() + ": MRPT's reactive engine refused the config: " +
                                  firstLine(e.what()));
         }
+        // A learned afraid map is for one map: its grid must be the world's.
+        for (const auto& l : probe.limiters())
+            if (const auto* a = dynamic_cast<const CAfraidSpeedLimiter*>(l.get())) {
+                const auto& g = a->grid();
+                const auto& m = world.grid();
+                const double res = m.getResolution();
+                if (g.sizeX() != int(m.getSizeX()) || g.sizeY() != int(m.getSizeY()) ||
+                    std::abs(g.resolution() - res) > 1e-9 ||
+                    std::abs(g.xMin() - m.getXMin()) > 0.5 * res ||
+                    std::abs(g.yMin() - m.getYMin()) > 0.5 * res) {
+                    char b[300];
+                    std::snprintf(b, sizeof(b),
+                                  "its grid (%d x %d cells of %.3f m from (%.2f, %.2f)) is "
+                                  "not the world map's (%u x %u of %.3f m from (%.2f, %.2f))",
+                                  g.sizeX(), g.sizeY(), g.resolution(), g.xMin(), g.yMin(),
+                                  m.getSizeX(), m.getSizeY(), res, m.getXMin(), m.getYMin());
+                    throwBadKey(c, "CAfraidSpeedLimiter", "afraid_file",
+                                a->options.afraid_file, b);
+                }
+            }
         // Only the limiters named are read; the sections of the others must
         // not be silently ignored.
         std::set<std::string> known(kEngineSections);

@@ -63,6 +63,11 @@ void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& 
     for (const auto& name : riskOptions.speed_limiters) {
         auto l =
             CSpeedLimiter::Factory(name);  // unknown: CBadInputError, names the known
+        if (!c.sectionExists(shortName(name)))
+            throw CBadInputError(configWhere(c) + "[" + kSection + "] speed_limiters names " +
+                                 name + " but the config has no [" + shortName(name) +
+                                 "] section (its options; an empty section takes the "
+                                 "defaults)");
         l->loadConfig(c, shortName(name));
         made.push_back(l);
     }

@@ -1,0 +1,179 @@
+// risknav-navigate end to end: MRPT's reactive engine with risknav's limiters
+// closed loop on the datasets, the afraid experiment, and bad input.
+#include <risknav/afraid/CAfraidGrid.h>
+#include <test_support.h>
+
+#include <mrpt/maps/COccupancyGridMap2D.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <regex>
+
+using namespace risknav::test;
+using nlohmann::json;
+
+namespace {
+json navRun(const std::string& config, const std::string& out, const std::string& extra = "") {
+    const auto r = run(binPath("risknav-navigate") + " -q -o '" + out + "' " + extra + " '" +
+                       config + "'");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return readJson(out + "/summary.json");
+}
+}  // namespace
+
+TEST(NavigateE2E, OfficeReachesEveryWaypointWithTheStoppingLimiter) {
+    const std::string out = freshDir("office");
+    const json s = navRun(sourcePath("datasets/office/navigate.ini"), out);
+    EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
+    EXPECT_EQ(s["waypoints_reached"], 5);
+    EXPECT_EQ(s["collisions"], 0);
+    EXPECT_GT(s["distance_m"].get<double>(), 20.0);
+    // Time is split among the limiters that won (and "none"), cycle by cycle.
+    double sum = 0;
+    for (const auto& [k, v] : s["time_per_limiter_s"].items())
+        sum += v.get<double>();
+    EXPECT_NEAR(sum, s["time_s"].get<double>(), 0.21);
+    EXPECT_GT(s["time_per_limiter_s"]["CStoppingDistanceLimiter"].get<double>(), 0.0);
+    for (const char* f : {"navigation.reactivenavlog", "navigation.rawlog", "groundtruth.txt",
+                          "cycles.csv", "events.csv", "trajectory.png", "speed_profile.png",
+                          "config_effective.ini"})
+        EXPECT_FALSE(readFile(out + "/" + f).empty()) << f;
+    EXPECT_EQ(readLines(out + "/cycles.csv").size(), s["cycles"].get<size_t>() + 1);
+    EXPECT_EQ(s["rawlog_frames"], s["cycles"]);
+    // The run is reproducible from its seed.
+    const json again = navRun(sourcePath("datasets/office/navigate.ini"), freshDir("again"));
+    EXPECT_EQ(again["time_s"], s["time_s"]);
+    EXPECT_EQ(again["distance_m"], s["distance_m"]);
+}
+
+TEST(NavigateE2E, TheDocumentedConfigRuns) {
+    const std::string out = freshDir("cfg");
+    const json s = navRun(sourcePath("config/risknav-navigate.ini"), out);
+    EXPECT_EQ(s["status"], "goal_reached");
+    const auto documented = iniKeys(sourcePath("config/risknav-navigate.ini"));
+    for (const auto& k : iniKeys(out + "/config_effective.ini"))
+        if (k.rfind("[Navigate]", 0) == 0)
+            EXPECT_TRUE(documented.count(k)) << k << " is not documented";
+}
+
+TEST(NavigateE2E, RiskRoutesBestAndWorstAreDriven) {
+    // The lowest-U route of risk.ini (a GVG route with a sensing point) and
+    // the highest-U one (B, the narrow straight corridor), by dead reckoning.
+    const std::string cfg = sourcePath("datasets/risk-two-routes/navigate.ini");
+    const json best = navRun(cfg, freshDir("best"), "--seed 2");
+    const json worst = navRun(cfg, freshDir("worst"), "--seed 2 --set Navigate.risk_route=worst");
+    EXPECT_NE(best["route"].get<std::string>().find("SP2"), std::string::npos) << best["route"];
+    EXPECT_EQ(worst["route"].get<std::string>().rfind("B ", 0), 0u) << worst["route"];
+    EXPECT_EQ(best["status"], "goal_reached");
+    EXPECT_EQ(worst["status"], "goal_reached");
+    ASSERT_EQ(best["tagged_events"].size(), 1u);
+    EXPECT_EQ(best["tagged_events"][0]["kind"], "sensing");
+    EXPECT_GT(best["pose_error_final_m"].get<double>(), 0.0);
+    EXPECT_GT(worst["pose_error_final_m"].get<double>(), 0.0);
+    EXPECT_EQ(best["collisions"], 0);
+    EXPECT_EQ(worst["collisions"], 0);
+}
+
+TEST(NavigateE2E, AfraidExperimentOneSeedIsFasterThanSafeSpeed) {
+    const std::string out = freshDir("xp");
+    const json s = navRun(sourcePath("datasets/corridor-doors/afraid_experiment.ini"), out,
+                          "--seed 2");
+    ASSERT_EQ(s["per_seed"].size(), 1u);
+    const auto& p = s["per_seed"][0];
+    EXPECT_GT(p["zones"].get<int>(), 0);
+    const double safe = p["learning"]["section_time_s"].get<double>();
+    const double with = p["with_limiter"]["section_time_s"].get<double>();
+    const double without = p["without_limiter"]["section_time_s"].get<double>();
+    EXPECT_NEAR(safe, 10.0 / 0.2, 6.0);  // v_safe throughout
+    EXPECT_LT(with, safe / 1.5);         // the learned limiter lets it go faster...
+    EXPECT_GT(with, without * 1.2);      // ...but slows it at the doors
+    EXPECT_EQ(p["with_limiter"]["door_collisions"], 0);
+    for (const char* f : {"experiment.csv", "experiment.md", "experiment_speed.png",
+                          "learned.afraid", "learning.rawlog", "navigation.reactivenavlog",
+                          "trajectory.png"})
+        EXPECT_FALSE(readFile(out + "/" + f).empty()) << f;
+}
+
+TEST(NavigateE2E, UnreachableGoalIsANavigationErrorInTheSummary) {
+    const std::string w = freshDir("w");
+    std::string cfg = readFile(sourcePath("datasets/office/navigate.ini"));
+    cfg = std::regex_replace(cfg, std::regex("goals +=.*"), "goals = 3.0 6.6  3.0 8.0");
+    cfg = std::regex_replace(cfg, std::regex("duration_max +=.*"), "duration_max = 120");
+    cfg = std::regex_replace(cfg, std::regex("office.png"),
+                             sourcePath("datasets/office/office.png"));
+    writeFile(w + "/n.ini", cfg);
+    const json s = navRun(w + "/n.ini", freshDir("out"));
+    EXPECT_NE(s["status"], "goal_reached");
+    EXPECT_EQ(s["goal_reached"], false);
+    if (s["status"] == "navigation_error")
+        EXPECT_FALSE(s["navigation_error"].get<std::string>().empty());
+}
+
+struct TBad {
+    const char* name;
+    const char* from;  // regex in datasets/office/navigate.ini
+    const char* to;
+    const char* expect;
+};
+
+class NavigateBadInput : public ::testing::TestWithParam<TBad> {};
+
+TEST_P(NavigateBadInput, OneLineExit2OutputUntouched) {
+    const auto& c = GetParam();
+    const std::string w = freshDir("w");
+    std::string cfg = readFile(sourcePath("datasets/office/navigate.ini"));
+    cfg = std::regex_replace(cfg, std::regex("office.png"),
+                             sourcePath("datasets/office/office.png"));
+    cfg = std::regex_replace(cfg, std::regex(c.from), c.to);
+    writeFile(w + "/n.ini", cfg);
+    const std::string out = freshDir("out");
+    const TEarlierOutput earlier{{"summary.json", "{\"earlier\": true}\n"}};
+    writeEarlierOutput(out, earlier);
+    const auto r = run(binPath("risknav-navigate") + " -q -o '" + out + "' '" + w + "/n.ini'");
+    expectBadInput(r, c.expect, out, earlier, "risknav-navigate: error: ");
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Navigate, NavigateBadInput,
+    ::testing::Values(
+        TBad{"unknown_limiter", "speed_limiters = CStoppingDistanceLimiter",
+             "speed_limiters = CNoSuchLimiter", "CNoSuchLimiter"},
+        TBad{"limiter_section_missing", "\\[CStoppingDistanceLimiter\\]", "[Unused]",
+             "has no [CStoppingDistanceLimiter] section"},
+        TBad{"spawned_in_collision", "start +=.*", "start = 0.1 0.1 0",
+             "[Navigate] start"},
+        TBad{"spawned_in_a_wall", "start +=.*", "start = 3.0 0.4 90",
+             "spawned in collision"},
+        TBad{"goal_off_map", "goals +=.*", "goals = 3.0 6.6  90 6.6", "outside the map"},
+        TBad{"two_route_sources", "goals +=.*",
+             "goals = 3 6.6\nroute_file = n.ini", "exactly one of goals"},
+        TBad{"bad_localization", "localization +=.*", "localization = gps",
+             "[Navigate] localization"},
+        TBad{"nav_period_not_multiple", "nav_period +=.*", "nav_period = 0.07",
+             "[Navigate] nav_period"},
+        TBad{"unknown_key", "goal_tolerance", "goal_tolerence", "goal_tolerence"},
+        TBad{"engine_key_missing", "engine_config +=.*", "engine_config =",
+             "MRPT's reactive engine refused the config"}),
+    [](const auto& i) { return std::string(i.param.name); });
+
+TEST(NavigateE2E, AfraidFileOfAnotherMapIsAClearError) {
+    // A valid .afraid file, but of a 10 x 10 m map at 0.1 m: not the office's.
+    const std::string w = freshDir("w");
+    mrpt::maps::COccupancyGridMap2D other(0, 10, 0, 10, 0.1);
+    risknav::afraid::CAfraidGrid(other).save(w + "/other.afraid");
+    std::string cfg = readFile(sourcePath("datasets/office/navigate.ini"));
+    cfg = std::regex_replace(cfg, std::regex("office.png"),
+                             sourcePath("datasets/office/office.png"));
+    cfg = std::regex_replace(cfg, std::regex("speed_limiters = CStoppingDistanceLimiter"),
+                             "speed_limiters = CAfraidSpeedLimiter CStoppingDistanceLimiter\n"
+                             "[CAfraidSpeedLimiter]\nafraid_file = other.afraid");
+    writeFile(w + "/n.ini", cfg);
+    const std::string out = freshDir("out");
+    const TEarlierOutput earlier{{"summary.json", "{\"earlier\": true}\n"}};
+    writeEarlierOutput(out, earlier);
+    const auto r = run(binPath("risknav-navigate") + " -q -o '" + out + "' '" + w + "/n.ini'");
+    expectBadInput(r, "[CAfraidSpeedLimiter] afraid_file", out, earlier,
+                   "risknav-navigate: error: ");
+    EXPECT_NE(r.err.find("is not the world map's"), std::string::npos) << r.err;
+}
