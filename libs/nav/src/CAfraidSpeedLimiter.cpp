@@ -4,6 +4,8 @@
 #include <risknav/common/stopping.h>
 #include <risknav/nav/CAfraidSpeedLimiter.h>
 
+#include <mrpt/poses/CPose2D.h>
+
 #include <cmath>
 #include <cstdio>
 
@@ -78,11 +80,22 @@ TSpeedLimit CAfraidSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const {
     const double reach =
         stoppingDistance(options.v_max, in.robot->t_delay, in.robot->decel) +
         in.robot->radius;
-    const mrpt::math::TPoint2D a{in.pose.x, in.pose.y};
-    const mrpt::math::TPoint2D b{in.pose.x + reach * std::cos(in.pose.phi),
-                                 in.pose.y + reach * std::sin(in.pose.phi)};
+    std::vector<mrpt::math::TPoint2D> ahead;
+    if (in.path.size() >= 2) {  // the controller's path, to the world frame
+        const mrpt::poses::CPose2D robotPose(in.pose);
+        for (size_t i = 0; i < in.path.size(); i++) {
+            const auto q = (robotPose + mrpt::poses::CPose2D(in.path[i])).asTPose();
+            ahead.emplace_back(q.x, q.y);
+            if (i < in.pathDistance.size() && in.pathDistance[i] > reach)
+                break;
+        }
+    } else {
+        ahead.emplace_back(in.pose.x, in.pose.y);
+        ahead.emplace_back(in.pose.x + reach * std::cos(in.pose.phi),
+                           in.pose.y + reach * std::sin(in.pose.phi));
+    }
     const double v = afraid::afraidSpeedLimit(
-        [&](double x, double y) { return levelAt(x, y); }, {a, b}, in.desiredSpeed,
+        [&](double x, double y) { return levelAt(x, y); }, ahead, in.desiredSpeed,
         options.v_max, options.v_safe, options.zone_threshold, in.robot->t_delay,
         in.robot->decel);
     if (v >= in.desiredSpeed)

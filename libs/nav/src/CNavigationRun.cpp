@@ -37,12 +37,16 @@ const char* kSec = "Navigate";
 
 // MRPT's reactive engine sections (2.5.8): read by MRPT with its own rules,
 // so risknav reports none of their keys as unknown.
-const std::set<std::string> kEngineSections = {
-    "CAbstractNavigator",          "CWaypointsNavigator",
-    "CAbstractPTGBasedReactive",   "CReactiveNavigationSystem",
-    "CPointCloudFilterByDistance", "CHolonomicFullEval",
-    "CHolonomicND",                "CHolonomicVFF",
-    "CMultiObjectiveMotionOptimizerBase", "CMultiObjMotionOpt_Scalarization"};
+const std::set<std::string> kEngineSections = {"CAbstractNavigator",
+                                               "CWaypointsNavigator",
+                                               "CAbstractPTGBasedReactive",
+                                               "CReactiveNavigationSystem",
+                                               "CPointCloudFilterByDistance",
+                                               "CHolonomicFullEval",
+                                               "CHolonomicND",
+                                               "CHolonomicVFF",
+                                               "CMultiObjectiveMotionOptimizerBase",
+                                               "CMultiObjMotionOpt_Scalarization"};
 
 std::string pointText(double x, double y) {
     char b[64];
@@ -61,7 +65,9 @@ struct TSimClock {
 };
 }  // namespace
 
-bool isEngineSection(const std::string& s) { return kEngineSections.count(s) > 0; }
+bool isEngineSection(const std::string& s) {
+    return kEngineSections.count(s) > 0;
+}
 
 void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> seed,
                                         const std::vector<std::string>& otherSections) {
@@ -98,9 +104,9 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
         } catch (const CBadInputError&) {
             throw;
         } catch (const std::exception& e) {
-            throw CBadInputError((m_engine ? m_engine->path() + " (engine_config) + " : "") +
-                                 c.path() + ": MRPT's reactive engine refused the config: " +
-                                 firstLine(e.what()));
+            throw CBadInputError(
+                (m_engine ? m_engine->path() + " (engine_config) + " : "") + c.path() +
+                ": MRPT's reactive engine refused the config: " + firstLine(e.what()));
         }
         // A learned afraid map is for one map: its grid must be the world's.
         for (const auto& l : probe.limiters())
@@ -113,11 +119,12 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
                     std::abs(g.xMin() - m.getXMin()) > 0.5 * res ||
                     std::abs(g.yMin() - m.getYMin()) > 0.5 * res) {
                     char b[300];
-                    std::snprintf(b, sizeof(b),
-                                  "its grid (%d x %d cells of %.3f m from (%.2f, %.2f)) is "
-                                  "not the world map's (%u x %u of %.3f m from (%.2f, %.2f))",
-                                  g.sizeX(), g.sizeY(), g.resolution(), g.xMin(), g.yMin(),
-                                  m.getSizeX(), m.getSizeY(), res, m.getXMin(), m.getYMin());
+                    std::snprintf(
+                        b, sizeof(b),
+                        "its grid (%d x %d cells of %.3f m from (%.2f, %.2f)) is "
+                        "not the world map's (%u x %u of %.3f m from (%.2f, %.2f))",
+                        g.sizeX(), g.sizeY(), g.resolution(), g.xMin(), g.yMin(),
+                        m.getSizeX(), m.getSizeY(), res, m.getXMin(), m.getYMin());
                     throwBadKey(c, "CAfraidSpeedLimiter", "afraid_file",
                                 a->options.afraid_file, b);
                 }
@@ -132,12 +139,18 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
             for (const auto* s : {"Localization", "PF_options", "KLD_options"})
                 known.insert(s);
         for (const auto& n : probe.riskOptions.speed_limiters)
-            known.insert(n.substr(n.rfind(':') == std::string::npos ? 0 : n.rfind(':') + 1));
+            known.insert(
+                n.substr(n.rfind(':') == std::string::npos ? 0 : n.rfind(':') + 1));
         for (const auto& s : otherSections)
             known.insert(s);
         std::vector<std::string> checked;
         for (const auto& s : c.sections()) {
-            if (!known.count(s) && !sim::CAgentsSim::ownsSection(s))
+            // A section a limiter read (e.g. the sensor models the adaptive
+            // limiter's laser_model names) is known too.
+            std::vector<std::string> keys;
+            c.getAllKeys(s, keys);
+            const bool readByPlugin = c.unreadKeys({s}).size() < keys.size();
+            if (!known.count(s) && !sim::CAgentsSim::ownsSection(s) && !readByPlugin)
                 throw CBadInputError(
                     c.path() + ": unknown section [" + s +
                     "] (known: Navigate, World, Robot, Odometry, Laser, RangeSensor2, "
@@ -152,6 +165,23 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
                     otherSections.end())
                 checked.push_back(s);
         }
+        // MRPT's sections: MRPT reads only those of the methods chosen (a
+        // config with [CHolonomicND] for another method still works), but in
+        // a section it did read, a key it did not is a typo.
+        for (const auto& s : c.sections())
+            if (kEngineSections.count(s)) {
+                std::vector<std::string> keys;
+                c.getAllKeys(s, keys);
+                const bool readHere = c.unreadKeys({s}).size() < keys.size();
+                bool readThere = false;
+                if (m_engine && m_engine->sectionExists(s)) {
+                    std::vector<std::string> ek;
+                    m_engine->getAllKeys(s, ek);
+                    readThere = m_engine->unreadKeys({s}).size() < ek.size();
+                }
+                if (readHere || readThere)
+                    checked.push_back(s);
+            }
         c.throwOnUnreadKeys(checked);
     }
 }
@@ -185,26 +215,40 @@ void CNavigationRun::loadRoute(CIniConfig& c) {
         if (!f->sectionExists("Waypoints"))
             throw CBadInputError(options.route_file +
                                  ": no [Waypoints] section (MRPT's TWaypointSequence)");
-        const int n = readInt(*f, "Waypoints", "waypoint_count", -1, TRange::closed(1, 10000));
+        const int n =
+            readInt(*f, "Waypoints", "waypoint_count", -1, TRange::closed(1, 10000));
         if (n < 1)
             throw CBadInputError(options.route_file +
                                  ": [Waypoints] waypoint_count: required key is missing");
+        // MRPT's TWaypointSequence keys (TWaypointSequence::save / load), read
+        // strictly: a missing or malformed number is an error, not a 0.
+        const std::string& W = "Waypoints";
         for (int i = 0; i < n; i++) {
-            const std::string k = "waypoint_" + std::to_string(i);
-            const auto v = readNumbers(*f, "Waypoints", k + "_x", {}, {}, 0);
-            const auto w = readNumbers(*f, "Waypoints", k + "_y", {}, {}, 0);
-            if (v.size() != 1 || w.size() != 1 || !std::isfinite(v[0]) ||
-                !std::isfinite(w[0]))
+            char pre[16];
+            std::snprintf(pre, sizeof(pre), "wp%03d_", i);
+            const std::string k(pre);
+            if (!f->hasKey(W, k + "target_x") || !f->hasKey(W, k + "target_y"))
                 throw CBadInputError(options.route_file + ": [Waypoints] " + k +
-                                     "_x / _y: required, one number each");
-            const double d =
-                readDouble(*f, "Waypoints", k + "_allowed_distance", tol,
-                           TRange::closed(0.01, 100, "m"));
-            const bool skip = readBool(*f, "Waypoints", k + "_allow_skip", false);
-            waypoints.waypoints.emplace_back(v[0], w[0], d, skip);
-            if (f->sectionExists("Viewpoints") && f->hasKey("Viewpoints", k))
-                tags[size_t(i)] = {"viewpoint", readString(*f, "Viewpoints", k, "")};
+                                     "target_x / " + k +
+                                     "target_y: required key is missing (" +
+                                     std::to_string(n) + " waypoints)");
+            const double x =
+                readDouble(*f, W, k + "target_x", 0, TRange::closed(-1e5, 1e5, "m"));
+            const double y =
+                readDouble(*f, W, k + "target_y", 0, TRange::closed(-1e5, 1e5, "m"));
+            // MRPT's reactive engine does not stop within a few cm: at least
+            // goal_tolerance.
+            const double d = std::max(tol, readDouble(*f, W, k + "allowed_distance", tol,
+                                                      TRange::closed(0.001, 100, "m")));
+            const bool skip = readBool(*f, W, k + "allow_skip", true);
+            readDouble(*f, W, k + "speed_ratio", 1, TRange::closed(0, 1));
+            readString(*f, W, k + "target_frame_id", "map");
+            waypoints.waypoints.emplace_back(x, y, d, skip);
+            const std::string vk = "waypoint_" + std::to_string(i);
+            if (f->sectionExists("Viewpoints") && f->hasKey("Viewpoints", vk))
+                tags[size_t(i)] = {"viewpoint", readString(*f, "Viewpoints", vk, "")};
         }
+        f->throwOnUnreadKeys({"Waypoints", "Viewpoints"});
         return;
     }
     // risk_config: the risk evaluator's ranking, evaluated here.
@@ -237,8 +281,8 @@ void CNavigationRun::loadRoute(CIniConfig& c) {
         throwBadKey(c, kSec, "risk_config", options.risk_config,
                     "the risk evaluator found no usable route");
     const auto& row = rows[size_t(pick)];
-    routeName = ev.routes()[row.route].name + " (" + ev.sensingName(row) + ", U = " +
-                numberText(row.result.U) + ")";
+    routeName = ev.routes()[row.route].name + " (" + ev.sensingName(row) +
+                ", U = " + numberText(row.result.U) + ")";
     for (size_t i = 1; i < row.path.size(); i++)
         waypoints.waypoints.emplace_back(row.path[i].x, row.path[i].y, tol, false);
     for (size_t s : row.sensing) {
@@ -278,14 +322,13 @@ void CNavigationRun::checkAgainstMap(const CIniConfig& c) const {
     }
     for (const auto& w : waypoints.waypoints)
         if (!onMap(w.target.x, w.target.y))
-            throwBadKey(c, kSec,
-                        !options.goals.empty()
-                            ? "goals"
-                            : (!options.route_file.empty() ? "route_file" : "risk_config"),
-                        !options.goals.empty() ? readString(c, kSec, "goals", "")
-                                               : routeName,
-                        "waypoint " + pointText(w.target.x, w.target.y) +
-                            " is outside the map");
+            throwBadKey(
+                c, kSec,
+                !options.goals.empty()
+                    ? "goals"
+                    : (!options.route_file.empty() ? "route_file" : "risk_config"),
+                !options.goals.empty() ? readString(c, kSec, "goals", "") : routeName,
+                "waypoint " + pointText(w.target.x, w.target.y) + " is outside the map");
 }
 
 mrpt::nav::TWaypointSequence CNavigationRun::lapWaypoints(int laps) const {
@@ -341,6 +384,25 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
         fs::create_directories(setup.navlogDir);
     CRiskAwareReactiveNav nav(robotIf, false, false, navlog ? setup.navlogDir : ".");
     nav.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+    // MRPT's errors (e.g. exceptions it catches inside navigationStep()) are
+    // counted for summary.json instead of flooding the terminal.
+    nav.logging_enable_console_output = false;
+    nav.logRegisterCallback([&r](std::string_view msg, mrpt::system::VerbosityLevel lvl,
+                                 std::string_view, mrpt::Clock::time_point) {
+        if (lvl < mrpt::system::LVL_ERROR)
+            return;
+        r.mrptErrors++;
+        if (r.firstMrptError.empty()) {
+            std::string m(msg);
+            const auto p = m.find("Message:");
+            if (p != std::string::npos)
+                m = m.substr(p + 8);
+            r.firstMrptError =
+                firstLine(m.substr(m.find_first_not_of(" \n") == std::string::npos
+                                       ? 0
+                                       : m.find_first_not_of(" \n")));
+        }
+    });
     const_cast<mrpt::system::CTimeLogger&>(nav.getDelaysTimeLogger()).disable();
     nav.setEngineConfig(m_engine.get());
     nav.loadConfigFile(c);
@@ -348,10 +410,13 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     fs::create_directories(ptgCacheDir());
     if (setup.maxSpeed)
         nav.changeCurrentRobotSpeedLimits().robotMax_V_mps = *setup.maxSpeed;
-    mrpt::math::CPolygon shape;  // the world's robot: a disc
+    // The world's robot is a disc: MRPT gets the 24-gon around it grown by
+    // shape_margin (vertices at (R + margin) / cos(pi / 24)), so that MRPT's
+    // collision checks cover the disc the safety monitor measures.
+    mrpt::math::CPolygon shape;
+    const double rv = (world.robot.radius + options.shape_margin) / std::cos(M_PI / 24);
     for (int i = 0; i < 24; i++)
-        shape.AddVertex(world.robot.radius * std::cos(i * M_PI / 12),
-                        world.robot.radius * std::sin(i * M_PI / 12));
+        shape.AddVertex(rv * std::cos(i * M_PI / 12), rv * std::sin(i * M_PI / 12));
     nav.changeRobotShape(shape);
     nav.initialize();
     if (navlog) {
@@ -450,7 +515,7 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
         const auto& lim = nav.lastLimit();
         rec.desired = lim.desired;
         rec.limit = lim.limit;
-        rec.limiter = lim.limiter;
+        rec.limiter = lim.turning ? "turn_in_place" : lim.limiter;
         rec.reason = lim.reason;
         rec.clearance = world.pointClearance(truth.x, truth.y) - world.robot.radius;
         rec.waypoint = nav.getWaypointNavStatus().waypoint_index_current_goal;
@@ -508,7 +573,8 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
             nav.cancel();
             break;
         }
-        r.timePerLimiter[lim.limiter.empty() ? "none" : lim.limiter] += options.nav_period;
+        r.timePerLimiter[rec.limiter.empty() ? "none" : rec.limiter] +=
+            options.nav_period;
         for (const auto& d : world.agents.discs())
             r.people[d.objectId].emplace_back(d.x, d.y);
         for (int k = 0; k < stepsPerCycle; k++) {

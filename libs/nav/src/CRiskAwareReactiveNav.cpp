@@ -1,13 +1,18 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/config_read.h>
+#include <risknav/common/stopping.h>
 #include <risknav/nav/CLayeredConfig.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
 #include <risknav/sim/CSimRobotInterface.h>
 
 #include <mrpt/kinematics/CVehicleVelCmd_DiffDriven.h>
 #include <mrpt/nav/reactive/CLogFileRecord.h>
+#include <mrpt/nav/tpspace/CParameterizedTrajectoryGenerator.h>
+
+#include <mrpt/math/wrap2pi.h>
 
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 using namespace risknav::common;
@@ -30,6 +35,8 @@ void CRiskAwareReactiveNav::TOptions::loadFromConfigFile(
     std::istringstream in(list);
     for (std::string name; in >> name;)
         speed_limiters.push_back(name);
+    turn_in_place_deg = readDouble(c, s, "turn_in_place_deg", turn_in_place_deg);
+    turn_rate_deg = readDouble(c, s, "turn_rate_deg", turn_rate_deg);
 }
 
 void CRiskAwareReactiveNav::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
@@ -38,11 +45,16 @@ void CRiskAwareReactiveNav::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     for (const auto& n : speed_limiters)
         list += (list.empty() ? "" : " ") + n;
     writeKey(c, s, "speed_limiters", list);
+    writeKey(c, s, "turn_in_place_deg", turn_in_place_deg);
+    writeKey(c, s, "turn_rate_deg", turn_rate_deg);
 }
 
 void CRiskAwareReactiveNav::TOptions::validate() const {
     checkRule(speed_limiters.size() <= 16, kSection, "speed_limiters",
               std::to_string(speed_limiters.size()) + " names", "at most 16 limiters");
+    checkKey(kSection, "turn_in_place_deg", turn_in_place_deg,
+             TRange::closed(0, 180, "deg"));
+    checkKey(kSection, "turn_rate_deg", turn_rate_deg, TRange::closed(1, 360, "deg/s"));
 }
 
 CRiskAwareReactiveNav::CRiskAwareReactiveNav(mrpt::nav::CRobot2NavInterface& r,
@@ -52,9 +64,52 @@ CRiskAwareReactiveNav::CRiskAwareReactiveNav(mrpt::nav::CRobot2NavInterface& r,
     registerAllClasses_nav();
 }
 
+void CRiskAwareReactiveNav::navigationStep() {
+    const double limitDeg = riskOptions.turn_in_place_deg;
+    std::optional<mrpt::math::TPoint2D> target;
+    if (limitDeg > 0 && getCurrentState() == NAVIGATING) {
+        // The waypoint MRPT will aim at: the first one not yet reached.
+        const auto st = getWaypointNavStatus();
+        for (const auto& w : st.waypoints)
+            if (!w.reached) {
+                target = w.target;
+                break;
+            }
+        if (!target && m_navigationParams)
+            target = mrpt::math::TPoint2D(m_navigationParams->target.target_coords.x,
+                                          m_navigationParams->target.target_coords.y);
+    }
+    if (target) {
+        mrpt::math::TPose2D pose, odo;
+        mrpt::math::TTwist2D vel;
+        mrpt::system::TTimeStamp ts;
+        std::string frame;
+        if (m_robot.getCurrentPoseAndSpeeds(pose, vel, ts, odo, frame)) {
+            const double bearing = mrpt::math::wrapToPi(
+                std::atan2(target->y - pose.y, target->x - pose.x) - pose.phi);
+            const double deg = std::abs(bearing) * 180 / M_PI;
+            m_turning = deg > (m_turning ? limitDeg / 3 : limitDeg);
+            if (m_turning) {
+                mrpt::kinematics::CVehicleVelCmd_DiffDriven cmd;
+                cmd.lin_vel = 0;
+                cmd.ang_vel =
+                    (bearing > 0 ? 1 : -1) * riskOptions.turn_rate_deg * M_PI / 180;
+                m_robot.changeSpeeds(cmd);
+                m_last = {};
+                m_last.turning = true;
+                return;
+            }
+        }
+    }
+    m_turning = false;
+    m_last = {};  // set by generate_vel_cmd() when MRPT sends a new command
+    mrpt::nav::CReactiveNavigationSystem::navigationStep();
+}
+
 void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& c) {
     if (m_engine)
-        mrpt::nav::CReactiveNavigationSystem::loadConfigFile(CLayeredConfig(c, *m_engine));
+        mrpt::nav::CReactiveNavigationSystem::loadConfigFile(
+            CLayeredConfig(c, *m_engine));
     else
         mrpt::nav::CReactiveNavigationSystem::loadConfigFile(c);
     loadOptions(riskOptions, c, kSection);
@@ -64,8 +119,9 @@ void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& 
         auto l =
             CSpeedLimiter::Factory(name);  // unknown: CBadInputError, names the known
         if (!c.sectionExists(shortName(name)))
-            throw CBadInputError(configWhere(c) + "[" + kSection + "] speed_limiters names " +
-                                 name + " but the config has no [" + shortName(name) +
+            throw CBadInputError(configWhere(c) + "[" + kSection +
+                                 "] speed_limiters names " + name +
+                                 " but the config has no [" + shortName(name) +
                                  "] section (its options; an empty section takes the "
                                  "defaults)");
         l->loadConfig(c, shortName(name));
@@ -104,6 +160,25 @@ double CRiskAwareReactiveNav::generate_vel_cmd(
     if (m_navigationParams)
         in.target = mrpt::math::TPoint2D(m_navigationParams->target.target_coords.x,
                                          m_navigationParams->target.target_coords.y);
+    // MRPT's chosen trajectory, sampled every ~5 cm over the stopping
+    // distance at the desired speed and a margin: what the limiters judge.
+    if (auto* ptg = in_movement.PTG) {
+        const uint16_t k = ptg->alpha2index(in_movement.direction);
+        const size_t n = ptg->getPathStepCount(k);
+        const double reach =
+            stoppingDistance(desired, robot.t_delay, robot.decel) + robot.radius + 1.0;
+        double last = -1;
+        for (size_t i = 0; i < n; i++) {
+            const double d = ptg->getPathDist(k, uint32_t(i));
+            if (i + 1 < n && d - last < 0.05)
+                continue;
+            in.path.push_back(ptg->getPathPose(k, uint32_t(i)));
+            in.pathDistance.push_back(d);
+            last = d;
+            if (d > reach)
+                break;
+        }
+    }
     // The raw scans (rays, not only their end points) when the robot is a
     // risknav world: the adaptive limiter maps free space along them.
     if (const auto* sim = dynamic_cast<const sim::CSimRobotInterface*>(&m_robot)) {
@@ -111,6 +186,9 @@ double CRiskAwareReactiveNav::generate_vel_cmd(
         in.scan2 = sim->lastScans().range2.get();
     }
     for (size_t i = 0; i < m_limiters.size(); i++) {
+        // Each limiter judges the speed the ones before it left (the
+        // stopping distance of 0.2 m/s, not of MRPT's 1.1).
+        in.desiredSpeed = m_last.limit;
         const TSpeedLimit l = m_limiters[i]->limit(in);
         if (l.maxSpeed < m_last.limit) {
             m_last.limit = l.maxSpeed;
@@ -121,7 +199,8 @@ double CRiskAwareReactiveNav::generate_vel_cmd(
     if (m_last.limit >= desired)
         return scale;
     const double s = std::max(0.0, m_last.limit / desired);
-    auto* dd = dynamic_cast<mrpt::kinematics::CVehicleVelCmd_DiffDriven*>(new_vel_cmd.get());
+    auto* dd =
+        dynamic_cast<mrpt::kinematics::CVehicleVelCmd_DiffDriven*>(new_vel_cmd.get());
     if (s == 0 && dd) {
         // Stopped: keep MRPT's turn, in place (a disc robot sweeps nothing
         // new), so that it can turn away from what stopped it; scaling the

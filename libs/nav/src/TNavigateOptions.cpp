@@ -34,8 +34,8 @@ void TNavigateOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
     goal_tolerance = readDouble(c, s, "goal_tolerance", goal_tolerance);
     mode = readChoice(c, s, "mode", mode, {"once", "back_and_forth", "loop"});
     laps = readInt(c, s, "laps", laps);
-    localization =
-        readChoice(c, s, "localization", localization, {"ground_truth", "odometry", "mcl"});
+    localization = readChoice(c, s, "localization", localization,
+                              {"ground_truth", "odometry", "mcl"});
     sim_dt = readDouble(c, s, "sim_dt", sim_dt);
     nav_period = readDouble(c, s, "nav_period", nav_period);
     duration_max = readDouble(c, s, "duration_max", duration_max);
@@ -43,6 +43,7 @@ void TNavigateOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
         readDouble(c, s, "seed", double(seed), TRange::closed(0, 9007199254740992.0)));
     start_time = readDouble(c, s, "start_time", start_time);
     near_miss_distance = readDouble(c, s, "near_miss_distance", near_miss_distance);
+    shape_margin = readDouble(c, s, "shape_margin", shape_margin);
     navlog = readBool(c, s, "navlog", navlog);
     rawlog = readBool(c, s, "rawlog", rawlog);
     engine_config = optionalFile(c, s, "engine_config", engine_config);
@@ -67,6 +68,7 @@ void TNavigateOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
     writeKey(c, s, "seed", std::to_string(seed));
     writeKey(c, s, "start_time", start_time);
     writeKey(c, s, "near_miss_distance", near_miss_distance);
+    writeKey(c, s, "shape_margin", shape_margin);
     writeKey(c, s, "navlog", navlog);
     writeKey(c, s, "rawlog", rawlog);
     writeKey(c, s, "engine_config", engine_config);
@@ -96,6 +98,7 @@ void TNavigateOptions::validate() const {
     checkKey(s, "duration_max", duration_max, TRange::closed(1, 1e5, "s"));
     checkKey(s, "start_time", start_time, TRange::closed(0, 4e9, "s"));
     checkKey(s, "near_miss_distance", near_miss_distance, TRange::closed(0, 5, "m"));
+    checkKey(s, "shape_margin", shape_margin, TRange::closed(0, 2, "m"));
 }
 
 }  // namespace risknav::nav

@@ -14,9 +14,13 @@ using nlohmann::json;
 
 namespace risknav::nav {
 namespace {
-std::string num(double v) { return CCsvWriter::num(v, 9); }
+std::string num(double v) {
+    return CCsvWriter::num(v, 9);
+}
 
-json finiteOrNull(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+json finiteOrNull(double x) {
+    return std::isfinite(x) ? json(x) : json(nullptr);
+}
 
 // One colour per limiter, the same in every picture.
 TRgb limiterColour(const std::string& name) {
@@ -28,6 +32,8 @@ TRgb limiterColour(const std::string& name) {
         return {240, 140, 0};
     if (name == "CAdaptiveSpeedLimiter")
         return {0, 160, 70};
+    if (name == "turn_in_place")
+        return {120, 120, 120};
     return {150, 60, 190};
 }
 }  // namespace
@@ -61,7 +67,8 @@ void writeEventsCsv(const TNavRunResult& r, double startTime, const std::string&
     for (const auto& e : r.agentEvents)
         rows.push_back({e.t, e.kind, e.source, e.agent, -1, e.x, e.y});
     for (const auto& e : r.safety.corridorEntries())
-        rows.push_back({e.t, "inside_stopping_distance", e.source, e.agent, -1, e.x, e.y});
+        rows.push_back(
+            {e.t, "inside_stopping_distance", e.source, e.agent, -1, e.x, e.y});
     for (const auto& e : r.safety.events()) {
         char b[64];
         std::snprintf(b, sizeof(b), "%s, gap %.3f m", e.object.c_str(), e.gap);
@@ -160,11 +167,13 @@ void drawSpeedProfile(const TNavRunResult& r, const std::string& title,
         lim.push_back(c.limit);
     }
     if (!d.empty())
-        plot.addSeries("limit (smallest of the limiters)", d, lim, {160, 160, 160}, 1, true);
+        plot.addSeries("limit (smallest of the limiters)", d, lim, {160, 160, 160}, 1,
+                       true);
     // The speed in runs of one winning limiter, each in its limiter's colour.
     std::set<std::string> labelled;
     for (size_t i = 0; i < r.cycles.size();) {
-        const std::string who = r.cycles[i].limiter.empty() ? "none" : r.cycles[i].limiter;
+        const std::string who =
+            r.cycles[i].limiter.empty() ? "none" : r.cycles[i].limiter;
         size_t j = i;
         std::vector<double> x, y;
         while (j < r.cycles.size() &&
@@ -228,17 +237,21 @@ json runSummary(const CNavigationRun& run, const TNavRunResult& r) {
     json ev = json::array();
     for (const auto& e : r.events)
         if (e.kind == "viewpoint" || e.kind == "sensing" || e.kind == "navigation_error")
-            ev.push_back({{"t", e.t}, {"kind", e.kind}, {"waypoint", e.waypoint},
+            ev.push_back({{"t", e.t},
+                          {"kind", e.kind},
+                          {"waypoint", e.waypoint},
                           {"detail", e.detail}});
     j["tagged_events"] = ev;
     const auto& p = r.cycles.empty() ? run.options.start : r.cycles.back().truePose;
     j["end_pose"] = {p.x, p.y, p.phi * 180 / M_PI};
     j["rawlog_frames"] = r.rawlogFrames;
-    j["timing"] = {{"wall_time_s", r.wallSeconds},
-                   {"navigation_step_s", r.navStepSeconds},
-                   {"steps_per_s", r.navStepSeconds > 0 ? r.cycles.size() / r.navStepSeconds
-                                                        : 0.0},
-                   {"realtime_factor", r.wallSeconds > 0 ? r.time / r.wallSeconds : 0.0}};
+    j["mrpt_errors"] = r.mrptErrors;
+    j["mrpt_first_error"] = r.firstMrptError;
+    j["timing"] = {
+        {"wall_time_s", r.wallSeconds},
+        {"navigation_step_s", r.navStepSeconds},
+        {"steps_per_s", r.navStepSeconds > 0 ? r.cycles.size() / r.navStepSeconds : 0.0},
+        {"realtime_factor", r.wallSeconds > 0 ? r.time / r.wallSeconds : 0.0}};
     return j;
 }
 

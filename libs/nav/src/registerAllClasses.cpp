@@ -1,3 +1,4 @@
+#include <risknav/nav/CAdaptiveSpeedLimiter.h>
 #include <risknav/nav/CAfraidSpeedLimiter.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
 #include <risknav/sim/CStoppingDistanceLimiter.h>
@@ -6,6 +7,7 @@ namespace risknav::nav {
 void registerAllClasses_nav() {
     sim::registerAllClasses_sim();
     mrpt::rtti::registerClass(CLASS_ID(CAfraidSpeedLimiter));
+    mrpt::rtti::registerClass(CLASS_ID(CAdaptiveSpeedLimiter));
 }
 
 }  // namespace risknav::nav

@@ -18,6 +18,7 @@ void CStoppingDistanceLimiter::TOptions::loadFromConfigFile(
     enabled = readBool(c, s, "enabled", enabled);
     margin = readDouble(c, s, "margin", margin);
     lateral_margin = readDouble(c, s, "lateral_margin", lateral_margin);
+    corridor = readChoice(c, s, "corridor", corridor, {"straight", "path", "both"});
 }
 
 void CStoppingDistanceLimiter::TOptions::saveToConfigFile(
@@ -25,6 +26,7 @@ void CStoppingDistanceLimiter::TOptions::saveToConfigFile(
     writeKey(c, s, "enabled", enabled);
     writeKey(c, s, "margin", margin);
     writeKey(c, s, "lateral_margin", lateral_margin);
+    writeKey(c, s, "corridor", corridor);
 }
 
 void CStoppingDistanceLimiter::TOptions::validate() const {
@@ -59,14 +61,32 @@ bool CStoppingDistanceLimiter::blocked(const std::vector<mrpt::math::TPoint2D>& 
     return false;
 }
 
-double CStoppingDistanceLimiter::freeDistance(const std::vector<mrpt::math::TPoint2D>& pts,
-                                              const TRobotOptions& robot) const {
+double CStoppingDistanceLimiter::freeDistance(
+    const std::vector<mrpt::math::TPoint2D>& pts, const TRobotOptions& robot) const {
     const double halfW = robot.radius + options.lateral_margin;
     double d = std::numeric_limits<double>::infinity();
     for (const auto& p : pts)
         if (p.x > 0 && std::abs(p.y) <= halfW)
             d = std::min(d, p.x - robot.radius - options.margin);
     return d;
+}
+
+double CStoppingDistanceLimiter::freeDistanceAlong(
+    const std::vector<mrpt::math::TPoint2D>& pts,
+    const std::vector<mrpt::math::TPose2D>& path, const std::vector<double>& dist,
+    const TRobotOptions& robot) const {
+    // The first path pose whose disc (radius + lateral_margin) holds a
+    // sensed point that the robot's disc now does not (a point already
+    // beside the robot does not stop it from moving away).
+    const double halfW = robot.radius + options.lateral_margin;
+    const double h2 = halfW * halfW;
+    for (size_t i = 1; i < path.size() && i < dist.size(); i++)
+        for (const auto& p : pts) {
+            const double dx = p.x - path[i].x, dy = p.y - path[i].y;
+            if (dx * dx + dy * dy <= h2 && p.x * p.x + p.y * p.y > h2)
+                return std::max(0.0, dist[i] - options.margin);
+        }
+    return std::numeric_limits<double>::infinity();
 }
 
 TSpeedLimit CStoppingDistanceLimiter::impl_limit(const TSpeedLimitInput& in) const {
@@ -76,16 +96,20 @@ TSpeedLimit CStoppingDistanceLimiter::impl_limit(const TSpeedLimitInput& in) con
     // that still stops before it (eqs. 1-4 solved for v). A robot slower
     // than that is not limited, exactly when blocked() is false.
     double d = std::numeric_limits<double>::infinity();
+    std::vector<mrpt::math::TPoint2D> pts;
     if (in.scan)
-        d = freeDistance(mapping::scanToRobotFrame(*in.scan), *in.robot);
+        pts = mapping::scanToRobotFrame(*in.scan);
     if (in.obstacles) {
-        std::vector<mrpt::math::TPoint2D> pts;
         const auto& xs = in.obstacles->getPointsBufferRef_x();
         const auto& ys = in.obstacles->getPointsBufferRef_y();
         for (size_t i = 0; i < xs.size(); i++)
             pts.push_back({double(xs[i]), double(ys[i])});
-        d = std::min(d, freeDistance(pts, *in.robot));
     }
+    const bool havePath = in.path.size() >= 2;
+    if (!havePath || options.corridor != "path")
+        d = freeDistance(pts, *in.robot);
+    if (havePath && options.corridor != "straight")
+        d = std::min(d, freeDistanceAlong(pts, in.path, in.pathDistance, *in.robot));
     if (!(stoppingDistance(in.desiredSpeed, in.robot->t_delay, in.robot->decel) > d))
         return {in.desiredSpeed, ""};
     const double v = std::min(in.desiredSpeed,

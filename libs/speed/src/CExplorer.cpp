@@ -105,28 +105,27 @@ void CExplorer::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
     world.saveToConfigFile(c);
 }
 
+CAdaptiveSpeedPipeline::TParams CExplorer::pipelineParams() const {
+    CAdaptiveSpeedPipeline::TParams p;
+    p.speed = speed;
+    p.laserModel = laserModel;
+    p.range2Model = range2Model;
+    p.useRange2 = world.range2.options.enabled;
+    p.robotRadius = world.robot.radius;
+    p.localMapSize = explore.local_map_size;
+    p.localMapResolution = explore.local_map_resolution;
+    p.memorySize = explore.memory_size;
+    p.memoryResolution = explore.memory_resolution;
+    return p;
+}
+
 int CExplorer::necessaryObservations() const {
-    int n = mapping::necessaryObservations(laserModel, speed.free_threshold);
-    if (world.range2.options.enabled)
-        n = std::max(n,
-                     mapping::necessaryObservations(range2Model, speed.free_threshold));
-    return n;
+    return CAdaptiveSpeedPipeline::necessaryObservations(pipelineParams());
 }
 
 TPose2D CExplorer::egoPose() const {
     return explore.ego_motion == "ground_truth" ? world.truePose()
                                                 : world.odometricPose();
-}
-
-void markFootprintFree(mapping::TFreeSpaceMap& m, const TPose2D& p, double radius) {
-    const int r = int(std::ceil(radius / m.resolution));
-    const int ci = m.x2idx(p.x), cj = m.y2idx(p.y);
-    for (int j = cj - r; j <= cj + r; j++)
-        for (int i = ci - r; i <= ci + r; i++)
-            if (m.inside(i, j) &&
-                std::hypot(m.idx2x(i) - p.x, m.idx2y(j) - p.y) <= radius &&
-                m.cells[m.index(i, j)] == mapping::TFusedCell::Undecided)
-                m.cells[m.index(i, j)] = mapping::TFusedCell::Free;
 }
 
 bool pathBlocked(const TPlannedPath& path, const std::vector<TPoint2D>& sensed, double v,
@@ -226,10 +225,9 @@ TModeResult CExplorer::runMode(int fixedIndex,
                         explore.start[2] * M_PI / 180);
     world.reset(start, explore.seed);
     const double T = speed.cycle_time;
-    const int n = int(std::lround(explore.local_map_size / explore.local_map_resolution));
     const TPose2D ego0 = egoPose();
-    mapping::CLocalProbGrid laserGrid(n, explore.local_map_resolution, ego0.x, ego0.y);
-    mapping::CLocalProbGrid range2Grid(n, explore.local_map_resolution, ego0.x, ego0.y);
+    // mapping, fusion, planning field and the controller, one cycle at a time
+    CAdaptiveSpeedPipeline pipeline(pipelineParams(), ego0);
     // destinations in the ego frame: ego = ego0 + (start^-1 + world point)
     const mrpt::poses::CPose2D e0(ego0), s0(start);
     std::vector<TPoint2D> goalsWorld, goalsEgo;
@@ -255,19 +253,12 @@ TModeResult CExplorer::runMode(int fixedIndex,
         bestToGoal = std::numeric_limits<double>::infinity();
         bestToGoalTime = world.time();
     };
-    std::unique_ptr<mapping::CFreeSpaceMemory> memory;
-    if (explore.memory_size > 0)
-        memory = std::make_unique<mapping::CFreeSpaceMemory>(
-            explore.memory_size, explore.memory_resolution, ego0.x, ego0.y);
     r.destinationStatus.assign(goalsWorld.size(), "not_reached");
     r.destinationError.assign(goalsWorld.size(), 0.0);
     r.timeAtSpeed.assign(speed.speeds.size(), 0.0);
-    const CAdaptiveSpeedController ctrl(speed, world.robot.radius,
-                                        necessaryObservations());
     sim::CSafetyMonitor safety;
     safety.reset();
     int lastSpeedIndex = -2;
-    int undecidedStall = 0;
     TPose2D prevTrue = world.truePose();
     const int steps = std::max(1, int(std::lround(T / explore.sim_dt)));
     const double lookAroundW = 0.8 * world.robot.max_w_deg * M_PI / 180;
@@ -283,40 +274,8 @@ TModeResult CExplorer::runMode(int fixedIndex,
         const auto scans = world.sense();
         const TPose2D ego = egoPose();
         const auto t0 = std::chrono::steady_clock::now();
-        laserGrid.recenter(ego.x, ego.y);
-        range2Grid.recenter(ego.x, ego.y);
-        if (scans.laser)
-            laserGrid.integrateScan(ego, *scans.laser, laserModel);
-        if (scans.range2)
-            range2Grid.integrateScan(ego, *scans.range2, range2Model);
-        auto fused = mapping::fuseGrids(
-            laserGrid, world.range2.options.enabled ? range2Grid : laserGrid,
-            speed.occupied_threshold, speed.free_threshold);
-        // Beyond the paper: the robot's own footprint is free (it stands
-        // there), though no sensor sees under it (the laser is mounted ahead
-        // of the centre); otherwise the robot would start in "unknown" space.
-        markFootprintFree(fused, ego, world.robot.radius);
-        const auto field = computePlanningField(fused, world.robot.radius);
-        if (memory)
-            memory->update(fused);
-        // the memory's cost to the destination, computed when a temporary
-        // destination is to be chosen, at most once a cycle
-        bool costReady = false;
-        TTargetHints hints;
-        hints.previous = previousTarget;
-        if (memory)
-            hints.goalCost = [&](double x, double y) {
-                if (!costReady) {
-                    memory->computeCostToGoal(goalsEgo[dest], speed.frontier_goal_weight,
-                                              fused, world.robot.radius);
-                    costReady = true;
-                }
-                // from a candidate (within the target band of a frontier or
-                // the map's edge) to the unknown beyond
-                return memory->costToGoal(x, y,
-                                          world.robot.radius + speed.margins.back() +
-                                              3 * explore.local_map_resolution);
-            };
+        pipeline.update(ego, scans.laser.get(), scans.range2.get());
+        const TPlanningField& field = pipeline.field();
         // reached: within the tolerance, or (a destination nearer an
         // obstacle than the robot may come) at the point nearest it
         auto arrived = [&] {
@@ -339,8 +298,9 @@ TModeResult CExplorer::runMode(int fixedIndex,
         // is asked for free space beside and behind the robot.
         const bool lookingAround = explore.look_around && world.time() < lookAroundEnd;
         const TSpeedDecision d =
-            lookingAround ? TSpeedDecision{}
-                          : ctrl.decide(field, ego, goalsEgo[dest], fixedIndex, hints);
+            lookingAround
+                ? TSpeedDecision{}
+                : pipeline.decide(ego, goalsEgo[dest], fixedIndex, previousTarget);
         const double ms = std::chrono::duration<double, std::milli>(
                               std::chrono::steady_clock::now() - t0)
                               .count();
@@ -376,14 +336,11 @@ TModeResult CExplorer::runMode(int fixedIndex,
         // cycles in place, observed the region N times; what is still
         // undecided then (a gap in a wall seen edge-on) will not be decided
         // from here, so it creeps on at the slowest speed.
-        if (!lookingAround && d.reason == TSpeedReason::Undecided && d.speed == 0 &&
-            d.path.points.size() > 1) {
-            if (++undecidedStall >= ctrl.necessaryObservations()) {
-                vIndex = int(speed.speeds.size()) - 1;
-                v = speed.speeds.back();
-            }
-        } else {
-            undecidedStall = 0;
+        if (pipeline.heldLongEnough(!lookingAround &&
+                                    d.reason == TSpeedReason::Undecided && d.speed == 0 &&
+                                    d.path.points.size() > 1)) {
+            vIndex = int(speed.speeds.size()) - 1;
+            v = speed.speeds.back();
         }
         // Beyond the paper: at a destination the robot stops, so no speed
         // whose stopping distance exceeds the path left to it

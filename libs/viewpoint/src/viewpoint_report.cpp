@@ -430,9 +430,11 @@ json writeViewpointReport(const CViewpointPlanner& p, COutputDir& out) {
         }
         out.writeText(
             "waypoints.ini",
-            "// risknav-viewpoint-plan: the optimal plan as an MRPT "
+            // ';' comments: MRPT's ini parser reads a "//" line holding '='
+            // as a key of the unnamed section.
+            "; risknav-viewpoint-plan: the optimal plan as an MRPT "
             "TWaypointSequence (TWaypointSequence::load(cfg, \"Waypoints\"));\n"
-            "// [Viewpoints] waypoint_N = strategy landmarks pans: observe there "
+            "; [Viewpoints] waypoint_N = strategy landmarks pans: observe there "
             "(those waypoints have allow_skip = false)\n" +
                 ini.getContent());
     }

@@ -1,4 +1,5 @@
 #include <risknav/common/CBadInputError.h>
+#include <risknav/common/stopping.h>
 #include <risknav/mapping/scan_points.h>
 #include <risknav/sim/CRawlogWriter.h>
 #include <risknav/sim/CSafetyMonitor.h>
@@ -189,10 +190,38 @@ TEST(Plugins, StoppingDistanceLimiterStopsForAPointAhead) {
     risknav::common::TSpeedLimitInput in;
     in.robot = &robot;
     in.scan = &scan;
-    // 0.8 m/s: d_stop = 1.04 m + 0.1 margin > 1.2 - 0.25 front: stop.
+    // 0.8 m/s: d_stop = 1.04 m > 1.2 - 0.25 front - 0.1 margin = 0.85 m free:
+    // limited to the speed that stops within 0.85 m (d_stop(v) = 0.85).
     in.desiredSpeed = 0.8;
-    EXPECT_EQ(lim.limit(in).maxSpeed, 0.0);
+    const double v = lim.limit(in).maxSpeed;
+    EXPECT_NEAR(risknav::common::stoppingDistance(v, 0.9, 1.0), 0.85, 1e-6);
+    EXPECT_NEAR(v, std::sqrt(0.81 + 1.7) - 0.9, 1e-6);
     EXPECT_FALSE(lim.limit(in).reason.empty());
+    // Along a path that turns left away from the point, nothing is in the way;
+    // a path that runs into it stops at the first pose whose disc holds it.
+    std::vector<mrpt::math::TPose2D> left, straight;
+    std::vector<double> dist;
+    for (int i = 0; i <= 60; i++) {
+        const double s = 0.05 * i, R = 0.6;  // a 0.6 m radius left turn
+        left.emplace_back(R * std::sin(s / R), R * (1 - std::cos(s / R)), s / R);
+        straight.emplace_back(s, 0, 0);
+        dist.push_back(s);
+    }
+    in.path = left;
+    in.pathDistance = dist;
+    lim.options.corridor = "path";
+    EXPECT_EQ(lim.limit(in).maxSpeed, 0.8);
+    lim.options.corridor = "both";  // the straight corridor still holds the point
+    EXPECT_NEAR(lim.limit(in).maxSpeed, v, 1e-12);
+    lim.options.corridor = "path";
+    in.path = straight;
+    // First disc (r 0.25 + lateral 0.1) holding x = 1.2: s = 0.85 m (to the
+    // next 5 cm sample), less the 0.1 m margin.
+    EXPECT_NEAR(risknav::common::stoppingDistance(lim.limit(in).maxSpeed, 0.9, 1.0),
+                0.775, 0.026);
+    in.path.clear();
+    in.pathDistance.clear();
+    lim.options.corridor = "both";
     // 0.5 m/s: d_stop = 0.575 m + 0.1 < 0.95: drive on.
     in.desiredSpeed = 0.5;
     EXPECT_EQ(lim.limit(in).maxSpeed, 0.5);

@@ -10,6 +10,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace risknav::common {
 /** What a speed limiter sees in one control cycle. */
@@ -29,6 +30,12 @@ struct TSpeedLimitInput {
     std::optional<mrpt::math::TPoint2D> target;
     /** [s] the controller's clock (simulated time in risknav's loops). */
     double time = 0;
+    /** The path the controller is about to follow, robot frame, from the
+     * robot's pose (0, 0, 0) on, with the distance [m] along it to each pose
+     * (MRPT's chosen PTG trajectory); empty: unknown (limiters then assume
+     * the straight line along the heading). */
+    std::vector<mrpt::math::TPose2D> path;
+    std::vector<double> pathDistance;
 };
 
 /** A limiter's answer: the highest speed it allows and why. */

@@ -13,8 +13,9 @@ namespace risknav::nav {
  * the same kernel ridge regression (afraid::afraidLevel()), and
  * afraid::afraidSpeedLimit() along the robot's path ahead: v_safe when the
  * level exceeds the threshold anywhere within the stopping distance at
- * v_max, v_max otherwise. The path ahead is the straight line along the
- * robot's heading (the engine's own trajectory is not passed to limiters).
+ * v_max, v_max otherwise. The path ahead is the controller's predicted
+ * path (TSpeedLimitInput::path: MRPT's chosen PTG trajectory), or the
+ * straight line along the heading when none is given.
  * Section [CAfraidSpeedLimiter]. */
 class CAfraidSpeedLimiter : public common::CSpeedLimiter {
     DEFINE_MRPT_OBJECT(CAfraidSpeedLimiter, risknav::nav)

@@ -23,17 +23,18 @@ struct TNavCycle {
     int cycle = 0;
     double t = 0;                                ///< [s] world time at the cycle's start
     mrpt::math::TPose2D truePose, believedPose;  ///< what the navigator was given
-    double poseError = 0;     ///< [m] |believed - true| position
-    double speed = 0;         ///< [m/s] the robot's actual forward speed
-    double command = 0;       ///< [m/s] the forward speed sent this cycle
-    double desired = 0;       ///< [m/s] what MRPT's engine chose
-    double limit = 0;         ///< [m/s] the smallest limit (= desired if none)
-    std::string limiter;      ///< winning limiter, "" if none limited
-    std::string reason;       ///< its reason
-    double clearance = 0;     ///< [m] robot edge to the nearest map obstacle
-    int waypoint = -1;        ///< the waypoint being approached
-    double distance = 0;      ///< [m] travelled so far
-    double stepMs = 0;        ///< wall time of navigationStep()
+    double poseError = 0;                        ///< [m] |believed - true| position
+    double speed = 0;      ///< [m/s] the robot's actual forward speed
+    double command = 0;    ///< [m/s] the forward speed sent this cycle
+    double desired = 0;    ///< [m/s] what MRPT's engine chose
+    double limit = 0;      ///< [m/s] the smallest limit (= desired if none)
+    std::string limiter;   ///< winning limiter, "" if none limited,
+                           ///< "turn_in_place" when turning toward a target behind
+    std::string reason;    ///< its reason
+    double clearance = 0;  ///< [m] robot edge to the nearest map obstacle
+    int waypoint = -1;     ///< the waypoint being approached
+    double distance = 0;   ///< [m] travelled so far
+    double stepMs = 0;     ///< wall time of navigationStep()
 };
 
 /** A waypoint the route tags: a viewpoint (M4) or a sensing point (M2). */
@@ -54,7 +55,7 @@ struct TNavRunEvent {
 
 /** Everything one closed-loop run produced. */
 struct TNavRunResult {
-    std::string status;  ///< goal_reached | navigation_error | timeout
+    std::string status;    ///< goal_reached | navigation_error | timeout
     std::string navError;  ///< MRPT's error code and message ("" if none)
     std::vector<TNavCycle> cycles;
     std::vector<TNavRunEvent> events;
@@ -66,10 +67,12 @@ struct TNavRunResult {
     int waypointsReached = 0, waypointsSkipped = 0, waypointCount = 0;
     std::map<std::string, double> timePerLimiter;  ///< [s] "none" = no limit
     double finalPoseError = 0, maxPoseError = 0;   ///< [m]
-    double navStepSeconds = 0;  ///< wall time inside navigationStep()
+    double navStepSeconds = 0;                     ///< wall time inside navigationStep()
     double wallSeconds = 0;
     size_t rawlogFrames = 0;
-    std::string navlogFile;  ///< MRPT's file (in the run's log folder), "" if none
+    int mrptErrors = 0;          ///< errors MRPT's navigator logged
+    std::string firstMrptError;  ///< the first one's message
+    std::string navlogFile;      ///< MRPT's file (in the run's log folder), "" if none
     int collisions() const { return safety.collisions() + safety.collisionsStatic(); }
 };
 
@@ -81,8 +84,8 @@ struct TNavRunSetup {
     std::optional<std::vector<std::string>> limiters;
     std::optional<std::string> afraidFile;  ///< [CAfraidSpeedLimiter] afraid_file
     std::optional<int> laps;
-    std::string navlogDir;    ///< "" = no navlog
-    std::string rawlogPath;   ///< "" = no rawlog
+    std::string navlogDir;        ///< "" = no navlog
+    std::string rawlogPath;       ///< "" = no rawlog
     std::string groundtruthPath;  ///< "t x y phi" per rawlog frame ("" = none)
     bool quiet = true;
     std::string label;  ///< progress label
@@ -106,10 +109,10 @@ class CNavigationRun {
   public:
     TNavigateOptions options;  ///< [Navigate]
     sim::CSimWorld world;
-    localization::CRawlogMcl mcl;  ///< [Localization] etc. (localization = mcl)
-    mrpt::nav::TWaypointSequence waypoints;   ///< one lap of the route
-    std::map<size_t, TWaypointTag> tags;      ///< by waypoint index
-    std::string routeName;                    ///< where the route came from
+    localization::CRawlogMcl mcl;            ///< [Localization] etc. (localization = mcl)
+    mrpt::nav::TWaypointSequence waypoints;  ///< one lap of the route
+    std::map<size_t, TWaypointTag> tags;     ///< by waypoint index
+    std::string routeName;                   ///< where the route came from
 
     /** Loads and checks everything (the world, the route against the map,
      * MRPT's engine and the limiters through a probe navigator), before any

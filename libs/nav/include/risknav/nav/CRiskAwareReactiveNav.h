@@ -29,6 +29,13 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
         /** Limiter class names, applied in this order (the first of equal
          * limits is the one recorded). Empty: the bare MRPT engine. */
         std::vector<std::string> speed_limiters;
+        /** [deg] a target farther off the heading than this is turned to in
+         * place first (0 = off): MRPT 2.5.8's forward-only PTGs cannot reach
+         * a target behind the robot (its score formulas then throw
+         * "Undefined symbol: target_d_norm" every cycle), and a reversing
+         * PTG would drive a robot with a forward laser backwards blind. */
+        double turn_in_place_deg = 100;
+        double turn_rate_deg = 30;  ///< [deg/s] of that turn
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                 const std::string& section) override;
@@ -41,8 +48,9 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     struct TLimitRecord {
         std::string limiter;  ///< class name; "" when none limited
         std::string reason;
-        double desired = 0;  ///< [m/s] |v| MRPT chose
-        double limit = 0;    ///< [m/s] the smallest limit (desired when none limited)
+        double desired = 0;    ///< [m/s] |v| MRPT chose
+        double limit = 0;      ///< [m/s] the smallest limit (desired when none limited)
+        bool turning = false;  ///< this cycle turned in place (MRPT did not plan)
     };
 
     CRiskAwareReactiveNav(mrpt::nav::CRobot2NavInterface& robot,
@@ -52,6 +60,10 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     TOptions riskOptions;         ///< [CRiskAwareReactiveNav]
     common::TRobotOptions robot;  ///< [Robot]: radius, decel, t_delay for the limiters
 
+    /** MRPT's step, or a turn in place toward a target behind the robot
+     * (turn_in_place_deg) until it is within a third of that angle. */
+    void navigationStep() override;
+
     /** MRPT's loadConfigFile() plus [CRiskAwareReactiveNav], [Robot] and each
      * limiter's section. An unknown limiter name throws CBadInputError
      * naming the known ones. */
@@ -60,7 +72,9 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     /** MRPT's engine sections from `engine` (e.g. the user's MRPT
      * reactive-navigation file), keys of the config given to loadConfigFile()
      * overriding its keys; nullptr: that config alone. Not owned. */
-    void setEngineConfig(const mrpt::config::CConfigFileBase* engine) { m_engine = engine; }
+    void setEngineConfig(const mrpt::config::CConfigFileBase* engine) {
+        m_engine = engine;
+    }
 
     const std::vector<common::CSpeedLimiter::Ptr>& limiters() const { return m_limiters; }
     const TLimitRecord& lastLimit() const { return m_last; }
@@ -76,6 +90,7 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     std::vector<common::CSpeedLimiter::Ptr> m_limiters;
     TLimitRecord m_last;
     const mrpt::config::CConfigFileBase* m_engine = nullptr;
+    bool m_turning = false;
 };
 
 /** Registers libs/nav's MRPT classes and the limiters of the libraries below

@@ -14,23 +14,27 @@ namespace risknav::nav {
  * waypoints.ini) or `risk_config` (risknav-risk-eval's config: the route of
  * the lowest U, or the one `risk_route` names). */
 struct TNavigateOptions : public common::CValidatedOptions {
-    mrpt::math::TPose2D start;      ///< start x [m], y [m], heading (radians in code)
-    std::vector<double> goals;      ///< x0 y0 x1 y1 ... [m]
-    std::string route_file;         ///< MRPT waypoints ini ([Waypoints])
-    std::string risk_config;        ///< risknav-risk-eval config
+    mrpt::math::TPose2D start;        ///< start x [m], y [m], heading (radians in code)
+    std::vector<double> goals;        ///< x0 y0 x1 y1 ... [m]
+    std::string route_file;           ///< MRPT waypoints ini ([Waypoints])
+    std::string risk_config;          ///< risknav-risk-eval config
     std::string risk_route = "best";  ///< best | worst | a route name
-    double goal_tolerance = 0.3;    ///< [m] allowed distance to each waypoint
-    std::string mode = "once";      ///< once | back_and_forth | loop
-    int laps = 1;                   ///< passes of the route (mode != once)
+    double goal_tolerance = 0.3;      ///< [m] allowed distance to each waypoint
+    std::string mode = "once";        ///< once | back_and_forth | loop
+    int laps = 1;                     ///< passes of the route (mode != once)
     std::string localization = "ground_truth";  ///< ground_truth | odometry | mcl
-    double sim_dt = 0.05;       ///< [s] physics step
+    double sim_dt = 0.05;                       ///< [s] physics step
     double nav_period = 0.2;    ///< [s] one navigation cycle (and rawlog frame)
     double duration_max = 600;  ///< [s] simulated; then status "timeout"
     uint64_t seed = 1;
-    double start_time = 1.6e9;       ///< [s] UNIX time of t = 0
+    double start_time = 1.6e9;        ///< [s] UNIX time of t = 0
     double near_miss_distance = 0.2;  ///< [m]
-    bool navlog = true;               ///< write the .reactivenavlog
-    bool rawlog = true;               ///< write the run's rawlog
+    /** [m] MRPT's engine plans for a disc of the robot's radius + this (its
+     * paths then keep this clearance, which the limiters' swept corridors
+     * also ask for). */
+    double shape_margin = 0.1;
+    bool navlog = true;  ///< write the .reactivenavlog
+    bool rawlog = true;  ///< write the run's rawlog
     /** An MRPT reactive-navigation config for the engine's sections ("" = they
      * are in this file); keys of this file override it. */
     std::string engine_config;

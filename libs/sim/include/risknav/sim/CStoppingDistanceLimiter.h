@@ -19,6 +19,11 @@ class CStoppingDistanceLimiter : public common::CSpeedLimiter {
         bool enabled = true;
         double margin = 0.1;          ///< [m] beta: added to d_stop
         double lateral_margin = 0.1;  ///< [m] swept corridor half-width = radius + this
+        /** Which swept corridor: "straight" (along the heading, eq. 4 as the
+         * paper), "path" (along the controller's path when it gives one) or
+         * "both" (the nearer of the two: a robot that lags its planned turn
+         * sweeps between them). */
+        std::string corridor = "both";
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                 const std::string& s) override;
@@ -42,6 +47,16 @@ class CStoppingDistanceLimiter : public common::CSpeedLimiter {
      * so a speed is limited exactly when blocked() says it is blocked. */
     double freeDistance(const std::vector<mrpt::math::TPoint2D>& robotFramePoints,
                         const common::TRobotOptions& robot) const;
+
+    /** The same along a curved path (robot frame, with the distance along it
+     * to each pose): the distance to the first pose whose disc of radius +
+     * lateral_margin holds a sensed point not already within that disc of
+     * the robot, less the margin (+inf when none). Used when the limiter is
+     * given the controller's path (MRPT's PTG trajectory). */
+    double freeDistanceAlong(const std::vector<mrpt::math::TPoint2D>& robotFramePoints,
+                             const std::vector<mrpt::math::TPose2D>& path,
+                             const std::vector<double>& distance,
+                             const common::TRobotOptions& robot) const;
 
     void loadConfig(const mrpt::config::CConfigFileBase& c,
                     const std::string& section) override;

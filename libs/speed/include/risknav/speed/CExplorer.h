@@ -5,6 +5,7 @@
 #include <risknav/sim/CSimWorld.h>
 #include <risknav/sim/CStoppingDistanceLimiter.h>
 #include <risknav/speed/CAdaptiveSpeedController.h>
+#include <risknav/speed/CAdaptiveSpeedPipeline.h>
 #include <risknav/speed/TExploreOptions.h>
 
 #include <mrpt/math/TPose2D.h>
@@ -14,11 +15,6 @@
 #include <vector>
 
 namespace risknav::speed {
-/** Marks the undecided cells under a robot disc at p as free (obstacle
- * cells stay: a sensed obstacle there is a collision to see, not to hide). */
-void markFootprintFree(mapping::TFreeSpaceMap& m, const mrpt::math::TPose2D& p,
-                       double radius);
-
 /** The stopping rule along the path the robot follows (Choi et al. (002)
  * eqs. 1-4, as CStoppingDistanceLimiter, but on the planned path instead of
  * a straight corridor, which a turning path leaves): a sensed point (ego
@@ -78,10 +74,10 @@ struct TModeResult {
  * that does not know the world visits destinations; each cycle of T it
  * senses (laser + RANGE2), moves its two local grids by the ego-motion,
  * updates, classifies and fuses them, and lets the adaptive controller (or a
- * fixed speed) choose a speed and path; a pure-pursuit follower steers along
- * the path for the cycle, and the stopping rule (sensed obstacles within the
- * stopping distance) may brake. The world (map, people, clutter) is only
- * used to simulate the sensors and to judge collisions. */
+ * fixed speed) choose a speed and path (those steps: CAdaptiveSpeedPipeline); a
+ * pure-pursuit follower steers along the path for the cycle, and the stopping rule
+ * (sensed obstacles within the stopping distance) may brake. The world (map, people,
+ * clutter) is only used to simulate the sensors and to judge collisions. */
 class CExplorer {
   public:
     sim::CSimWorld world;
@@ -103,6 +99,10 @@ class CExplorer {
     /** Runs one mode (fixedIndex -1: adaptive) from the start, same seed. */
     TModeResult runMode(int fixedIndex,
                         const std::function<void(double)>& progress = nullptr);
+
+    /** The per-cycle pipeline's parameters from these options (the same
+     * pipeline nav::CAdaptiveSpeedLimiter runs inside MRPT's engine). */
+    CAdaptiveSpeedPipeline::TParams pipelineParams() const;
 
   private:
     mrpt::math::TPose2D egoPose() const;

@@ -1,0 +1,299 @@
+#include <risknav/common/CBadInputError.h>
+#include <risknav/common/config_read.h>
+#include <risknav/nav/CAdaptiveSpeedLimiter.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <stdexcept>
+#include <vector>
+
+using namespace risknav::common;
+
+namespace risknav::nav {
+IMPLEMENTS_MRPT_OBJECT(CAdaptiveSpeedLimiter, risknav::common::CSpeedLimiter,
+                       risknav::nav)
+
+namespace {
+/** How many intervals the measured cycle is the median of. */
+constexpr size_t kIntervals = 16;
+
+double median(const std::deque<double>& d) {
+    std::vector<double> v(d.begin(), d.end());
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+// The built-in models: a laser (N = 2) and a stereo-like sensor (N = 5).
+mapping::TSensorModel defaultLaser() {
+    mapping::TSensorModel m;
+    m.p_obs_given_obstacle = 0.7;
+    m.p_obs_given_free = 0.3;
+    return m;
+}
+}  // namespace
+
+CAdaptiveSpeedLimiter::TOptions::TOptions() : laser(defaultLaser()) {
+    speed.section = section;
+    laser.section = section + " (built-in laser_model)";
+    range2.section = section + " (built-in range2_model)";
+}
+
+void CAdaptiveSpeedLimiter::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s) {
+    section = s;
+    speed.loadFromConfigFile(c, s);  // the keys of [SpeedControl], in this section
+    measure_cycle_time = readBool(c, s, "measure_cycle_time", measure_cycle_time);
+    fixed_speed_index = readInt(c, s, "fixed_speed_index", fixed_speed_index);
+    laser_model = readString(c, s, "laser_model", laser_model);
+    range2_model = readString(c, s, "range2_model", range2_model);
+    use_range2 = readBool(c, s, "use_range2", use_range2);
+    local_map_size = readDouble(c, s, "local_map_size", local_map_size);
+    local_map_resolution = readDouble(c, s, "local_map_resolution", local_map_resolution);
+    memory_size = readDouble(c, s, "memory_size", memory_size);
+    memory_resolution = readDouble(c, s, "memory_resolution", memory_resolution);
+    auto model = [&](const std::string& key, const std::string& name,
+                     mapping::TSensorModel& m, const mapping::TSensorModel& builtIn) {
+        m = builtIn;
+        if (name.empty()) {
+            m.section = s + " (built-in " + key + ")";
+            return;
+        }
+        if (!c.sectionExists(name))
+            throwBadKey(c, s, key, name, "no section [" + name + "] in the config");
+        m.loadFromConfigFile(c, name);
+    };
+    model("laser_model", laser_model, laser, defaultLaser());
+    model("range2_model", range2_model, range2, mapping::TSensorModel{});
+}
+
+void CAdaptiveSpeedLimiter::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                                       const std::string& s) const {
+    speed.saveToConfigFile(c, s);
+    writeKey(c, s, "measure_cycle_time", measure_cycle_time);
+    writeKey(c, s, "fixed_speed_index", fixed_speed_index);
+    writeKey(c, s, "laser_model", laser_model);
+    writeKey(c, s, "range2_model", range2_model);
+    writeKey(c, s, "use_range2", use_range2);
+    writeKey(c, s, "local_map_size", local_map_size);
+    writeKey(c, s, "local_map_resolution", local_map_resolution);
+    writeKey(c, s, "memory_size", memory_size);
+    writeKey(c, s, "memory_resolution", memory_resolution);
+    if (!laser_model.empty())
+        laser.saveToConfigFile(c, laser_model);
+    if (!range2_model.empty())
+        range2.saveToConfigFile(c, range2_model);
+}
+
+void CAdaptiveSpeedLimiter::TOptions::validate() const {
+    const std::string& s = section;
+    speed.validate();
+    laser.validate();
+    if (use_range2)
+        range2.validate();
+    checkKey(s, "fixed_speed_index", double(fixed_speed_index),
+             TRange::closed(-1, double(speed.speeds.size()) - 1));
+    checkKey(s, "local_map_size", local_map_size, TRange::closed(2, 100, "m"));
+    checkKey(s, "local_map_resolution", local_map_resolution,
+             TRange::closed(0.01, 0.5, "m"));
+    checkRule(local_map_size / local_map_resolution <= 2000, s, "local_map_size",
+              numberText(local_map_size), "at most 2000 cells a side");
+    checkKey(s, "memory_size", memory_size, TRange::closed(0, 1000, "m"));
+    checkKey(s, "memory_resolution", memory_resolution, TRange::closed(0.05, 5, "m"));
+    checkRule(memory_size / memory_resolution <= 4096, s, "memory_size",
+              numberText(memory_size),
+              "more than 4096 memory cells a side (raise memory_resolution)");
+    checkRule(
+        memory_size == 0 || memory_size >= local_map_size, s, "memory_size",
+        numberText(memory_size),
+        "must be 0 (none) or at least local_map_size = " + numberText(local_map_size));
+    checkRule(memory_resolution <= local_map_size / 4, s, "memory_resolution",
+              numberText(memory_resolution),
+              "must be at most local_map_size / 4 = " + numberText(local_map_size / 4));
+    // N of (000) section 3.2 must exist for each fused model
+    for (const auto* m : {&laser, use_range2 ? &range2 : &laser})
+        try {
+            (void)mapping::necessaryObservations(*m, speed.free_threshold);
+        } catch (const std::invalid_argument& e) {
+            throw CConfigKeyError(
+                m->section, "p_obs_given_obstacle", numberText(m->p_obs_given_obstacle),
+                std::string(e.what()) +
+                    " with free_threshold = " + numberText(speed.free_threshold));
+        }
+}
+
+void CAdaptiveSpeedLimiter::loadConfig(const mrpt::config::CConfigFileBase& c,
+                                       const std::string& section) {
+    static const std::set<std::string> known = {"speeds",
+                                                "margins",
+                                                "gap_threshold",
+                                                "lookahead_cycles",
+                                                "occupied_threshold",
+                                                "free_threshold",
+                                                "frontier_goal_weight",
+                                                "target_switch_cost",
+                                                "cycle_time",
+                                                "measure_cycle_time",
+                                                "fixed_speed_index",
+                                                "laser_model",
+                                                "range2_model",
+                                                "use_range2",
+                                                "local_map_size",
+                                                "local_map_resolution",
+                                                "memory_size",
+                                                "memory_resolution"};
+    std::vector<std::string> keys;
+    c.getAllKeys(section, keys);
+    for (const auto& k : keys)
+        if (!known.count(k))
+            throwBadKey(c, section, k, c.read_string(section, k, ""),
+                        "unknown key (known: speeds margins gap_threshold "
+                        "lookahead_cycles occupied_threshold free_threshold "
+                        "frontier_goal_weight target_switch_cost cycle_time "
+                        "measure_cycle_time fixed_speed_index laser_model range2_model "
+                        "use_range2 "
+                        "local_map_size local_map_resolution memory_size "
+                        "memory_resolution)");
+    TOptions o;
+    loadOptions(o, c, section);
+    options = o;
+    reset();
+}
+
+void CAdaptiveSpeedLimiter::saveConfig(mrpt::config::CConfigFileBase& c,
+                                       const std::string& section) const {
+    options.saveToConfigFile(c, section);
+}
+
+void CAdaptiveSpeedLimiter::reset() {
+    resetState();
+}
+
+void CAdaptiveSpeedLimiter::resetState() const {
+    m_pipeline.reset();
+    m_radius = m_lastT = 0;
+    m_lastTime.reset();
+    m_lastLaser.reset();
+    m_lastRange2.reset();
+    m_dtLaser.clear();
+    m_dtRange2.clear();
+    m_previousTarget.reset();
+    m_last.reset();
+}
+
+speed::CAdaptiveSpeedPipeline::TParams CAdaptiveSpeedLimiter::params(double radius,
+                                                                     double T) const {
+    speed::CAdaptiveSpeedPipeline::TParams p;
+    p.speed = options.speed;
+    p.speed.cycle_time = T;
+    p.laserModel = options.laser;
+    p.range2Model = options.range2;
+    p.useRange2 = options.use_range2;
+    p.robotRadius = radius;
+    p.localMapSize = options.local_map_size;
+    p.localMapResolution = options.local_map_resolution;
+    p.memorySize = options.memory_size;
+    p.memoryResolution = options.memory_resolution;
+    return p;
+}
+
+int CAdaptiveSpeedLimiter::necessaryObservations() const {
+    return speed::CAdaptiveSpeedPipeline::necessaryObservations(
+        params(0.25, options.speed.cycle_time));
+}
+
+double CAdaptiveSpeedLimiter::cycleTime() const {
+    const double fallback = options.speed.cycle_time;
+    if (!options.measure_cycle_time || m_dtLaser.empty())
+        return fallback;
+    const double fl = options.speed.free_threshold;
+    // N T = max over the fused sensors of N_s T_s (section 3.1 per sensor)
+    const int nLaser = mapping::necessaryObservations(options.laser, fl);
+    double nt = nLaser * median(m_dtLaser);
+    int n = nLaser;
+    if (options.use_range2) {
+        const int n2 = mapping::necessaryObservations(options.range2, fl);
+        n = std::max(n, n2);
+        nt = std::max(nt, n2 * (m_dtRange2.empty() ? fallback : median(m_dtRange2)));
+    }
+    return std::clamp(nt / n, 1e-3, 10.0);
+}
+
+TSpeedLimit CAdaptiveSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const {
+    // a new run (the clock went back) or another robot: a new map
+    if ((m_lastTime && in.time < *m_lastTime) ||
+        (m_pipeline && in.robot->radius != m_radius)) {
+        resetState();
+    }
+    // the measured cycle, per sensor: intervals between calls with its scan
+    auto measure = [&](bool has, std::optional<double>& last, std::deque<double>& dts) {
+        if (!has)
+            return;
+        if (last && in.time > *last) {
+            dts.push_back(in.time - *last);
+            if (dts.size() > kIntervals)
+                dts.pop_front();
+        }
+        last = in.time;
+    };
+    measure(in.scan != nullptr, m_lastLaser, m_dtLaser);
+    measure(in.scan2 != nullptr, m_lastRange2, m_dtRange2);
+    m_lastTime = in.time;
+    const double T = cycleTime();
+    if (!m_pipeline) {
+        m_radius = in.robot->radius;
+        m_pipeline =
+            std::make_unique<speed::CAdaptiveSpeedPipeline>(params(m_radius, T), in.pose);
+    }
+    m_pipeline->setCycleTime(T);
+    m_lastT = T;
+    // (000) section 2: move the grids by the ego-motion, update, classify, fuse
+    m_pipeline->update(in.pose, in.scan, in.scan2);
+    if (!in.target) {
+        m_last.reset();
+        return {in.desiredSpeed, ""};
+    }
+    // sections 3-5: the fastest safe speed on the way to the target
+    const speed::TSpeedDecision d = m_pipeline->decide(
+        in.pose, *in.target, options.fixed_speed_index, m_previousTarget);
+    if (d.temporaryTarget && d.reason != speed::TSpeedReason::Unreachable)
+        m_previousTarget = d.target;
+    else
+        m_previousTarget.reset();
+    m_last = d;
+    double v = d.speed;
+    char why[160];
+    const bool creep = m_pipeline->heldLongEnough(d.speed <= 0);
+    if (creep)
+        v = options.fixed_speed_index >= 0
+                ? options.speed.speeds[size_t(options.fixed_speed_index)]
+                : options.speed.speeds.back();
+    if (v >= in.desiredSpeed)
+        return {in.desiredSpeed, ""};
+    const int N = m_pipeline->controller().necessaryObservations();
+    switch (d.reason) {
+        case speed::TSpeedReason::Narrow:
+            std::snprintf(why, sizeof(why),
+                          "narrow passage: %.2f m/s is the fastest speed whose margin "
+                          "passes (gap rule)",
+                          v);
+            break;
+        case speed::TSpeedReason::Undecided:
+            std::snprintf(why, sizeof(why), "undecided region %.2f m ahead",
+                          d.dUndecided);
+            break;
+        case speed::TSpeedReason::Unreachable:
+            std::snprintf(why, sizeof(why), "unreachable");
+            break;
+        case speed::TSpeedReason::None:
+            std::snprintf(why, sizeof(why), "fastest candidate speed %.2f m/s", v);
+            break;
+    }
+    std::string reason = why;
+    if (creep)
+        reason += " (held " + std::to_string(N) + " cycles: creeping)";
+    return {v, reason};
+}
+
+}  // namespace risknav::nav

@@ -1,0 +1,397 @@
+// One navigationStep() of MRPT's bare reactive engine against risknav's
+// CRiskAwareReactiveNav with all three speed limiters (afraid map, adaptive
+// speed control, stopping distance) and with none, side by side on the same
+// world and config (issue: the risk-aware step <= 1.5 x the bare step, >= 300
+// steps/s without navlog). datasets/office, MRPT's shipped
+// reactive2d_config.ini, MRPT's simulated clock, a route through the office
+// driven to and fro; no navlog.
+//
+// What is timed: navigationStep() alone (sensing the world's laser through
+// CSimRobotInterface, MRPT's PTG evaluation, the limiters). The world's
+// stepping for the nav period (4 x 0.05 s) and the route's restart when a
+// goal is reached run between PauseTiming() and ResumeTiming(), so every
+// iteration is one real navigating step. Times are wall-clock
+// (UseRealTime()); steps_per_s = iterations / timed wall time.
+//
+// BM_LimiterCall/<name>: one limit() call of a separate instance of each
+// limiter, loaded from the same config, on the input the all-limiters
+// navigator built this cycle (its pose, obstacles, scans, target, time),
+// timed by hand (UseManualTime()); the navigator's step runs untimed.
+//
+// Counters: legs = route legs completed, resets = the world reset after a
+// navigation error or a leg over 300 s (0 expected), lim_<name> = share of
+// commanded cycles that limiter limited. RISKNAV_BENCH_NAV_CONFIG (ini text)
+// is appended to the config, e.g. to try a limiter option.
+#include <risknav/afraid/CAfraidGrid.h>
+#include <risknav/common/CIniConfig.h>
+#include <risknav/common/CSpeedLimiter.h>
+#include <risknav/nav/CAdaptiveSpeedLimiter.h>
+#include <risknav/nav/CRiskAwareReactiveNav.h>
+#include <risknav/sim/CSimRobotInterface.h>
+#include <risknav/sim/CSimWorld.h>
+
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/core/Clock.h>
+#include <mrpt/math/CPolygon.h>
+#include <mrpt/nav/reactive/CReactiveNavigationSystem.h>
+#include <mrpt/system/filesystem.h>
+
+#include <benchmark/benchmark.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+using namespace risknav;
+using mrpt::math::TPose2D;
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kSource = RISKNAV_SOURCE_DIR;
+const TPose2D kStart(3.0, 3.0, M_PI / 2);
+constexpr double kT0 = 1.6e9;  // UNIX time of world time 0 on MRPT's clock
+constexpr double kSimDt = 0.05;
+constexpr int kStepsPerCycle = 4;    // nav period 0.2 s
+constexpr int kMaxLegCycles = 1500;  // a leg not done in 300 s: reset the world
+const char* kAllLimiters =
+    "CAfraidSpeedLimiter CAdaptiveSpeedLimiter CStoppingDistanceLimiter";
+
+// Out of the lower-left room through its door, along the corridor, through
+// the lower-right room's door to its far corner (datasets/office/navigate.ini).
+// Corridor waypoints 2.5-3 m apart: MRPT's purely reactive engine keeps its
+// target in sight (with 7 m legs it now and then wandered through an upper
+// door and got stuck behind the corridor wall).
+const std::vector<std::pair<double, double>> kRoute = {
+    {3.0, 6.6},  {6.0, 6.6},  {9.0, 6.6},  {12.0, 6.6},
+    {14.5, 6.6}, {16.5, 6.6}, {16.5, 4.6}, {15.0, 2.5}};
+
+// A scratch directory for the .afraid file and MRPT's PTG cache, removed at exit.
+struct TScratch {
+    std::string dir;
+    TScratch() {
+        dir = (fs::temp_directory_path() /
+               ("risknav_bench_nav." + std::to_string(getpid())))
+                  .string();
+        fs::create_directories(dir + "/ptg");
+    }
+    ~TScratch() {
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+    }
+};
+TScratch& scratch() {
+    static TScratch s;
+    return s;
+}
+
+sim::CSimWorld& officeWorld(sim::CSimWorld& w) {
+    common::CIniConfig cfg(kSource + "/datasets/office/world.ini");
+    w.loadFromConfigFile(cfg);
+    w.agents.walkers.clear();  // deterministic: no colleague in the corridor
+    return w;
+}
+
+// A .afraid file on the office map's geometry: 20 runs along the route, an
+// obstacle bursting out at each of the two doors on every other run.
+const std::string& afraidFile() {
+    static const std::string path = [] {
+        sim::CSimWorld w;
+        officeWorld(w);
+        afraid::CAfraidGrid g(w.grid());
+        for (int run = 0; run < 20; run++) {
+            g.addPass(kStart.x, kStart.y);
+            double x = kStart.x, y = kStart.y;
+            for (const auto& [nx, ny] : kRoute) {
+                g.addTraversal(x, y, nx, ny);
+                x = nx;
+                y = ny;
+            }
+            if (run % 2 == 0) {
+                g.addObstacleEvent(3.0, 5.9);   // the lower-left room's door
+                g.addObstacleEvent(16.5, 5.9);  // the lower-right room's door
+                g.addRobotEvent(3.0, 5.5);
+            }
+            g.runs++;
+        }
+        const std::string p = scratch().dir + "/office.afraid";
+        g.save(p);
+        return p;
+    }();
+    return path;
+}
+
+// MRPT's shipped reactive2d_config.ini plus risknav's sections.
+std::string navConfig(const std::string& limiters) {
+    std::ifstream f(mrpt::system::find_mrpt_shared_dir() +
+                    "config_files/navigation-ptgs/reactive2d_config.ini");
+    std::stringstream ss;
+    ss << f.rdbuf() << "\n"
+       << "[CRiskAwareReactiveNav]\nspeed_limiters = " << limiters << "\n"
+       << "[CAfraidSpeedLimiter]\nafraid_file = " << afraidFile() << "\n"
+       << "[CStoppingDistanceLimiter]\nmargin = 0.1\nlateral_margin = 0.05\n"
+       << "[CAdaptiveSpeedLimiter]\n"  // its defaults
+       << "[Robot]\nradius = 0.25\nmax_v = 1.1\naccel = 1.0\ndecel = 1.0\n";
+    // e.g. "[CAdaptiveSpeedLimiter]\nlocal_map_resolution = 0.1" to try an option
+    if (const char* extra = std::getenv("RISKNAV_BENCH_NAV_CONFIG"))
+        ss << "\n" << extra << "\n";
+    return ss.str();
+}
+
+// The risk-aware navigator, with what its generate_vel_cmd() gives its
+// limiters readable from outside (for BM_LimiterCall).
+class CProbeNav : public nav::CRiskAwareReactiveNav {
+  public:
+    using nav::CRiskAwareReactiveNav::CRiskAwareReactiveNav;
+    common::TSpeedLimitInput limiterInput(const sim::CSimRobotInterface& r,
+                                          double desired) const {
+        common::TSpeedLimitInput in;
+        in.robot = &robot;
+        in.pose = m_curPoseVel.pose;
+        in.desiredSpeed = desired;
+        in.obstacles = &m_WS_Obstacles;
+        in.time = mrpt::Clock::toDouble(mrpt::Clock::now());
+        if (m_navigationParams)
+            in.target = mrpt::math::TPoint2D(m_navigationParams->target.target_coords.x,
+                                             m_navigationParams->target.target_coords.y);
+        in.scan = r.lastScans().laser.get();
+        in.scan2 = r.lastScans().range2.get();
+        return in;
+    }
+};
+
+// A world, its robot interface and a navigator driving the route to and fro.
+struct TNavBench {
+    sim::CSimWorld world;
+    std::unique_ptr<sim::CSimRobotInterface> robotIf;
+    std::unique_ptr<mrpt::nav::CReactiveNavigationSystem> nav;
+    CProbeNav* risk = nullptr;  // nav, when it is the risk-aware one
+    bool forward = true;
+    double clockBase = kT0;  // UNIX time of world time 0: MRPT's clock never goes back
+    int legCycles = 0;
+    long legs = 0, resets = 0, cycles = 0, commanded = 0;
+    std::map<std::string, long> wins;  // limiter -> cycles it limited
+    /** BM_LimiterCall's separate limiter instances (fed every commanded cycle). */
+    std::vector<std::pair<std::string, common::CSpeedLimiter::Ptr>> probes;
+
+    // limiters: nullptr = the bare MRPT engine.
+    explicit TNavBench(const char* limiters) {
+        officeWorld(world);
+        world.reset(kStart, 11, clockBase);
+        robotIf = std::make_unique<sim::CSimRobotInterface>(world);
+        robotIf->setMinLoggingLevel(mrpt::system::LVL_ERROR);
+        if (limiters) {
+            auto n = std::make_unique<CProbeNav>(*robotIf);
+            risk = n.get();
+            nav = std::move(n);
+        } else {
+            nav = std::make_unique<mrpt::nav::CReactiveNavigationSystem>(*robotIf);
+        }
+        nav->setMinLoggingLevel(mrpt::system::LVL_ERROR);
+        const_cast<mrpt::system::CTimeLogger&>(nav->getDelaysTimeLogger()).disable();
+        mrpt::config::CConfigFileMemory cfg(navConfig(limiters ? limiters : ""));
+        nav->loadConfigFile(cfg);
+        nav->params_abstract_ptg_navigator.ptg_cache_files_directory =
+            scratch().dir + "/ptg";
+        mrpt::math::CPolygon shape;
+        for (int i = 0; i < 16; i++)
+            shape.AddVertex(world.robot.radius * std::cos(i * M_PI / 8),
+                            world.robot.radius * std::sin(i * M_PI / 8));
+        nav->changeRobotShape(shape);
+        nav->initialize();
+        startLeg();
+        for (int i = 0; i < 10; i++) {  // warm up (first cycles, caches)
+            step();
+            after();
+        }
+        legs = resets = cycles = commanded = 0;
+        wins.clear();
+    }
+
+    void syncClock() const { mrpt::Clock::setSimulatedTime(world.timestamp()); }
+
+    void startLeg() {
+        mrpt::nav::TWaypointSequence wps;
+        if (forward) {
+            for (const auto& [x, y] : kRoute)
+                wps.waypoints.emplace_back(x, y, 0.3, false);
+        } else {
+            for (size_t i = kRoute.size() - 1; i-- > 0;)
+                wps.waypoints.emplace_back(kRoute[i].first, kRoute[i].second, 0.3, false);
+            wps.waypoints.emplace_back(kStart.x, kStart.y, 0.3, false);
+        }
+        syncClock();
+        nav->navigateWaypoints(wps);
+        legCycles = 0;
+    }
+
+    void resetWorld() {
+        clockBase += world.time() + 10;
+        world.reset(kStart, 11 + uint64_t(resets), clockBase);
+        forward = true;
+        resets++;
+        if (risk) {
+            auto ls = risk->limiters();
+            for (const auto& p : probes)
+                ls.push_back(p.second);
+            for (const auto& l : ls)
+                if (auto* a = dynamic_cast<nav::CAdaptiveSpeedLimiter*>(l.get()))
+                    a->reset();  // its map: the robot was teleported
+        }
+        startLeg();
+    }
+
+    // The timed part.
+    void step() {
+        syncClock();
+        nav->navigationStep();
+    }
+
+    // Untimed: the route's bookkeeping and the world for one nav period.
+    void after() {
+        cycles++;
+        legCycles++;
+        if (risk && risk->lastLimit().desired > 0) {
+            commanded++;
+            if (!risk->lastLimit().limiter.empty())
+                wins[risk->lastLimit().limiter]++;
+        }
+        const auto st = nav->getCurrentState();
+        if (st == mrpt::nav::CAbstractNavigator::IDLE &&
+            nav->getWaypointNavStatus().final_goal_reached) {
+            forward = !forward;
+            legs++;
+            startLeg();
+        } else if (st != mrpt::nav::CAbstractNavigator::NAVIGATING ||
+                   legCycles > kMaxLegCycles) {
+            resetWorld();
+        }
+        for (int k = 0; k < kStepsPerCycle; k++)
+            world.step(kSimDt);
+    }
+
+    void report(benchmark::State& state) const {
+        state.counters["steps_per_s"] =
+            benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+        state.counters["legs"] = double(legs);
+        state.counters["resets"] = double(resets);
+        if (risk && commanded > 0)
+            for (const auto& [name, n] : wins)
+                state.counters["lim_" + name] = double(n) / double(commanded);
+    }
+};
+
+// One fixture per variant for the whole run: the route goes on across
+// repetitions (building a navigator, i.e. MRPT's PTGs, is not what is measured).
+TNavBench& fixture(const std::string& variant) {
+    static std::map<std::string, std::unique_ptr<TNavBench>> all;
+    auto& f = all[variant];
+    if (!f) {
+        mrpt::Clock::setActiveClock(mrpt::Clock::Simulated);
+        if (variant == "bare")
+            f = std::make_unique<TNavBench>(nullptr);
+        else if (variant == "none")
+            f = std::make_unique<TNavBench>("");
+        else
+            f = std::make_unique<TNavBench>(kAllLimiters);
+    }
+    return *f;
+}
+
+void runSteps(benchmark::State& state, TNavBench& f) {
+    // this run's counts (the fixture goes on across runs)
+    f.legs = f.resets = f.commanded = 0;
+    f.wins.clear();
+    for (auto _ : state) {
+        f.step();
+        state.PauseTiming();
+        f.after();
+        state.ResumeTiming();
+    }
+    f.report(state);
+}
+
+void BM_BareEngineStep(benchmark::State& state) {
+    runSteps(state, fixture("bare"));
+}
+void BM_RiskAwareStep_NoLimiters(benchmark::State& state) {
+    runSteps(state, fixture("none"));
+}
+void BM_RiskAwareStep_AllLimiters(benchmark::State& state) {
+    runSteps(state, fixture("all"));
+}
+BENCHMARK(BM_BareEngineStep)->Unit(benchmark::kMicrosecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_RiskAwareStep_NoLimiters)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_RiskAwareStep_AllLimiters)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+
+// One limit() call of a separate instance of `name`, loaded from the same
+// config, on the input the all-limiters navigator (its own fixture) built for
+// this cycle. Every probe instance is called on every commanded cycle (the
+// adaptive limiter keeps a map and measures its cycle), only `name` is timed.
+TNavBench& probeFixture() {
+    TNavBench& f = fixture("probe");
+    if (f.probes.empty()) {
+        nav::registerAllClasses_nav();
+        mrpt::config::CConfigFileMemory cfg(navConfig(kAllLimiters));
+        std::istringstream names(kAllLimiters);
+        for (std::string n; names >> n;) {
+            auto l = common::CSpeedLimiter::Factory(n);
+            l->loadConfig(cfg, n);
+            f.probes.emplace_back(n, l);
+        }
+    }
+    return f;
+}
+
+void BM_LimiterCall(benchmark::State& state, const std::string& name) {
+    TNavBench& f = probeFixture();
+    for (auto _ : state) {
+        // Steps until MRPT commands a forward speed (else no limiter is asked).
+        do {
+            f.step();
+            f.after();
+        } while (!(f.risk->lastLimit().desired > 0));
+        // The input of the step just taken (pose, obstacles, scans, target and
+        // clock as the navigator's own limiters saw them).
+        const auto in = f.risk->limiterInput(*f.robotIf, f.risk->lastLimit().desired);
+        for (const auto& [n, l] : f.probes) {
+            if (n != name) {
+                benchmark::DoNotOptimize(l->limit(in));
+                continue;
+            }
+            const auto t0 = std::chrono::steady_clock::now();
+            auto lim = l->limit(in);
+            const auto t1 = std::chrono::steady_clock::now();
+            benchmark::DoNotOptimize(lim);
+            state.SetIterationTime(std::chrono::duration<double>(t1 - t0).count());
+        }
+    }
+    state.counters["calls_per_s"] =
+        benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+}
+const bool kLimiterCalls = [] {
+    std::istringstream names(kAllLimiters);
+    for (std::string n; names >> n;)
+        benchmark::RegisterBenchmark(("BM_LimiterCall/" + n).c_str(), BM_LimiterCall, n)
+            ->Unit(benchmark::kMicrosecond)
+            ->UseManualTime()
+            ->Iterations(500);
+    return true;
+}();
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,280 @@
+// CAdaptiveSpeedLimiter: the adaptive speed control of Miura et al. 2006 (M1)
+// as a speed limiter inside MRPT's reactive engine (CRiskAwareReactiveNav).
+#include <risknav/common/CBadInputError.h>
+#include <risknav/common/CIniConfig.h>
+#include <risknav/common/config_read.h>
+#include <risknav/nav/CAdaptiveSpeedLimiter.h>
+#include <risknav/nav/CRiskAwareReactiveNav.h>
+#include <risknav/sim/CSafetyMonitor.h>
+#include <risknav/sim/CSimRobotInterface.h>
+#include <risknav/sim/CSimWorld.h>
+#include <risknav/speed/speed_rules.h>
+#include <test_support.h>
+
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/math/CPolygon.h>
+#include <mrpt/system/filesystem.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+using namespace risknav;
+using mrpt::math::TPoint2D;
+using mrpt::math::TPose2D;
+
+namespace {
+// ---------------------------------------------------------------------------
+// Synthetic worlds, built in code: a risknav world (for its laser and RANGE2
+// simulation) on a map drawn here; the robot stands still and the limiter is
+// called once per 0.2 s cycle with the scans of that instant.
+
+/** Free cells in [x0, x1] x [y0, y1], walls drawn with wall(). */
+mrpt::maps::COccupancyGridMap2D freeMap(double x0, double x1, double y0, double y1) {
+    mrpt::maps::COccupancyGridMap2D g(x0, x1, y0, y1, 0.05f);
+    g.fill(1.0f);
+    return g;
+}
+void wall(mrpt::maps::COccupancyGridMap2D& g, double x0, double y0, double x1,
+          double y1) {
+    for (double y = y0; y <= y1 + 1e-9; y += 0.025)
+        for (double x = x0; x <= x1 + 1e-9; x += 0.025)
+            g.setPos(x, y, 0.0f);
+}
+
+/** A world on `g` with a 360 deg laser (8 m) and a 360 deg second range
+ * sensor of `range2Max` m, both at the robot's centre, every cycle (a robot
+ * standing still sees all around it; a 180 deg laser ahead of the centre
+ * would leave the cells beside the robot unobserved, which stops it until it
+ * has moved: see the creep test). */
+sim::CSimWorld syntheticWorld(const mrpt::maps::COccupancyGridMap2D& g,
+                              double range2Max) {
+    sim::CSimWorld w;
+    w.laser.options.max_range = 8.0;
+    w.laser.options.fov_deg = 360;
+    w.laser.options.beams = 360;
+    w.laser.options.x = 0;
+    w.range2.options.enabled = true;
+    w.range2.options.label = "RANGE2";
+    w.range2.options.fov_deg = 360;
+    w.range2.options.beams = 144;
+    w.range2.options.max_range = range2Max;
+    w.range2.options.noise_std = 0.01;
+    w.range2.options.x = 0;
+    w.range2.options.z = 0.5;
+    w.setMap(g);
+    return w;
+}
+
+nav::CAdaptiveSpeedLimiter& asAdaptive(const common::CSpeedLimiter::Ptr& p) {
+    auto* l = dynamic_cast<nav::CAdaptiveSpeedLimiter*>(p.get());
+    if (!l)
+        throw std::runtime_error("not a CAdaptiveSpeedLimiter");
+    return *l;
+}
+
+/** A limiter made by name, MRPT style, from `section` text. */
+common::CSpeedLimiter::Ptr makeLimiter(const std::string& text) {
+    nav::registerAllClasses_nav();
+    auto l = common::CSpeedLimiter::Factory("CAdaptiveSpeedLimiter");
+    mrpt::config::CConfigFileMemory c(text);
+    l->loadConfig(c, "CAdaptiveSpeedLimiter");
+    return l;
+}
+
+/** The limits of `cycles` calls, the robot still at `pose`, target `goal`. */
+std::vector<common::TSpeedLimit> standAndLook(const common::CSpeedLimiter::Ptr& l,
+                                              sim::CSimWorld& w, const TPose2D& pose,
+                                              const TPoint2D& goal, int cycles,
+                                              double desired = 1.1) {
+    w.reset(pose, 3);
+    common::TRobotOptions robot;  // radius 0.25
+    std::vector<common::TSpeedLimit> out;
+    for (int k = 0; k < cycles; k++) {
+        const auto scans = w.sense();
+        common::TSpeedLimitInput in;
+        in.robot = &robot;
+        in.pose = pose;
+        in.desiredSpeed = desired;
+        in.scan = scans.laser.get();
+        in.scan2 = scans.range2.get();
+        in.target = goal;
+        in.time = 100.0 + 0.2 * k;
+        out.push_back(l->limit(in));
+        w.step(0, 0, 0.2);
+    }
+    return out;
+}
+
+/** A 2 m wide corridor along x, 20 m long; the robot at x = 2 facing +x. */
+mrpt::maps::COccupancyGridMap2D corridor() {
+    auto g = freeMap(-1, 21, -3, 3);
+    wall(g, -1, -1.2, 21, -1.0);
+    wall(g, -1, 1.0, 21, 1.2);
+    wall(g, -1, -1.2, -0.8, 1.2);
+    wall(g, 20.8, -1.2, 21, 1.2);
+    return g;
+}
+}  // namespace
+
+TEST(AdaptiveLimiter,
+     AnUndecidedRegionAheadLimitsTheSpeedAndTheLimitGrowsAsTheMapConfirmsFreeSpace) {
+    // RANGE2 (the stereo-like model: N = 5) sees 1.5 m: the fused map is free
+    // only there, the corridor beyond is undecided; the target lies 13 m on.
+    auto w = syntheticWorld(corridor(), 1.5);
+    auto l = makeLimiter("[CAdaptiveSpeedLimiter]\n");
+    auto& a = asAdaptive(l);
+    EXPECT_EQ(a.necessaryObservations(), 5);
+    const auto lim = standAndLook(l, w, TPose2D(2, 0, 0), TPoint2D(15, 0), 12);
+    // first cycle: one observation, nothing decided ahead: stop
+    EXPECT_EQ(lim.front().maxSpeed, 0.0);
+    // once RANGE2's cells are confirmed free (N = 5 observations), faster
+    EXPECT_GT(lim.back().maxSpeed, lim.front().maxSpeed);
+    for (size_t k = 1; k < lim.size(); k++)
+        EXPECT_GE(lim[k].maxSpeed, lim[k - 1].maxSpeed) << k;
+    // the measured cycle: the 0.2 s between calls
+    EXPECT_NEAR(a.lastCycleTime(), 0.2, 1e-9);
+    ASSERT_TRUE(a.lastDecision());
+    const auto& d = *a.lastDecision();
+    EXPECT_TRUE(d.temporaryTarget);
+    EXPECT_EQ(d.reason, speed::TSpeedReason::Undecided);
+    // the free space ends ~1.5 m ahead: 1.1 m/s would need d >= 5 x 1.1 x 0.2
+    // = 1.1 m to the unknown (its margin disc's front), 0.7 m/s 0.7 m
+    EXPECT_DOUBLE_EQ(lim.back().maxSpeed, 0.7);
+    EXPECT_NE(lim.back().reason.find("undecided region"), std::string::npos)
+        << lim.back().reason;
+    EXPECT_NE(lim.back().reason.find("m ahead"), std::string::npos);
+    // the rule d / (v T) >= N, on the fastest speed's own d
+    EXPECT_LT(d.dUndecided / (1.1 * 0.2), 5.0);
+    // a longer cycle T (configured, not measured) asks for more distance
+    // per observation: a lower limit on the same map. A constant in place of
+    // d / (v T) >= N would not see T.
+    auto slow = makeLimiter(
+        "[CAdaptiveSpeedLimiter]\nmeasure_cycle_time = false\ncycle_time = 0.4\n");
+    const auto limSlow = standAndLook(slow, w, TPose2D(2, 0, 0), TPoint2D(15, 0), 12);
+    EXPECT_NEAR(asAdaptive(slow).lastCycleTime(), 0.4, 1e-12);
+    EXPECT_LT(limSlow.back().maxSpeed, lim.back().maxSpeed);
+    EXPECT_DOUBLE_EQ(limSlow.back().maxSpeed, 0.35);
+    // and a sensor that needs more observations (N = 9) too
+    auto weak = makeLimiter(
+        "[CAdaptiveSpeedLimiter]\nrange2_model = Weak\n"
+        "[Weak]\np_obs_given_obstacle = 0.55\np_obs_given_free = 0.45\n");
+    EXPECT_GT(asAdaptive(weak).necessaryObservations(), 5);
+    const auto limWeak = standAndLook(weak, w, TPose2D(2, 0, 0), TPoint2D(15, 0), 16);
+    EXPECT_LT(limWeak.back().maxSpeed, lim.back().maxSpeed);
+    // a desired speed below the limit is not limited: empty reason
+    const auto calm = standAndLook(makeLimiter("[CAdaptiveSpeedLimiter]\n"), w,
+                                   TPose2D(2, 0, 0), TPoint2D(15, 0), 12, 0.3);
+    EXPECT_DOUBLE_EQ(calm.back().maxSpeed, 0.3);
+    EXPECT_EQ(calm.back().reason, "");
+}
+
+TEST(AdaptiveLimiter, WithRange2SeeingFarTheCorridorIsFastAndWithoutAnyScanItCreeps) {
+    // RANGE2 sees 5 m: the unknown is far enough for the fastest speed
+    auto w = syntheticWorld(corridor(), 5.0);
+    auto l = makeLimiter("[CAdaptiveSpeedLimiter]\n");
+    const auto lim = standAndLook(l, w, TPose2D(2, 0, 0), TPoint2D(15, 0), 12);
+    EXPECT_DOUBLE_EQ(lim.back().maxSpeed, 1.1);
+    EXPECT_EQ(lim.back().reason, "");
+    // no scans at all: nothing is ever decided; held N = 5 cycles at 0, the
+    // limiter lets the engine creep on at the slowest speed
+    auto blind = makeLimiter("[CAdaptiveSpeedLimiter]\n");
+    common::TRobotOptions robot;
+    for (int k = 0; k < 6; k++) {
+        common::TSpeedLimitInput in;
+        in.robot = &robot;
+        in.pose = TPose2D(2, 0, 0);
+        in.desiredSpeed = 1.0;
+        in.target = TPoint2D(15, 0);
+        in.time = 0.2 * k;
+        const auto r = blind->limit(in);
+        if (k < 4) {
+            EXPECT_EQ(r.maxSpeed, 0.0) << k;
+        } else {
+            EXPECT_DOUBLE_EQ(r.maxSpeed, 0.2) << k;
+            EXPECT_NE(r.reason.find("creeping"), std::string::npos) << r.reason;
+        }
+    }
+}
+
+TEST(AdaptiveLimiter, ANarrowGapLimitsToTheGapRulesSpeed) {
+    // A wall across the room at x in [0, 0.1] with a 0.9 m gap (0.8 m once
+    // the sensed walls have grown by the range uncertainty): with the
+    // radius 0.25 m, the inflations are 0.55 / 0.45 / 0.35 / 0.30 m, and only
+    // 0.35 and 0.2 m/s fit through the 0.4 m half-gap; the wall spans the room
+    // (no detour). Just before the gap (section 4.2: the faster margins fail
+    // within their next two cycles), the gap rule's speed is 0.35 m/s.
+    auto g = freeMap(-4, 4, -3, 3);
+    wall(g, 0.0, -3, 0.1, -0.45);
+    wall(g, 0.0, 0.45, 0.1, 3);
+    auto w = syntheticWorld(g, 5.0);
+    auto l = makeLimiter("[CAdaptiveSpeedLimiter]\n");
+    const auto lim = standAndLook(l, w, TPose2D(-0.4, 0, 0), TPoint2D(2.0, 0), 15);
+    const auto& d = *asAdaptive(l).lastDecision();
+    EXPECT_FALSE(d.temporaryTarget);
+    EXPECT_EQ(d.safeByGap, (std::vector<size_t>{2, 3}));
+    EXPECT_FALSE(d.perSpeed[0].reached);
+    EXPECT_EQ(d.reason, speed::TSpeedReason::Narrow);
+    EXPECT_DOUBLE_EQ(lim.back().maxSpeed, 0.35);
+    EXPECT_NE(lim.back().reason.find("narrow passage"), std::string::npos)
+        << lim.back().reason;
+    // the same gap 2 m wide: no narrow passage, the fastest speed
+    auto wide = freeMap(-4, 4, -3, 3);
+    wall(wide, 0.0, -3, 0.1, -1.0);
+    wall(wide, 0.0, 1.0, 0.1, 3);
+    auto w2 = syntheticWorld(wide, 5.0);
+    auto l2 = makeLimiter("[CAdaptiveSpeedLimiter]\n");
+    const auto lim2 = standAndLook(l2, w2, TPose2D(-0.4, 0, 0), TPoint2D(2.0, 0), 15);
+    EXPECT_EQ(asAdaptive(l2).lastDecision()->safeByGap.size(), 4u);
+    EXPECT_DOUBLE_EQ(lim2.back().maxSpeed, 1.1);
+}
+
+TEST(AdaptiveLimiter, BadOrMissingKeysAreClearErrorsNamingSectionAndKey) {
+    nav::registerAllClasses_nav();
+    struct TCase {
+        std::string text, section, key;
+    };
+    const std::vector<TCase> cases = {
+        {"speeds = 1.1 0.7\n", "CAdaptiveSpeedLimiter", "margins"},
+        {"speeds = 1.1 fast 0.35 0.2\n", "CAdaptiveSpeedLimiter", "speeds"},
+        {"speeds = 0.7 1.1 0.35 0.2\n", "CAdaptiveSpeedLimiter", "speeds"},
+        {"cycle_time = -0.3\n", "CAdaptiveSpeedLimiter", "cycle_time"},
+        {"gap_threshold = 0\n", "CAdaptiveSpeedLimiter", "gap_threshold"},
+        {"free_threshold = 0.8\n", "CAdaptiveSpeedLimiter", "free_threshold"},
+        {"measure_cycle_time = sometimes\n", "CAdaptiveSpeedLimiter",
+         "measure_cycle_time"},
+        {"local_map_size = 1\n", "CAdaptiveSpeedLimiter", "local_map_size"},
+        {"memory_size = 5\n", "CAdaptiveSpeedLimiter", "memory_size"},
+        {"spedes = 1.1\n", "CAdaptiveSpeedLimiter", "spedes"},
+        // a model section named but missing
+        {"laser_model = MapLaser\n", "CAdaptiveSpeedLimiter", "laser_model"},
+        // a model that never decides a cell (no N)
+        {"range2_model = MapRange2\n[MapRange2]\np_obs_given_obstacle = 0.4\n"
+         "p_obs_given_free = 0.45\n",
+         "MapRange2", "p_obs_given_obstacle"},
+        {"range2_model = MapRange2\n[MapRange2]\np_obs_given_free = 1.5\n", "MapRange2",
+         "p_obs_given_free"},
+    };
+    for (const auto& c : cases) {
+        auto l = common::CSpeedLimiter::Factory("CAdaptiveSpeedLimiter");
+        mrpt::config::CConfigFileMemory cfg("[CAdaptiveSpeedLimiter]\n" + c.text);
+        try {
+            l->loadConfig(cfg, "CAdaptiveSpeedLimiter");
+            ADD_FAILURE() << "accepted: " << c.text;
+        } catch (const common::CBadInputError& e) {
+            const std::string m = e.what();
+            EXPECT_NE(m.find("[" + c.section + "]"), std::string::npos) << m;
+            EXPECT_NE(m.find(c.key), std::string::npos) << m;
+        }
+    }
+    // the defaults are valid and read back the same
+    auto l = makeLimiter("[CAdaptiveSpeedLimiter]\n");
+    mrpt::config::CConfigFileMemory saved;
+    l->saveConfig(saved, "CAdaptiveSpeedLimiter");
+    auto again = makeLimiter(saved.getContent());
+    EXPECT_EQ(asAdaptive(again).options.speed.speeds, asAdaptive(l).options.speed.speeds);
+    EXPECT_EQ(asAdaptive(again).options.memory_size, asAdaptive(l).options.memory_size);
+}
