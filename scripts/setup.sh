@@ -9,7 +9,7 @@ PACKAGES=(
   libmrpt-dev mrpt-apps mrpt-common      # MRPT 2.5: libraries, apps (rawlog-edit, pf-localization), datasets
   libopencv-dev nlohmann-json3-dev       # images, summary.json
   libgtest-dev libbenchmark-dev          # tests, benchmarks
-  xvfb xauth imagemagick time            # headless runs of MRPT's GUI apps, screenshots, peak memory
+  xvfb xauth imagemagick time x11-utils xdotool  # headless runs of MRPT's GUI apps (navlog-viewer), screenshots, peak memory
   parallel                               # scripts/learn_parallel.sh (GNU parallel)
 )
 

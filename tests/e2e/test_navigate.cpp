@@ -3,7 +3,9 @@
 #include <risknav/afraid/CAfraidGrid.h>
 #include <test_support.h>
 
+#include <mrpt/config/CConfigFile.h>
 #include <mrpt/maps/COccupancyGridMap2D.h>
+#include <mrpt/nav/reactive/TWaypoint.h>
 
 #include <gtest/gtest.h>
 
@@ -14,9 +16,10 @@ using namespace risknav::test;
 using nlohmann::json;
 
 namespace {
-json navRun(const std::string& config, const std::string& out, const std::string& extra = "") {
-    const auto r = run(binPath("risknav-navigate") + " -q -o '" + out + "' " + extra + " '" +
-                       config + "'");
+json navRun(const std::string& config, const std::string& out,
+            const std::string& extra = "") {
+    const auto r = run(binPath("risknav-navigate") + " -q -o '" + out + "' " + extra +
+                       " '" + config + "'");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     return readJson(out + "/summary.json");
 }
@@ -35,14 +38,15 @@ TEST(NavigateE2E, OfficeReachesEveryWaypointWithTheStoppingLimiter) {
         sum += v.get<double>();
     EXPECT_NEAR(sum, s["time_s"].get<double>(), 0.21);
     EXPECT_GT(s["time_per_limiter_s"]["CStoppingDistanceLimiter"].get<double>(), 0.0);
-    for (const char* f : {"navigation.reactivenavlog", "navigation.rawlog", "groundtruth.txt",
-                          "cycles.csv", "events.csv", "trajectory.png", "speed_profile.png",
-                          "config_effective.ini"})
+    for (const char* f : {"navigation.reactivenavlog", "navigation.rawlog",
+                          "groundtruth.txt", "cycles.csv", "events.csv", "trajectory.png",
+                          "speed_profile.png", "config_effective.ini"})
         EXPECT_FALSE(readFile(out + "/" + f).empty()) << f;
     EXPECT_EQ(readLines(out + "/cycles.csv").size(), s["cycles"].get<size_t>() + 1);
     EXPECT_EQ(s["rawlog_frames"], s["cycles"]);
     // The run is reproducible from its seed.
-    const json again = navRun(sourcePath("datasets/office/navigate.ini"), freshDir("again"));
+    const json again =
+        navRun(sourcePath("datasets/office/navigate.ini"), freshDir("again"));
     EXPECT_EQ(again["time_s"], s["time_s"]);
     EXPECT_EQ(again["distance_m"], s["distance_m"]);
 }
@@ -62,8 +66,10 @@ TEST(NavigateE2E, RiskRoutesBestAndWorstAreDriven) {
     // the highest-U one (B, the narrow straight corridor), by dead reckoning.
     const std::string cfg = sourcePath("datasets/risk-two-routes/navigate.ini");
     const json best = navRun(cfg, freshDir("best"), "--seed 2");
-    const json worst = navRun(cfg, freshDir("worst"), "--seed 2 --set Navigate.risk_route=worst");
-    EXPECT_NE(best["route"].get<std::string>().find("SP2"), std::string::npos) << best["route"];
+    const json worst =
+        navRun(cfg, freshDir("worst"), "--seed 2 --set Navigate.risk_route=worst");
+    EXPECT_NE(best["route"].get<std::string>().find("SP2"), std::string::npos)
+        << best["route"];
     EXPECT_EQ(worst["route"].get<std::string>().rfind("B ", 0), 0u) << worst["route"];
     EXPECT_EQ(best["status"], "goal_reached");
     EXPECT_EQ(worst["status"], "goal_reached");
@@ -77,8 +83,8 @@ TEST(NavigateE2E, RiskRoutesBestAndWorstAreDriven) {
 
 TEST(NavigateE2E, AfraidExperimentOneSeedIsFasterThanSafeSpeed) {
     const std::string out = freshDir("xp");
-    const json s = navRun(sourcePath("datasets/corridor-doors/afraid_experiment.ini"), out,
-                          "--seed 2");
+    const json s = navRun(sourcePath("datasets/corridor-doors/afraid_experiment.ini"),
+                          out, "--seed 2");
     ASSERT_EQ(s["per_seed"].size(), 1u);
     const auto& p = s["per_seed"][0];
     EXPECT_GT(p["zones"].get<int>(), 0);
@@ -89,9 +95,9 @@ TEST(NavigateE2E, AfraidExperimentOneSeedIsFasterThanSafeSpeed) {
     EXPECT_LT(with, safe / 1.5);         // the learned limiter lets it go faster...
     EXPECT_GT(with, without * 1.2);      // ...but slows it at the doors
     EXPECT_EQ(p["with_limiter"]["door_collisions"], 0);
-    for (const char* f : {"experiment.csv", "experiment.md", "experiment_speed.png",
-                          "learned.afraid", "learning.rawlog", "navigation.reactivenavlog",
-                          "trajectory.png"})
+    for (const char* f :
+         {"experiment.csv", "experiment.md", "experiment_speed.png", "learned.afraid",
+          "learning.rawlog", "navigation.reactivenavlog", "trajectory.png"})
         EXPECT_FALSE(readFile(out + "/" + f).empty()) << f;
 }
 
@@ -130,7 +136,8 @@ TEST_P(NavigateBadInput, OneLineExit2OutputUntouched) {
     const std::string out = freshDir("out");
     const TEarlierOutput earlier{{"summary.json", "{\"earlier\": true}\n"}};
     writeEarlierOutput(out, earlier);
-    const auto r = run(binPath("risknav-navigate") + " -q -o '" + out + "' '" + w + "/n.ini'");
+    const auto r =
+        run(binPath("risknav-navigate") + " -q -o '" + out + "' '" + w + "/n.ini'");
     expectBadInput(r, c.expect, out, earlier, "risknav-navigate: error: ");
 }
 
@@ -146,15 +153,15 @@ INSTANTIATE_TEST_SUITE_P(
         TBad{"spawned_in_a_wall", "start +=.*", "start = 3.0 0.4 90",
              "spawned in collision"},
         TBad{"goal_off_map", "goals +=.*", "goals = 3.0 6.6  90 6.6", "outside the map"},
-        TBad{"two_route_sources", "goals +=.*",
-             "goals = 3 6.6\nroute_file = n.ini", "exactly one of goals"},
+        TBad{"two_route_sources", "goals +=.*", "goals = 3 6.6\nroute_file = n.ini",
+             "exactly one of goals"},
         TBad{"bad_localization", "localization +=.*", "localization = gps",
              "[Navigate] localization"},
         TBad{"nav_period_not_multiple", "nav_period +=.*", "nav_period = 0.07",
              "[Navigate] nav_period"},
         TBad{"unknown_key", "goal_tolerance", "goal_tolerence", "goal_tolerence"},
-        TBad{"engine_key_missing", "engine_config +=.*", "engine_config =",
-             "MRPT's reactive engine refused the config"}),
+        TBad{"engine_key_missing", "engine_config +=.*",
+             "engine_config =", "MRPT's reactive engine refused the config"}),
     [](const auto& i) { return std::string(i.param.name); });
 
 TEST(NavigateE2E, AfraidFileOfAnotherMapIsAClearError) {
@@ -165,15 +172,42 @@ TEST(NavigateE2E, AfraidFileOfAnotherMapIsAClearError) {
     std::string cfg = readFile(sourcePath("datasets/office/navigate.ini"));
     cfg = std::regex_replace(cfg, std::regex("office.png"),
                              sourcePath("datasets/office/office.png"));
-    cfg = std::regex_replace(cfg, std::regex("speed_limiters = CStoppingDistanceLimiter"),
-                             "speed_limiters = CAfraidSpeedLimiter CStoppingDistanceLimiter\n"
-                             "[CAfraidSpeedLimiter]\nafraid_file = other.afraid");
+    cfg = std::regex_replace(
+        cfg, std::regex("speed_limiters = CStoppingDistanceLimiter"),
+        "speed_limiters = CAfraidSpeedLimiter CStoppingDistanceLimiter\n"
+        "[CAfraidSpeedLimiter]\nafraid_file = other.afraid");
     writeFile(w + "/n.ini", cfg);
     const std::string out = freshDir("out");
     const TEarlierOutput earlier{{"summary.json", "{\"earlier\": true}\n"}};
     writeEarlierOutput(out, earlier);
-    const auto r = run(binPath("risknav-navigate") + " -q -o '" + out + "' '" + w + "/n.ini'");
+    const auto r =
+        run(binPath("risknav-navigate") + " -q -o '" + out + "' '" + w + "/n.ini'");
     expectBadInput(r, "[CAfraidSpeedLimiter] afraid_file", out, earlier,
                    "risknav-navigate: error: ");
     EXPECT_NE(r.err.find("is not the world map's"), std::string::npos) << r.err;
+}
+
+TEST(NavigateE2E, ViewpointPlanIsDrivenAsMrptWaypointsWithViewpointEvents) {
+    // M4's plan (risknav-viewpoint-plan's waypoints.ini, MRPT's
+    // TWaypointSequence keys) becomes the route; its viewpoints are events.
+    const std::string plan = freshDir("plan");
+    const auto p = run(binPath("risknav-viewpoint-plan") + " -q -o '" + plan + "' '" +
+                       sourcePath("datasets/office/viewpoint.ini") + "'");
+    ASSERT_EQ(p.exitCode, 0) << p.err;
+    // Our reader and MRPT's own read the same waypoints, to the last digit.
+    mrpt::config::CConfigFile wf(plan + "/waypoints.ini");
+    wf.discardSavingChanges();
+    mrpt::nav::TWaypointSequence mrptSeq;
+    mrptSeq.load(wf, "Waypoints");
+    const json s = navRun(sourcePath("datasets/office/navigate_m4.ini"), freshDir("nav"),
+                          "--set Navigate.route_file=" + plan + "/waypoints.ini");
+    EXPECT_EQ(s["waypoints"].get<size_t>(), mrptSeq.waypoints.size());
+    EXPECT_EQ(s["collisions"], 0);
+    size_t viewpoints = 0;
+    for (const auto& e : s["tagged_events"])
+        if (e["kind"] == "viewpoint") {
+            viewpoints++;
+            EXPECT_FALSE(e["detail"].get<std::string>().empty());
+        }
+    EXPECT_GT(viewpoints, 0u);
 }

@@ -31,7 +31,9 @@ namespace {
 const char* kSec = "AfraidExperiment";
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-json numOrNull(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+json numOrNull(double x) {
+    return std::isfinite(x) ? json(x) : json(nullptr);
+}
 
 struct TRunFigures {
     double sectionTime = kNaN;  ///< [s] first pass through the section (+axis)
@@ -49,7 +51,8 @@ double sectionTime(const TNavRunResult& r, const afraid::TRouteAxis& a, double s
     for (size_t i = 1; i < r.cycles.size(); i++) {
         const auto& p = r.cycles[i - 1].truePose;
         const auto& q = r.cycles[i].truePose;
-        const double u = a.along(p.x, p.y) + a.offset(), v = a.along(q.x, q.y) + a.offset();
+        const double u = a.along(p.x, p.y) + a.offset(),
+                     v = a.along(q.x, q.y) + a.offset();
         auto cross = [&](double s) {
             return r.cycles[i - 1].t +
                    (s - u) / (v - u) * (r.cycles[i].t - r.cycles[i - 1].t);
@@ -166,13 +169,15 @@ void runAfraidExperiment(const TAppContext& ctx) {
     loadOptions(xo, c, kSec);
     if (ctx.args.seed)
         xo.seeds = {*ctx.args.seed};
-    const std::vector<std::string> own = {kSec,         "AfraidDetector", "Localization",
-                                          "PF_options", "KLD_options",    "CAfraidSpeedLimiter"};
+    const std::vector<std::string> own = {kSec,           "AfraidDetector",
+                                          "Localization", "PF_options",
+                                          "KLD_options",  "CAfraidSpeedLimiter"};
     CNavigationRun nr;
     nr.loadFromConfigFile(c, ctx.args.seed, own);
     for (const auto& n : [&] {
              std::vector<std::string> v;
-             std::istringstream in(readString(c, "CRiskAwareReactiveNav", "speed_limiters", ""));
+             std::istringstream in(
+                 readString(c, "CRiskAwareReactiveNav", "speed_limiters", ""));
              for (std::string w; in >> w;)
                  v.push_back(w);
              return v;
@@ -183,7 +188,8 @@ void runAfraidExperiment(const TAppContext& ctx) {
                         "it learns); list only the other limiters");
     std::vector<std::string> baseLimiters;
     {
-        std::istringstream in(readString(c, "CRiskAwareReactiveNav", "speed_limiters", ""));
+        std::istringstream in(
+            readString(c, "CRiskAwareReactiveNav", "speed_limiters", ""));
         for (std::string w; in >> w;)
             baseLimiters.push_back(w);
     }
@@ -221,15 +227,31 @@ void runAfraidExperiment(const TAppContext& ctx) {
     json perSeed = json::array();
     std::vector<double> tSafe, tWith, tWithout, speedup;
     int doorWith = 0, doorWithout = 0, stopWith = 0, stopWithout = 0;
-    CCsvWriter csv(out.stage("experiment.csv"),
-                   {"seed", "section_from_m", "section_to_m", "t_v_safe_s", "t_with_s",
-                    "t_without_s", "speedup_with", "speedup_without", "door_collisions_with",
-                    "door_collisions_without", "collisions_with", "collisions_without",
-                    "inside_stopping_distance_with", "inside_stopping_distance_without",
-                    "near_misses_with", "near_misses_without", "zones", "afraid_events",
-                    "mcl_error_mean_m", "status_learning", "status_with", "status_without"});
+    CCsvWriter csv(out.stage("experiment.csv"), {"seed",
+                                                 "section_from_m",
+                                                 "section_to_m",
+                                                 "t_v_safe_s",
+                                                 "t_with_s",
+                                                 "t_without_s",
+                                                 "speedup_with",
+                                                 "speedup_without",
+                                                 "door_collisions_with",
+                                                 "door_collisions_without",
+                                                 "collisions_with",
+                                                 "collisions_without",
+                                                 "inside_stopping_distance_with",
+                                                 "inside_stopping_distance_without",
+                                                 "near_misses_with",
+                                                 "near_misses_without",
+                                                 "zones",
+                                                 "afraid_events",
+                                                 "mcl_error_mean_m",
+                                                 "status_learning",
+                                                 "status_with",
+                                                 "status_without"});
     CPlotImage plot;
-    plot.setTitle("risknav-navigate afraid experiment: speed along the corridor (first pass)");
+    plot.setTitle(
+        "risknav-navigate afraid experiment: speed along the corridor (first pass)");
     plot.setXLabel("position along the route axis [m]");
     plot.setYLabel("speed [m/s]");
     for (size_t k = 0; k < xo.seeds.size(); k++) {
@@ -244,8 +266,9 @@ void runAfraidExperiment(const TAppContext& ctx) {
         learn.laps = xo.learning_laps;
         learn.quiet = ctx.args.quiet;
         learn.label = "learn " + tag;
-        learn.rawlogPath = first ? out.stage("learning.rawlog")
-                                 : scratch + "/learning_" + std::to_string(seed) + ".rawlog";
+        learn.rawlogPath =
+            first ? out.stage("learning.rawlog")
+                  : scratch + "/learning_" + std::to_string(seed) + ".rawlog";
         learn.groundtruthPath = first ? out.stage("learning_groundtruth.txt")
                                       : scratch + "/gt_" + std::to_string(seed) + ".txt";
         const TNavRunResult rl = nr.run(learn);
@@ -321,16 +344,28 @@ void runAfraidExperiment(const TAppContext& ctx) {
         unsigned events = 0;
         for (const auto& z : learner.zones())
             events += z.obstacleEvents;
-        csv.row({std::to_string(seed), CCsvWriter::num(s0), CCsvWriter::num(s1),
-                 CCsvWriter::num(fl.sectionTime), CCsvWriter::num(fw.sectionTime),
-                 CCsvWriter::num(fo.sectionTime), CCsvWriter::num(up),
+        csv.row({std::to_string(seed),
+                 CCsvWriter::num(s0),
+                 CCsvWriter::num(s1),
+                 CCsvWriter::num(fl.sectionTime),
+                 CCsvWriter::num(fw.sectionTime),
+                 CCsvWriter::num(fo.sectionTime),
+                 CCsvWriter::num(up),
                  CCsvWriter::num(fl.sectionTime / fo.sectionTime),
-                 std::to_string(fw.doorCollisions), std::to_string(fo.doorCollisions),
-                 std::to_string(fw.collisions), std::to_string(fo.collisions),
-                 std::to_string(fw.insideStopping), std::to_string(fo.insideStopping),
-                 std::to_string(fw.nearMisses), std::to_string(fo.nearMisses),
-                 std::to_string(learner.zones().size()), std::to_string(learner.events().size()),
-                 CCsvWriter::num(learner.mclErrorMean()), fl.status, fw.status, fo.status});
+                 std::to_string(fw.doorCollisions),
+                 std::to_string(fo.doorCollisions),
+                 std::to_string(fw.collisions),
+                 std::to_string(fo.collisions),
+                 std::to_string(fw.insideStopping),
+                 std::to_string(fo.insideStopping),
+                 std::to_string(fw.nearMisses),
+                 std::to_string(fo.nearMisses),
+                 std::to_string(learner.zones().size()),
+                 std::to_string(learner.events().size()),
+                 CCsvWriter::num(learner.mclErrorMean()),
+                 fl.status,
+                 fw.status,
+                 fo.status});
         auto runJson = [&](const TRunFigures& f) {
             return json{{"section_time_s", numOrNull(f.sectionTime)},
                         {"door_collisions", f.doorCollisions},
@@ -407,9 +442,11 @@ void runAfraidExperiment(const TAppContext& ctx) {
     csv.close();
     plot.save(out.stage("experiment_speed.png"));
 
-    const TStat sS = stat(tSafe), sW = stat(tWith), sO = stat(tWithout), sU = stat(speedup);
+    const TStat sS = stat(tSafe), sW = stat(tWith), sO = stat(tWithout),
+                sU = stat(speedup);
     std::ostringstream md;
-    md << "| seed | section time at v_safe [s] | with the learned limiter [s] | speed-up | "
+    md << "| seed | section time at v_safe [s] | with the learned limiter [s] | speed-up "
+          "| "
           "without (v_max) [s] | door collisions with / without | inside d_stop with / "
           "without |\n|---|---|---|---|---|---|---|\n";
     for (const auto& p : perSeed)
@@ -434,9 +471,9 @@ void runAfraidExperiment(const TAppContext& ctx) {
            << p["without_limiter"]["door_collisions"].get<int>() << " | "
            << p["with_limiter"]["inside_stopping_distance"].get<int>() << " / "
            << p["without_limiter"]["inside_stopping_distance"].get<int>() << " |\n";
-    md << "| **mean [min, max]** | " << statText(sS, 1) << " | " << statText(sW, 1) << " | "
-       << statText(sU, 2) << " | " << statText(sO, 1) << " | " << doorWith << " / "
-       << doorWithout << " (total) | " << stopWith << " / " << stopWithout
+    md << "| **mean [min, max]** | " << statText(sS, 1) << " | " << statText(sW, 1)
+       << " | " << statText(sU, 2) << " | " << statText(sO, 1) << " | " << doorWith
+       << " / " << doorWithout << " (total) | " << stopWith << " / " << stopWithout
        << " (total) |\n| paper (002 section 3) | 51.3 | 24.3 | 2.11x | - | 0 / - | - |\n";
     out.writeText("experiment.md", md.str());
 
@@ -467,9 +504,10 @@ void runAfraidExperiment(const TAppContext& ctx) {
     proto.mcl.saveToConfigFile(effective);
     commitRun(ctx, out, summary, effective);
     if (!ctx.args.quiet)
-        std::fprintf(stderr, "%s: speed-up %s, door collisions %d with / %d without -> %s\n",
-                     ctx.info.name.c_str(), statText(sU, 2).c_str(), doorWith, doorWithout,
-                     out.dir().c_str());
+        std::fprintf(stderr,
+                     "%s: speed-up %s, door collisions %d with / %d without -> %s\n",
+                     ctx.info.name.c_str(), statText(sU, 2).c_str(), doorWith,
+                     doorWithout, out.dir().c_str());
 }
 
 }  // namespace risknav::nav

@@ -26,15 +26,18 @@ void CLayeredConfig::getAllKeys(const std::string& section,
             keys.push_back(k);
 }
 
-void CLayeredConfig::clear() { throw std::logic_error("CLayeredConfig is read-only"); }
+void CLayeredConfig::clear() {
+    throw std::logic_error("CLayeredConfig is read-only");
+}
 
 void CLayeredConfig::writeString(const std::string&, const std::string&,
                                  const std::string&) {
     throw std::logic_error("CLayeredConfig is read-only");
 }
 
-std::string CLayeredConfig::readString(const std::string& section, const std::string& name,
-                                       const std::string& def, bool failIfNotFound) const {
+std::string CLayeredConfig::readString(const std::string& section,
+                                       const std::string& name, const std::string& def,
+                                       bool failIfNotFound) const {
     if (m_top.keyExists(section, name))
         return m_top.read_string(section, name, def, failIfNotFound);
     return m_bottom.read_string(section, name, def, failIfNotFound);

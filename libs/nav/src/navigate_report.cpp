@@ -133,15 +133,20 @@ void drawTrajectory(const CNavigationRun& run, const TNavRunResult& r,
     if (!r.track.empty())
         img.marker(r.track.back(), CMapImage::TMarker::Star, {0, 0, 0}, 14, 2);
     img.legendLine("route (waypoints +)", {200, 200, 200}, 4);
-    img.legendLine("path, coloured by speed", {0, 110, 220}, 3);
+    img.legendLine("path, coloured by speed (bar)",
+                   CMapImage::colourOf(0.8 * vmax, 0, vmax), 3);
     if (!r.people.empty())
         img.legendLine("people's tracks", {170, 120, 210}, 1);
     if (zoneMask)
         img.legendLine("afraid zones", {255, 214, 150}, 8);
     if (!world.agents.doors.empty())
         img.legendLine("door", {230, 120, 0}, 5);
-    if (!r.agentEvents.empty())
+    if (std::any_of(r.agentEvents.begin(), r.agentEvents.end(),
+                    [](const sim::TAgentEvent& e) { return e.kind == "emerge"; }))
         img.legendMarker("person emerged", CMapImage::TMarker::Triangle, {230, 120, 0});
+    if (!world.agents.clutter.empty())
+        img.legendMarker("clutter (not on the map)", CMapImage::TMarker::Circle,
+                         {140, 90, 40});
     if (r.collisions())
         img.legendMarker("collision", CMapImage::TMarker::Cross, {220, 0, 0});
     if (r.safety.nearMisses())
@@ -167,8 +172,8 @@ void drawSpeedProfile(const TNavRunResult& r, const std::string& title,
         lim.push_back(c.limit);
     }
     if (!d.empty())
-        plot.addSeries("limit (smallest of the limiters)", d, lim, {160, 160, 160}, 1,
-                       true);
+        plot.addSeries("command bound: min(MRPT's speed, every limit)", d, lim,
+                       {160, 160, 160}, 1, true);
     // The speed in runs of one winning limiter, each in its limiter's colour.
     std::set<std::string> labelled;
     for (size_t i = 0; i < r.cycles.size();) {
@@ -188,8 +193,11 @@ void drawSpeedProfile(const TNavRunResult& r, const std::string& title,
         }
         const std::string label =
             labelled.insert(who).second
-                ? (who == "none" ? "speed (MRPT's choice, not limited)"
-                                 : "speed, limited by " + who)
+                ? (who == "none"
+                       ? "robot speed, no limiter active"
+                       : (who == "turn_in_place"
+                              ? "robot speed, turning in place to a waypoint behind"
+                              : "robot speed, limited by " + who))
                 : "";
         plot.addSeries(label, x, y, limiterColour(who), 2);
         i = j;

@@ -1,0 +1,87 @@
+#!/usr/bin/env python3
+"""Closed-loop figures of risknav-navigate for the README (issue 12).
+
+Runs the app on the committed datasets over several seeds and prints
+markdown tables: the office (stopping limiter), M1 (adaptive limiter vs the
+slowest speed), M2 (the lowest- and highest-U routes by dead reckoning) and
+the M3 afraid experiment (its own table). Usage:
+  python3 scripts/validate_navigate.py [--seeds N] [--out DIR]
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+APP = os.path.join(ROOT, "build", "bin", "risknav-navigate")
+
+
+def run(cfg, out, *extra):
+    r = subprocess.run([APP, "-q", "-o", out, *extra, os.path.join(ROOT, cfg)],
+                       capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"{cfg} {' '.join(extra)}: exit {r.returncode}: {r.stderr.strip()}")
+    with open(os.path.join(out, "summary.json")) as f:
+        return json.load(f)
+
+
+def row(name, s):
+    return (f"| {name} | {s['status']} | {s['waypoints_reached']}/{s['waypoints']} | "
+            f"{s['time_s']:.1f} | {s['collisions']} | {s['near_misses']} | "
+            f"{s['pose_error_final_m']:.3f} | {s['mrpt_errors']} |")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--seeds", type=int, default=5)
+    ap.add_argument("--out", default="/tmp/validate_navigate")
+    a = ap.parse_args()
+    seeds = range(1, a.seeds + 1)
+    head = ("| run | status | waypoints | time [s] | collisions | near misses | "
+            "pose error at end [m] | MRPT errors |\n|---|---|---|---|---|---|---|---|")
+    print("### office, CStoppingDistanceLimiter (datasets/office/navigate.ini)\n")
+    print(head)
+    for s in seeds:
+        print(row(f"seed {s}", run("datasets/office/navigate.ini", f"{a.out}/office{s}",
+                                   "--seed", str(s))))
+    print("\n### M1: CAdaptiveSpeedLimiter vs the slowest speed (datasets/office/navigate_m1.ini)\n")
+    print(head + "")
+    ratios = []
+    for s in seeds:
+        ad = run("datasets/office/navigate_m1.ini", f"{a.out}/m1a{s}", "--seed", str(s))
+        sl = run("datasets/office/navigate_m1.ini", f"{a.out}/m1s{s}", "--seed", str(s),
+                 "--set", "CAdaptiveSpeedLimiter.fixed_speed_index=3",
+                 "--set", "CAbstractPTGBasedReactive.robotMax_V_mps=0.2",
+                 "--set", "CReactiveNavigationSystem.PTG0_v_max_mps=0.2",
+                 "--set", "CReactiveNavigationSystem.PTG1_v_max_mps=0.2")
+        print(row(f"seed {s} adaptive", ad))
+        print(row(f"seed {s} slowest (0.2 m/s)", sl))
+        if ad["goal_reached"] and sl["goal_reached"]:
+            ratios.append(ad["time_s"] / sl["time_s"])
+    print(f"\ntime ratio adaptive / slowest where both reached: "
+          f"{[round(r, 2) for r in ratios]}")
+    print("\n### M2: risk routes by dead reckoning (datasets/risk-two-routes/navigate.ini)\n")
+    print(head)
+    err = {"best": [], "worst": []}
+    for route in ("best", "worst"):
+        for s in seeds:
+            j = run("datasets/risk-two-routes/navigate.ini", f"{a.out}/m2{route}{s}",
+                    "--seed", str(s), "--set", f"Navigate.risk_route={route}")
+            print(row(f"{route} ({j['route'].split(' (')[0]}) seed {s}", j))
+            if j["goal_reached"]:
+                err[route].append(j["pose_error_final_m"])
+    for k, v in err.items():
+        if v:
+            print(f"\n{k}: reached {len(v)}/{a.seeds}, final pose error mean "
+                  f"{statistics.mean(v):.3f} m [{min(v):.3f}, {max(v):.3f}]")
+    print("\n### M3: the afraid experiment (datasets/corridor-doors/afraid_experiment.ini)\n")
+    run("datasets/corridor-doors/afraid_experiment.ini", f"{a.out}/m3",
+        "--set", "AfraidExperiment.seeds=" + " ".join(str(s) for s in seeds))
+    with open(f"{a.out}/m3/experiment.md") as f:
+        print(f.read())
+
+
+if __name__ == "__main__":
+    main()
