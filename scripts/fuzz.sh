@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer targets of tests/fuzz (issue 9) for a bounded time each:
-#   scripts/fuzz.sh [SECONDS] [TARGET...]     (default 60 s, all five targets)
+#   scripts/fuzz.sh [SECONDS] [TARGET...]     (default 60 s, all six targets)
 # Installs clang if missing, builds into build-fuzz (clang, ASan+UBSan,
 # -DRISKNAV_BUILD_FUZZERS=ON; the normal build/ is not touched), seeds the
 # corpora from config/ and datasets/, runs each target in libFuzzer's fork
@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET=${1:-60}
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_config fuzz_rawlog fuzz_map fuzz_afraid fuzz_world)
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_config fuzz_rawlog fuzz_map fuzz_afraid fuzz_world fuzz_waypoints)
 BUILD_DIR=${BUILD_DIR:-build-fuzz}
 W=$BUILD_DIR/fuzz
 
@@ -32,7 +32,7 @@ BIN=$BUILD_DIR/bin
 # ---- seed corpora (rebuilt every run; the fuzzers add what they find) ----
 S=$W/seeds
 rm -rf "$S"
-mkdir -p "$S"/{fuzz_config,fuzz_rawlog,fuzz_map,fuzz_afraid,fuzz_world} "$W"/logs "$W"/helper
+mkdir -p "$S"/{fuzz_config,fuzz_rawlog,fuzz_map,fuzz_afraid,fuzz_world,fuzz_waypoints} "$W"/logs "$W"/helper
 for f in config/*.ini datasets/*/*.ini; do
     cp "$f" "$S/fuzz_config/$(echo "$f" | tr / _)"
 done
@@ -60,6 +60,13 @@ for f in datasets/*/world.txt; do
 done
 printf '# hole\nbounds -1 -1 6 5\nobstacle 0 0 4 0 4 3 0 3\nhole 1 1 1 2 3 2 3 1\nlandmark A 2 1 90 0.1\nlandmark B 0 1.5 180 # outer face\n' \
     >"$S/fuzz_world/hole.txt"
+# waypoint files (risknav-navigate route_file): a small MRPT TWaypointSequence
+# with a [Viewpoints] tag (and whatever waypoints.ini a run left in out/).
+printf '[Waypoints]\nwaypoint_count = 2\nwp000_target_x = 1\nwp000_target_y = 2\nwp000_allowed_distance = 0.05\nwp000_allow_skip = true\nwp001_target_x = 3.5\nwp001_target_y = -1e-3\nwp001_allow_skip = false\nwp001_speed_ratio = 1\nwp001_target_frame_id = map\n[Viewpoints]\nwaypoint_1 = B L1+L2 pan_left_deg=10 pan_right_deg=-5\n' \
+    >"$S/fuzz_waypoints/two.ini"
+for f in out/*/waypoints.ini; do
+    [ -f "$f" ] && cp "$f" "$S/fuzz_waypoints/$(echo "$f" | tr / _)"
+done
 
 max_len() {
     case $1 in
@@ -68,6 +75,7 @@ max_len() {
         fuzz_map) echo 125000 ;;
         fuzz_afraid) echo 32768 ;;
         fuzz_world) echo 16384 ;;
+        fuzz_waypoints) echo 16384 ;;
     esac
 }
 

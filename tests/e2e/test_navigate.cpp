@@ -211,3 +211,52 @@ TEST(NavigateE2E, ViewpointPlanIsDrivenAsMrptWaypointsWithViewpointEvents) {
         }
     EXPECT_GT(viewpoints, 0u);
 }
+
+TEST(NavigateE2E, AdaptiveLimiterReachesTheOfficeDestinationsThroughTheEngine) {
+    // M1 inside MRPT's engine: the robot does not know the map; the limiter
+    // builds its grids from the scans and limits the speed (seed 1 of
+    // scripts/validate_navigate.py's table).
+    const json s =
+        navRun(sourcePath("datasets/office/navigate_m1.ini"), freshDir("m1"), "--seed 1");
+    EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
+    EXPECT_EQ(s["waypoints_reached"], 4);
+    EXPECT_EQ(s["collisions"], 0);
+    // It limits (undecided regions, the passage) but not everywhere.
+    const double limited = s["time_per_limiter_s"]["CAdaptiveSpeedLimiter"].get<double>();
+    EXPECT_GT(limited, 5.0);
+    EXPECT_LT(limited, s["time_s"].get<double>() * 0.9);
+}
+
+TEST(NavigateE2E, BadWaypointFileIsAClearError) {
+    const std::string w = freshDir("w");
+    writeFile(
+        w + "/wp.ini",
+        "[Waypoints]\nwaypoint_count = 2\nwp000_target_x = 5abc\nwp000_target_y = 6.6\n"
+        "wp001_target_x = 9\nwp001_target_y = 6.6\n");
+    std::string cfg = readFile(sourcePath("datasets/office/navigate.ini"));
+    cfg = std::regex_replace(cfg, std::regex("office.png"),
+                             sourcePath("datasets/office/office.png"));
+    cfg = std::regex_replace(cfg, std::regex("goals +=.*"), "route_file = wp.ini");
+    writeFile(w + "/n.ini", cfg);
+    const std::string out = freshDir("out");
+    const TEarlierOutput earlier{{"summary.json", "{\"earlier\": true}\n"}};
+    for (const auto& [content, expect] : std::vector<std::pair<std::string, std::string>>{
+             {"[Waypoints]\nwaypoint_count = 2\nwp000_target_x = 5abc\nwp000_target_y = "
+              "6.6\n"
+              "wp001_target_x = 9\nwp001_target_y = 6.6\n",
+              "[Waypoints] wp000_target_x = '5abc': not a number"},
+             {"[Waypoints]\nwaypoint_count = 3\nwp000_target_x = 5\nwp000_target_y = "
+              "6.6\n",
+              "wp001_target_x / wp001_target_y: required key is missing"},
+             {"[Waypoints]\nwaypoint_count = 1\nwp000_target_x = 5\nwp000_target_y = "
+              "6.6\n"
+              "wp000_alowed_distance = 1\n",
+              "wp000_alowed_distance"},
+             {"[Other]\nx = 1\n", "no [Waypoints] section"}}) {
+        writeFile(w + "/wp.ini", content);
+        writeEarlierOutput(out, earlier);
+        const auto r =
+            run(binPath("risknav-navigate") + " -q -o '" + out + "' '" + w + "/n.ini'");
+        expectBadInput(r, expect, out, earlier, "risknav-navigate: error: ");
+    }
+}

@@ -206,49 +206,7 @@ void CNavigationRun::loadRoute(CIniConfig& c) {
     }
     if (!options.route_file.empty()) {
         routeName = options.route_file;
-        std::unique_ptr<CIniConfig> f;
-        try {
-            f = std::make_unique<CIniConfig>(options.route_file);
-        } catch (const CBadInputError& e) {
-            throw CBadInputError(std::string("[Navigate] route_file: ") + e.what());
-        }
-        if (!f->sectionExists("Waypoints"))
-            throw CBadInputError(options.route_file +
-                                 ": no [Waypoints] section (MRPT's TWaypointSequence)");
-        const int n =
-            readInt(*f, "Waypoints", "waypoint_count", -1, TRange::closed(1, 10000));
-        if (n < 1)
-            throw CBadInputError(options.route_file +
-                                 ": [Waypoints] waypoint_count: required key is missing");
-        // MRPT's TWaypointSequence keys (TWaypointSequence::save / load), read
-        // strictly: a missing or malformed number is an error, not a 0.
-        const std::string& W = "Waypoints";
-        for (int i = 0; i < n; i++) {
-            char pre[16];
-            std::snprintf(pre, sizeof(pre), "wp%03d_", i);
-            const std::string k(pre);
-            if (!f->hasKey(W, k + "target_x") || !f->hasKey(W, k + "target_y"))
-                throw CBadInputError(options.route_file + ": [Waypoints] " + k +
-                                     "target_x / " + k +
-                                     "target_y: required key is missing (" +
-                                     std::to_string(n) + " waypoints)");
-            const double x =
-                readDouble(*f, W, k + "target_x", 0, TRange::closed(-1e5, 1e5, "m"));
-            const double y =
-                readDouble(*f, W, k + "target_y", 0, TRange::closed(-1e5, 1e5, "m"));
-            // MRPT's reactive engine does not stop within a few cm: at least
-            // goal_tolerance.
-            const double d = std::max(tol, readDouble(*f, W, k + "allowed_distance", tol,
-                                                      TRange::closed(0.001, 100, "m")));
-            const bool skip = readBool(*f, W, k + "allow_skip", true);
-            readDouble(*f, W, k + "speed_ratio", 1, TRange::closed(0, 1));
-            readString(*f, W, k + "target_frame_id", "map");
-            waypoints.waypoints.emplace_back(x, y, d, skip);
-            const std::string vk = "waypoint_" + std::to_string(i);
-            if (f->sectionExists("Viewpoints") && f->hasKey("Viewpoints", vk))
-                tags[size_t(i)] = {"viewpoint", readString(*f, "Viewpoints", vk, "")};
-        }
-        f->throwOnUnreadKeys({"Waypoints", "Viewpoints"});
+        readWaypointFile(options.route_file, tol, waypoints, tags);
         return;
     }
     // risk_config: the risk evaluator's ranking, evaluated here.

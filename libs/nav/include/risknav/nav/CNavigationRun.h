@@ -2,6 +2,7 @@
 #include <risknav/common/CIniConfig.h>
 #include <risknav/localization/CRawlogMcl.h>
 #include <risknav/nav/TNavigateOptions.h>
+#include <risknav/nav/waypoint_file.h>
 #include <risknav/sim/CAgentsSim.h>
 #include <risknav/sim/CSafetyMonitor.h>
 #include <risknav/sim/CSimRobotInterface.h>
@@ -35,13 +36,6 @@ struct TNavCycle {
     int waypoint = -1;     ///< the waypoint being approached
     double distance = 0;   ///< [m] travelled so far
     double stepMs = 0;     ///< wall time of navigationStep()
-};
-
-/** A waypoint the route tags: a viewpoint (M4) or a sensing point (M2). */
-struct TWaypointTag {
-    std::string kind;    ///< viewpoint | sensing
-    std::string detail;  ///< strategy and landmarks, or the sensing point's name
-    double sigmaX = 0, sigmaY = 0, sigmaPhi = 0;  ///< sensing: the pose fix's sigmas
 };
 
 /** A timed event of a run (navigator events, tagged waypoints, fixes). */
