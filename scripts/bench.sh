@@ -112,3 +112,9 @@ print("  %d of %d (S, path) plans feasible, at %d of 9 S; optimal plan: %s; visi
          "yes" if full["optimal"] else "none", full["graph_nodes_first_S"]))
 PY
 rm -f "$json"
+
+# One navigation step (issue 12): CRiskAwareReactiveNav with all three
+# limiters vs a bare CReactiveNavigationSystem on the same office world and
+# config, side by side in one run; and each limiter's limit() call alone.
+build/bin/risknav_bench_nav --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+  | grep -E "median|Benchmark"

@@ -19,6 +19,9 @@ done
 for robot in r1 r2; do
   "$BIN/risknav-viewpoint-plan" "datasets/landmarks-two-routes/$robot.ini" --out "$OUT/viewpoint-$robot"
 done
+"$BIN/risknav-navigate" datasets/office/navigate.ini --out "$OUT/navigate-office"
+"$BIN/risknav-navigate" datasets/corridor-doors/afraid_experiment.ini --set AfraidExperiment.seeds=1 \
+  --out "$OUT/navigate-afraid-experiment"
 
 echo
 echo "demo results in $OUT/:"
@@ -40,3 +43,6 @@ echo "  $OUT/explore/speed_profile.png      speed vs distance, coloured by what 
 echo "  $OUT/explore/snapshots/             the free-space map and the plans where the speed changes"
 echo "  $OUT/viewpoint-r1/plan.png          robot R1's optimal path, viewpoints and strategies (short route)"
 echo "  $OUT/viewpoint-r2/plan.png          robot R2's (long route); sweep.md: the paper's Tables II/III"
+echo "  $OUT/navigate-office/trajectory.png  MRPT's reactive engine with the limiters, closed loop (speed colours)"
+echo "  $OUT/navigate-office/navigation.reactivenavlog  for MRPT's navlog-viewer"
+echo "  $OUT/navigate-afraid-experiment/experiment.md   learned afraid limiter vs v_safe vs v_max (seed 1)"

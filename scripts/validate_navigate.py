@@ -72,6 +72,16 @@ def main():
             print(row(f"{route} ({j['route'].split(' (')[0]}) seed {s}", j))
             if j["goal_reached"]:
                 err[route].append(j["pose_error_final_m"])
+    print("\n(the same routes localized by MCL on the laser and the map)\n")
+    print(head)
+    for route in ("best", "worst"):
+        for s in seeds:
+            j = run("datasets/risk-two-routes/navigate.ini", f"{a.out}/m2mcl{route}{s}",
+                    "--seed", str(s), "--set", f"Navigate.risk_route={route}",
+                    "--set", "Navigate.localization=mcl")
+            print(row(f"{route} ({j['route'].split(' (')[0]}) seed {s}, MCL", j))
+            if j["goal_reached"]:
+                err[route + " (MCL)"] = err.get(route + " (MCL)", []) + [j["pose_error_final_m"]]
     for k, v in err.items():
         if v:
             print(f"\n{k}: reached {len(v)}/{a.seeds}, final pose error mean "

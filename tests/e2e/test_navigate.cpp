@@ -260,3 +260,16 @@ TEST(NavigateE2E, BadWaypointFileIsAClearError) {
         expectBadInput(r, expect, out, earlier, "risknav-navigate: error: ");
     }
 }
+
+TEST(NavigateE2E, MclLocalizationOnTheLaserKeepsThePoseErrorSmall) {
+    // The same best route, localized by MRPT's CMonteCarloLocalization2D on
+    // the simulated laser and the map instead of dead reckoning.
+    const json s = navRun(sourcePath("datasets/risk-two-routes/navigate.ini"),
+                          freshDir("mcl"), "--seed 1 --set Navigate.localization=mcl");
+    EXPECT_EQ(s["localization"], "mcl");
+    EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
+    EXPECT_LT(s["pose_error_final_m"].get<double>(), 0.3);
+    EXPECT_GT(s["pose_error_max_m"].get<double>(),
+              0.0);  // it is an estimate, not the truth
+    EXPECT_EQ(s["collisions"], 0);
+}
