@@ -151,20 +151,11 @@ std::string navConfig(const std::string& limiters) {
 class CProbeNav : public nav::CRiskAwareReactiveNav {
   public:
     using nav::CRiskAwareReactiveNav::CRiskAwareReactiveNav;
-    common::TSpeedLimitInput limiterInput(const sim::CSimRobotInterface& r,
+    common::TSpeedLimitInput limiterInput(const sim::CSimRobotInterface&,
                                           double desired) const {
-        common::TSpeedLimitInput in;
-        in.robot = &robot;
-        in.pose = m_curPoseVel.pose;
-        in.desiredSpeed = desired;
-        in.obstacles = &m_WS_Obstacles;
-        in.time = mrpt::Clock::toDouble(mrpt::Clock::now());
-        if (m_navigationParams)
-            in.target = mrpt::math::TPoint2D(m_navigationParams->target.target_coords.x,
-                                             m_navigationParams->target.target_coords.y);
-        in.scan = r.lastScans().laser.get();
-        in.scan2 = r.lastScans().range2.get();
-        return in;
+        // The navigator's own input (without MRPT's trajectory, which it
+        // only has inside its step).
+        return nav::CRiskAwareReactiveNav::limiterInput(nullptr, desired);
     }
 };
 

@@ -23,6 +23,13 @@ json navRun(const std::string& config, const std::string& out,
     EXPECT_EQ(r.exitCode, 0) << r.err;
     return readJson(out + "/summary.json");
 }
+// datasets/office/navigate.ini with its map named by an absolute path (to be
+// edited and written elsewhere).
+std::string officeConfig() {
+    return std::regex_replace(readFile(sourcePath("datasets/office/navigate.ini")),
+                              std::regex("office.png"),
+                              sourcePath("datasets/office/office.png"));
+}
 }  // namespace
 
 TEST(NavigateE2E, OfficeReachesEveryWaypointWithTheStoppingLimiter) {
@@ -103,11 +110,9 @@ TEST(NavigateE2E, AfraidExperimentOneSeedIsFasterThanSafeSpeed) {
 
 TEST(NavigateE2E, UnreachableGoalIsANavigationErrorInTheSummary) {
     const std::string w = freshDir("w");
-    std::string cfg = readFile(sourcePath("datasets/office/navigate.ini"));
+    std::string cfg = officeConfig();
     cfg = std::regex_replace(cfg, std::regex("goals +=.*"), "goals = 3.0 6.6  3.0 8.0");
     cfg = std::regex_replace(cfg, std::regex("duration_max +=.*"), "duration_max = 120");
-    cfg = std::regex_replace(cfg, std::regex("office.png"),
-                             sourcePath("datasets/office/office.png"));
     writeFile(w + "/n.ini", cfg);
     const json s = navRun(w + "/n.ini", freshDir("out"));
     EXPECT_NE(s["status"], "goal_reached");
@@ -128,9 +133,7 @@ class NavigateBadInput : public ::testing::TestWithParam<TBad> {};
 TEST_P(NavigateBadInput, OneLineExit2OutputUntouched) {
     const auto& c = GetParam();
     const std::string w = freshDir("w");
-    std::string cfg = readFile(sourcePath("datasets/office/navigate.ini"));
-    cfg = std::regex_replace(cfg, std::regex("office.png"),
-                             sourcePath("datasets/office/office.png"));
+    std::string cfg = officeConfig();
     cfg = std::regex_replace(cfg, std::regex(c.from), c.to);
     writeFile(w + "/n.ini", cfg);
     const std::string out = freshDir("out");
@@ -169,9 +172,7 @@ TEST(NavigateE2E, AfraidFileOfAnotherMapIsAClearError) {
     const std::string w = freshDir("w");
     mrpt::maps::COccupancyGridMap2D other(0, 10, 0, 10, 0.1);
     risknav::afraid::CAfraidGrid(other).save(w + "/other.afraid");
-    std::string cfg = readFile(sourcePath("datasets/office/navigate.ini"));
-    cfg = std::regex_replace(cfg, std::regex("office.png"),
-                             sourcePath("datasets/office/office.png"));
+    std::string cfg = officeConfig();
     cfg = std::regex_replace(
         cfg, std::regex("speed_limiters = CStoppingDistanceLimiter"),
         "speed_limiters = CAfraidSpeedLimiter CStoppingDistanceLimiter\n"
@@ -233,9 +234,7 @@ TEST(NavigateE2E, BadWaypointFileIsAClearError) {
         w + "/wp.ini",
         "[Waypoints]\nwaypoint_count = 2\nwp000_target_x = 5abc\nwp000_target_y = 6.6\n"
         "wp001_target_x = 9\nwp001_target_y = 6.6\n");
-    std::string cfg = readFile(sourcePath("datasets/office/navigate.ini"));
-    cfg = std::regex_replace(cfg, std::regex("office.png"),
-                             sourcePath("datasets/office/office.png"));
+    std::string cfg = officeConfig();
     cfg = std::regex_replace(cfg, std::regex("goals +=.*"), "route_file = wp.ini");
     writeFile(w + "/n.ini", cfg);
     const std::string out = freshDir("out");

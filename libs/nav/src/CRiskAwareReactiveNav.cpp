@@ -138,19 +138,8 @@ void CRiskAwareReactiveNav::saveConfigFile(mrpt::config::CConfigFileBase& c) con
         m_limiters[i]->saveConfig(c, shortName(riskOptions.speed_limiters[i]));
 }
 
-double CRiskAwareReactiveNav::generate_vel_cmd(
-    const mrpt::nav::TCandidateMovementPTG& in_movement,
-    mrpt::kinematics::CVehicleVelCmd::Ptr& new_vel_cmd) {
-    const double scale =
-        mrpt::nav::CReactiveNavigationSystem::generate_vel_cmd(in_movement, new_vel_cmd);
-    m_last = {};
-    if (!new_vel_cmd || new_vel_cmd->getVelCmdLength() == 0)
-        return scale;
-    // Element 0 is the forward speed of MRPT's diff-drive and holonomic commands.
-    const double desired = std::abs(new_vel_cmd->getVelCmdElement(0));
-    m_last.desired = m_last.limit = desired;
-    if (m_limiters.empty() || !(desired > 0))
-        return scale;
+TSpeedLimitInput CRiskAwareReactiveNav::limiterInput(
+    const mrpt::nav::TCandidateMovementPTG* movement, double desired) const {
     TSpeedLimitInput in;
     in.robot = &robot;
     in.pose = m_curPoseVel.pose;
@@ -162,8 +151,8 @@ double CRiskAwareReactiveNav::generate_vel_cmd(
                                          m_navigationParams->target.target_coords.y);
     // MRPT's chosen trajectory, sampled every ~5 cm over the stopping
     // distance at the desired speed and a margin: what the limiters judge.
-    if (auto* ptg = in_movement.PTG) {
-        const uint16_t k = ptg->alpha2index(in_movement.direction);
+    if (auto* ptg = movement ? movement->PTG : nullptr) {
+        const uint16_t k = ptg->alpha2index(movement->direction);
         const size_t n = ptg->getPathStepCount(k);
         const double reach =
             stoppingDistance(desired, robot.t_delay, robot.decel) + robot.radius + 1.0;
@@ -185,6 +174,23 @@ double CRiskAwareReactiveNav::generate_vel_cmd(
         in.scan = sim->lastScans().laser.get();
         in.scan2 = sim->lastScans().range2.get();
     }
+    return in;
+}
+
+double CRiskAwareReactiveNav::generate_vel_cmd(
+    const mrpt::nav::TCandidateMovementPTG& in_movement,
+    mrpt::kinematics::CVehicleVelCmd::Ptr& new_vel_cmd) {
+    const double scale =
+        mrpt::nav::CReactiveNavigationSystem::generate_vel_cmd(in_movement, new_vel_cmd);
+    m_last = {};
+    if (!new_vel_cmd || new_vel_cmd->getVelCmdLength() == 0)
+        return scale;
+    // Element 0 is the forward speed of MRPT's diff-drive and holonomic commands.
+    const double desired = std::abs(new_vel_cmd->getVelCmdElement(0));
+    m_last.desired = m_last.limit = desired;
+    if (m_limiters.empty() || !(desired > 0))
+        return scale;
+    TSpeedLimitInput in = limiterInput(&in_movement, desired);
     for (size_t i = 0; i < m_limiters.size(); i++) {
         // Each limiter judges the speed the ones before it left (the
         // stopping distance of 0.2 m/s, not of MRPT's 1.1).

@@ -80,6 +80,12 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     const TLimitRecord& lastLimit() const { return m_last; }
 
   protected:
+    /** What the limiters see this cycle: the robot, the believed pose, the
+     * sensed points, the target, the clock, the raw scans when the robot is a
+     * risknav world, and MRPT's chosen trajectory (`movement`, may be null)
+     * sampled every ~5 cm over d_stop(desired) + radius + 1 m. */
+    common::TSpeedLimitInput limiterInput(
+        const mrpt::nav::TCandidateMovementPTG* movement, double desired) const;
     /** MRPT's command, then the smallest limit of the limiters applied to it. */
     double generate_vel_cmd(const mrpt::nav::TCandidateMovementPTG& in_movement,
                             mrpt::kinematics::CVehicleVelCmd::Ptr& new_vel_cmd) override;
