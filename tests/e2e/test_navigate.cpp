@@ -272,3 +272,16 @@ TEST(NavigateE2E, MclLocalizationOnTheLaserKeepsThePoseErrorSmall) {
               0.0);  // it is an estimate, not the truth
     EXPECT_EQ(s["collisions"], 0);
 }
+
+TEST(NavigateE2E, AfraidExperimentIsReproducible) {
+    // The same config and seed give the same runs and the same learned map,
+    // whatever the output folder or process (one learning lap, to be quick).
+    const std::string cfg = sourcePath("datasets/corridor-doors/afraid_experiment.ini");
+    const std::string opts = "--seed 3 --set AfraidExperiment.learning_laps=1";
+    const std::string a = freshDir("a"), b = freshDir("b");
+    const json ja = navRun(cfg, a, opts), jb = navRun(cfg, b, opts);
+    EXPECT_EQ(ja["per_seed"], jb["per_seed"]);
+    EXPECT_EQ(readFile(a + "/learned.afraid"), readFile(b + "/learned.afraid"));
+    EXPECT_EQ(readFile(a + "/experiment.csv"), readFile(b + "/experiment.csv"));
+    EXPECT_FALSE(readFile(a + "/learning.rawlog").empty());
+}

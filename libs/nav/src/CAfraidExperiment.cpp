@@ -266,12 +266,18 @@ void runAfraidExperiment(const TAppContext& ctx) {
         learn.laps = xo.learning_laps;
         learn.quiet = ctx.args.quiet;
         learn.label = "learn " + tag;
-        learn.rawlogPath =
-            first ? out.stage("learning.rawlog")
-                  : scratch + "/learning_" + std::to_string(seed) + ".rawlog";
-        learn.groundtruthPath = first ? out.stage("learning_groundtruth.txt")
-                                      : scratch + "/gt_" + std::to_string(seed) + ".txt";
+        // A name that does not depend on the process: the learner seeds its
+        // particle filter from the rawlog's name and size (the staged output
+        // name carries the PID), so that runs are reproducible.
+        learn.rawlogPath = scratch + "/learning_seed" + std::to_string(seed) + ".rawlog";
+        learn.groundtruthPath = scratch + "/gt_seed" + std::to_string(seed) + ".txt";
         const TNavRunResult rl = nr.run(learn);
+        if (first) {
+            fs::copy_file(learn.rawlogPath, out.stage("learning.rawlog"),
+                          fs::copy_options::overwrite_existing);
+            fs::copy_file(learn.groundtruthPath, out.stage("learning_groundtruth.txt"),
+                          fs::copy_options::overwrite_existing);
+        }
         // 2. The afraid map from that rawlog (MCL on the map, as risknav-afraid-learn).
         afraid::CAfraidLearner learner;
         learner.detector = proto.detector;
