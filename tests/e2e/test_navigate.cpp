@@ -285,3 +285,16 @@ TEST(NavigateE2E, AfraidExperimentIsReproducible) {
     EXPECT_EQ(readFile(a + "/experiment.csv"), readFile(b + "/experiment.csv"));
     EXPECT_FALSE(readFile(a + "/learning.rawlog").empty());
 }
+
+TEST(NavigateE2E, AfraidExperimentRefusesTheAfraidLimiterInTheList) {
+    const std::string out = freshDir("out");
+    const TEarlierOutput earlier{{"summary.json", "{\"earlier\": true}\n"}};
+    writeEarlierOutput(out, earlier);
+    const auto r =
+        run(binPath("risknav-navigate") + " -q -o '" + out +
+            "' --set 'CRiskAwareReactiveNav.speed_limiters=CAfraidSpeedLimiter "
+            "CStoppingDistanceLimiter' '" +
+            sourcePath("datasets/corridor-doors/afraid_experiment.ini") + "'");
+    expectBadInput(r, "the experiment adds CAfraidSpeedLimiter itself", out, earlier,
+                   "risknav-navigate: error: ");
+}

@@ -97,8 +97,9 @@ void CMapImage::colourBar(float vmin, float vmax, const std::string& label,
 }
 
 TRgb CMapImage::colourOf(double v, double vmin, double vmax, int colormap) {
-    const double t =
-        vmax > vmin && std::isfinite(v) ? std::clamp((v - vmin) / (vmax - vmin), 0.0, 1.0) : 0.0;
+    const double t = vmax > vmin && std::isfinite(v)
+                         ? std::clamp((v - vmin) / (vmax - vmin), 0.0, 1.0)
+                         : 0.0;
     cv::Mat one(1, 1, CV_8UC1, cv::Scalar(std::lround(255 * t))), col;
     cv::applyColorMap(one, col, colormap);
     const auto p = col.at<cv::Vec3b>(0, 0);

@@ -8,6 +8,7 @@
 #include <risknav/nav/CAfraidExperiment.h>
 #include <risknav/nav/CAfraidSpeedLimiter.h>
 #include <risknav/nav/CNavigationRun.h>
+#include <risknav/nav/CRiskAwareReactiveNav.h>
 #include <risknav/nav/navigate_report.h>
 
 #include <mrpt/config/CConfigFileMemory.h>
@@ -172,27 +173,18 @@ void runAfraidExperiment(const TAppContext& ctx) {
     const std::vector<std::string> own = {kSec,           "AfraidDetector",
                                           "Localization", "PF_options",
                                           "KLD_options",  "CAfraidSpeedLimiter"};
-    CNavigationRun nr;
-    nr.loadFromConfigFile(c, ctx.args.seed, own);
-    for (const auto& n : [&] {
-             std::vector<std::string> v;
-             std::istringstream in(
-                 readString(c, "CRiskAwareReactiveNav", "speed_limiters", ""));
-             for (std::string w; in >> w;)
-                 v.push_back(w);
-             return v;
-         }())
+    // Before the navigator loads them (it would ask for the learned file):
+    // the navigator's own parse of the list.
+    CRiskAwareReactiveNav::TOptions navOptions;
+    navOptions.loadFromConfigFile(c, "CRiskAwareReactiveNav");
+    const std::vector<std::string> baseLimiters = navOptions.speed_limiters;
+    for (const auto& n : baseLimiters)
         if (n.find("CAfraidSpeedLimiter") != std::string::npos)
             throwBadKey(c, "CRiskAwareReactiveNav", "speed_limiters", n,
                         "the experiment adds CAfraidSpeedLimiter itself (with the map "
                         "it learns); list only the other limiters");
-    std::vector<std::string> baseLimiters;
-    {
-        std::istringstream in(
-            readString(c, "CRiskAwareReactiveNav", "speed_limiters", ""));
-        for (std::string w; in >> w;)
-            baseLimiters.push_back(w);
-    }
+    CNavigationRun nr;
+    nr.loadFromConfigFile(c, ctx.args.seed, own);
     // The limiter's options (its file is the one learned here).
     CAfraidSpeedLimiter::TOptions lo;
     lo.krr.section = "CAfraidSpeedLimiter";

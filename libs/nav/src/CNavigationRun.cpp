@@ -65,10 +65,6 @@ struct TSimClock {
 };
 }  // namespace
 
-bool isEngineSection(const std::string& s) {
-    return kEngineSections.count(s) > 0;
-}
-
 void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> seed,
                                         const std::vector<std::string>& otherSections) {
     registerAllClasses_nav();

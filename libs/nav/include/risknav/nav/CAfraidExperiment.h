@@ -20,7 +20,7 @@ struct TAfraidExperimentOptions : public common::CValidatedOptions {
     double v_safe = 0.2;         ///< [m/s] the learning speed (002: 0.2)
     double v_max = 0.8;          ///< [m/s] the fast speed (002: 0.8)
     double section_length = 10;  ///< [m] the compared door section (002: 10 m)
-    double lead_in = 1;          ///< [m] the section starts this far before the first zone
+    double lead_in = 1;  ///< [m] the section starts this far before the first zone
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                             const std::string& s) override;

@@ -13,7 +13,8 @@ class CLayeredConfig : public mrpt::config::CConfigFileBase {
                    const mrpt::config::CConfigFileBase& bottom)
         : m_top(top), m_bottom(bottom) {}
     void getAllSections(std::vector<std::string>& sections) const override;
-    void getAllKeys(const std::string& section, std::vector<std::string>& keys) const override;
+    void getAllKeys(const std::string& section,
+                    std::vector<std::string>& keys) const override;
     void clear() override;
 
   protected:

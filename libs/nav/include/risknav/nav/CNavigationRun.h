@@ -130,7 +130,4 @@ class CNavigationRun {
     void checkAgainstMap(const common::CIniConfig& c) const;
 };
 
-/** Sections the engine (MRPT) and the navigator read: never "unknown". */
-bool isEngineSection(const std::string& section);
-
 }  // namespace risknav::nav

@@ -69,7 +69,8 @@ class CSimRobotInterface : public mrpt::nav::CRobot2NavInterfaceForSimulator_Dif
     CSimWorld::TScans m_last;
     bool m_fresh = false;
     std::vector<TNavEvent> m_events;
-    void record(const char* kind, int waypoint = -1);  // m_last sensed by senseNow(), not yet handed out
+    void record(const char* kind,
+                int waypoint = -1);  // m_last sensed by senseNow(), not yet handed out
 };
 
 }  // namespace risknav::sim
