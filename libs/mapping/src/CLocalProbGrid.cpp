@@ -65,57 +65,130 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
     const double step = nRays > 1 ? aperture / double(nRays - 1) : aperture;
     const double maxRange = scan.maxRange;
     const double reach = maxRange + m.delta(maxRange);
+    const bool fullCircle = aperture >= 2 * M_PI - 1e-9;
     // MRPT's ray order: right to left, or mirrored.
     const double sign = scan.rightToLeft ? 1.0 : -1.0;
     const int i0 = std::max(0, x2idx(sx - reach)),
               i1 = std::min(m_n - 1, x2idx(sx + reach));
     const int j0 = std::max(0, y2idx(sy - reach)),
               j1 = std::min(m_n - 1, y2idx(sy + reach));
-    // cheap tests first (the cost is one atan2 per cell in reach): out of
-    // reach by the squared distance; behind a sensor of <= 180 deg by the
-    // sign of the forward component (those cells map to no ray either way)
-    const double reach2 = reach * reach;
+    if (i1 < i0 || j1 < j0)
+        return;
+    // per ray: the reading's bounds, and how far it reads at all (no cell
+    // beyond rayReach gets a reading from it)
+    m_rayValid.resize(nRays);
+    m_rayFree.resize(nRays);
+    m_rayOcc.resize(nRays);
+    m_rayReach.resize(nRays);
+    for (size_t k = 0; k < nRays; k++) {
+        m_rayValid[k] = scan.getScanRangeValidity(k);
+        if (m_rayValid[k]) {
+            const double R = scan.getScanRange(k), d = m.delta(R);
+            m_rayFree[k] = R - d;
+            m_rayOcc[k] = R + d;
+            m_rayReach[k] = R + d;
+        } else {
+            m_rayFree[k] = m_rayOcc[k] = maxRange;
+            m_rayReach[k] = maxRange;
+        }
+    }
+    // the ray whose angular sector holds a bearing (-1: none)
+    auto rayOf = [&](double dx, double dy) -> long {
+        const double b = sign * mrpt::math::wrapToPi(std::atan2(dy, dx) - syaw);
+        long ray = long(std::round((b + 0.5 * aperture) / step));
+        if (fullCircle)
+            ray = ((ray % long(nRays)) + long(nRays)) % long(nRays);
+        return ray < 0 || ray >= long(nRays) ? -1 : ray;
+    };
+    // cheap tests first (the cost is one atan2 per cell): out of reach by the
+    // squared distance; behind a sensor of <= 180 deg by the sign of the
+    // forward component (those cells map to no ray either way)
     const double cyaw = std::cos(syaw), sinyaw = std::sin(syaw);
     const bool halfPlane = aperture <= M_PI + 1e-9;
     const double behind = std::sin(0.5 * step);
-    for (int j = j0; j <= j1; j++) {
-        const double dy = idx2y(j) - sy;
-        for (int i = i0; i <= i1; i++) {
-            const double dx = idx2x(i) - sx;
-            const double r2 = dx * dx + dy * dy;
-            if (r2 > reach2)
-                continue;
-            const double r = std::sqrt(r2);
-            if (halfPlane && dx * cyaw + dy * sinyaw < -r * behind)
-                continue;
-            // the ray whose angular sector holds the cell's bearing
-            const double b = sign * mrpt::math::wrapToPi(std::atan2(dy, dx) - syaw);
-            const double k = std::round((b + 0.5 * aperture) / step);
-            long ray = long(k);
-            if (aperture >= 2 * M_PI - 1e-9)
-                ray = ((ray % long(nRays)) + long(nRays)) % long(nRays);
-            if (ray < 0 || ray >= long(nRays))
-                continue;
-            int reading = -1;  // -1 none, 0 free, 1 occupied
-            if (scan.getScanRangeValidity(size_t(ray))) {
-                const double R = scan.getScanRange(size_t(ray));
-                const double d = m.delta(R);
-                if (r < R - d)
-                    reading = 0;
-                else if (r <= R + d)
-                    reading = 1;
-            } else if (r < maxRange) {
-                reading = 0;
+    // Tiles of cells: from the bearings of a tile's corner centres, the rays
+    // that can hold its cells (one more each side for rounding) and the
+    // farthest any of them reads; a tile, or a cell, beyond that is skipped
+    // without its atan2 (most cells lie behind walls). A speed-up only: each
+    // cell still gets its own ray as above.
+    constexpr int kTile = 8;
+    const double maxReach =
+        std::min(reach, *std::max_element(m_rayReach.begin(), m_rayReach.end()));
+    for (int tj = j0; tj <= j1; tj += kTile)
+        for (int ti = i0; ti <= i1; ti += kTile) {
+            const int tiEnd = std::min(i1, ti + kTile - 1),
+                      tjEnd = std::min(j1, tj + kTile - 1);
+            const double xa = idx2x(ti) - sx, xb = idx2x(tiEnd) - sx;
+            const double ya = idx2y(tj) - sy, yb = idx2y(tjEnd) - sy;
+            const double nx = xa > 0 ? xa : (xb < 0 ? xb : 0.0);
+            const double ny = ya > 0 ? ya : (yb < 0 ? yb : 0.0);
+            const double rMin2 = nx * nx + ny * ny;
+            double tileReach = maxReach;
+            if (rMin2 > 0) {
+                // the sensor is outside the tile: its bearings span < pi
+                double bLo = 1e9, bHi = -1e9;
+                for (const double cx : {xa, xb})
+                    for (const double cy : {ya, yb}) {
+                        const double b =
+                            sign * mrpt::math::wrapToPi(std::atan2(cy, cx) - syaw);
+                        bLo = std::min(bLo, b);
+                        bHi = std::max(bHi, b);
+                    }
+                if (bHi - bLo < M_PI) {
+                    const long kLo = long(std::floor((bLo + 0.5 * aperture) / step)) - 1;
+                    const long kHi = long(std::ceil((bHi + 0.5 * aperture) / step)) + 1;
+                    tileReach = -1;  // then at most maxReach (<= reach)
+                    for (long k = kLo; k <= kHi; k++) {
+                        long ray = k;
+                        if (fullCircle)
+                            ray = ((ray % long(nRays)) + long(nRays)) % long(nRays);
+                        if (ray >= 0 && ray < long(nRays))
+                            tileReach = std::max(
+                                tileReach, std::min(maxReach, m_rayReach[size_t(ray)]));
+                    }
+                    if (tileReach < 0)
+                        continue;  // no ray's sector reaches the tile
+                }                  // else across the bearings' wrap: all rays
             }
-            if (reading < 0)
+            if (rMin2 > tileReach * tileReach)
                 continue;
-            const size_t idx = index(i, j);
-            m_p[idx] = float(std::clamp(bayesUpdate(m_p[idx], reading == 1, m),
-                                        kProbabilityMin, 1.0 - kProbabilityMin));
-            if (m_count[idx] < 65535)
-                m_count[idx]++;
+            const double tileReach2 = tileReach * tileReach;
+            for (int j = tj; j <= tjEnd; j++) {
+                const double dy = idx2y(j) - sy;
+                for (int i = ti; i <= tiEnd; i++) {
+                    const double dx = idx2x(i) - sx;
+                    const double r2 = dx * dx + dy * dy;
+                    if (r2 > tileReach2)
+                        continue;
+                    const double r = std::sqrt(r2);
+                    if (halfPlane && dx * cyaw + dy * sinyaw < -r * behind)
+                        continue;
+                    const long ray = rayOf(dx, dy);
+                    if (ray < 0)
+                        continue;
+                    // free when nearer than R - delta, occupied up to R + delta;
+                    // a ray without a return reads free up to maxRange
+                    bool occupied;
+                    if (m_rayValid[size_t(ray)]) {
+                        if (r < m_rayFree[size_t(ray)])
+                            occupied = false;
+                        else if (r <= m_rayOcc[size_t(ray)])
+                            occupied = true;
+                        else
+                            continue;
+                    } else if (r < maxRange) {
+                        occupied = false;
+                    } else {
+                        continue;
+                    }
+                    const size_t idx = index(i, j);
+                    m_p[idx] = float(std::clamp(bayesUpdate(m_p[idx], occupied, m),
+                                                kProbabilityMin, 1.0 - kProbabilityMin));
+                    if (m_count[idx] < 65535)
+                        m_count[idx]++;
+                }
+            }
         }
-    }
 }
 
 void CLocalProbGrid::setCell(int i, int j, float p, uint16_t count) {

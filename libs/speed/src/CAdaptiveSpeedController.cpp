@@ -59,14 +59,29 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
     double bestCost = inf, nearestDist = inf, bestStraight = inf;
     mrpt::math::TPoint2D nearest, straightTarget;
     const double band = inflation + 2 * res;
+    // Early ends (a speed-up; the result is the full search's): the goal
+    // popped with its margin is the answer; and where neither the goal nor
+    // the point nearest it can be the answer, no cell popped after the best
+    // candidate's cost can beat it (a candidate's cost is >= its path length).
+    const bool goalInside = m.inside(gi, gj);
+    const bool goalCanBePopped =
+        goalInside && ((gi == si && gj == sj) || traversable(gi, gj));
+    const bool nearestMayCount =
+        goalInside && m.cells[m.index(gi, gj)] == mapping::TFusedCell::Free;
+    const bool pruneByCost = !goalCanBePopped && !nearestMayCount;
     while (!open.empty()) {
         const auto [gk, k] = open.top();
         open.pop();
         if (gk > g[k])
             continue;
         const int i = int(k % size_t(m.size)), j = int(k / size_t(m.size));
-        if (i == gi && j == gj)
+        if (i == gi && j == gj) {
             goalReached = true;
+            if (field.clearance[k] >= inflation)
+                break;
+        }
+        if (pruneByCost && gk > bestCost)
+            break;
         const double toGoal = std::hypot(m.idx2x(i) - goal.x, m.idx2y(j) - goal.y);
         if (toGoal < nearestDist) {
             nearestDist = toGoal;

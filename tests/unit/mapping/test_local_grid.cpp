@@ -5,7 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <mrpt/math/wrap2pi.h>
+
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 using namespace risknav::mapping;
 
@@ -168,4 +172,95 @@ TEST(LocalGrid, ProbabilitiesStayClampedSoANewObjectShowsQuickly) {
         readings++;
     }
     EXPECT_LE(readings, 5);
+}
+
+namespace {
+/** The sector model of integrateScan, plainly: every cell in range, its own
+ * bearing's ray, one reading (the reference for the tiled version). */
+void bruteForceScan(std::vector<float>& p, std::vector<uint16_t>& count,
+                    const CLocalProbGrid& g, const mrpt::math::TPose2D& robot,
+                    const mrpt::obs::CObservation2DRangeScan& scan,
+                    const TSensorModel& m) {
+    const size_t n = scan.getScanSize();
+    const auto& sp = scan.sensorPose;
+    const double c = std::cos(robot.phi), s = std::sin(robot.phi);
+    const double sx = robot.x + c * sp.x() - s * sp.y();
+    const double sy = robot.y + s * sp.x() + c * sp.y();
+    const double syaw = robot.phi + sp.yaw();
+    const double step = n > 1 ? scan.aperture / double(n - 1) : scan.aperture;
+    const double reach = scan.maxRange + m.delta(scan.maxRange);
+    for (int j = 0; j < g.size(); j++)
+        for (int i = 0; i < g.size(); i++) {
+            const double dx = g.idx2x(i) - sx, dy = g.idx2y(j) - sy;
+            const double r = std::sqrt(dx * dx + dy * dy);
+            if (r > reach)
+                continue;
+            const double b = (scan.rightToLeft ? 1.0 : -1.0) *
+                             mrpt::math::wrapToPi(std::atan2(dy, dx) - syaw);
+            long ray = long(std::round((b + 0.5 * scan.aperture) / step));
+            if (scan.aperture >= 2 * M_PI - 1e-9)
+                ray = ((ray % long(n)) + long(n)) % long(n);
+            if (ray < 0 || ray >= long(n))
+                continue;
+            int reading = -1;
+            if (scan.getScanRangeValidity(size_t(ray))) {
+                const double R = scan.getScanRange(size_t(ray)), d = m.delta(R);
+                reading = r < R - d ? 0 : (r <= R + d ? 1 : -1);
+            } else if (r < scan.maxRange) {
+                reading = 0;
+            }
+            if (reading < 0)
+                continue;
+            const size_t k = size_t(j) * size_t(g.size()) + size_t(i);
+            p[k] = float(std::clamp(bayesUpdate(p[k], reading == 1, m),
+                                    CLocalProbGrid::kProbabilityMin,
+                                    1.0 - CLocalProbGrid::kProbabilityMin));
+            count[k]++;
+        }
+}
+}  // namespace
+
+// The tiled integrateScan (rays per tile, tiles beyond every reading skipped)
+// must give every cell exactly the reading of the plain per-cell model: random
+// scans (180 / 270 / 360 deg, either ray order, gaps, returns beyond maxRange,
+// the sensor off-centre and turned, near the grid's edge and outside it).
+TEST(LocalProbGrid, TiledScanEqualsThePlainSectorModel) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0, 1);
+    TSensorModel m = laserModel();
+    m.range_uncertainty_quad = 0.01;
+    int updatedCells = 0;
+    for (int trial = 0; trial < 60; trial++) {
+        const double fov = trial % 3 == 0 ? 360 : (trial % 3 == 1 ? 180 : 270);
+        const int beams = 30 + int(u(rng) * 300);
+        mrpt::obs::CObservation2DRangeScan scan;
+        scan.aperture = float(fov * M_PI / 180);
+        scan.maxRange = float(2 + 8 * u(rng));
+        scan.rightToLeft = trial % 2 == 0;
+        scan.sensorPose = mrpt::poses::CPose3D(0.3 * u(rng), 0.2 * (u(rng) - 0.5), 0.3,
+                                               M_PI * (u(rng) - 0.5), 0, 0);
+        scan.resizeScan(size_t(beams));
+        for (int k = 0; k < beams; k++) {
+            const double roll = u(rng);
+            scan.setScanRange(size_t(k), float(roll < 0.1 ? scan.maxRange * 1.2
+                                                          : 0.2 + roll * scan.maxRange));
+            scan.setScanRangeValidity(size_t(k), roll > 0.05);
+        }
+        const int cells = 40 + int(u(rng) * 120);
+        CLocalProbGrid g(cells, 0.05, 0, 0);
+        const double half = 0.5 * cells * 0.05;
+        const mrpt::math::TPose2D robot(
+            trial % 7 == 0 ? 1.5 * half : (u(rng) - 0.5) * half, (u(rng) - 0.5) * half,
+            2 * M_PI * (u(rng) - 0.5));
+        std::vector<float> p(g.probabilities());
+        std::vector<uint16_t> count(g.counts());
+        bruteForceScan(p, count, g, robot, scan, m);
+        g.integrateScan(robot, scan, m);
+        for (size_t k = 0; k < p.size(); k++) {
+            ASSERT_EQ(g.counts()[k], count[k]) << "trial " << trial << " cell " << k;
+            ASSERT_EQ(g.probabilities()[k], p[k]) << "trial " << trial << " cell " << k;
+            updatedCells += count[k] > 0;
+        }
+    }
+    EXPECT_GT(updatedCells, 50000);  // the scans did read many cells
 }

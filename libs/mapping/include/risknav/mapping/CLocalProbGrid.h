@@ -85,6 +85,9 @@ class CLocalProbGrid {
     double m_x0 = 0, m_y0 = 0;
     std::vector<float> m_p;
     std::vector<uint16_t> m_count;
+    // integrateScan's per-ray tables, kept to spare the allocations
+    std::vector<uint8_t> m_rayValid;
+    std::vector<double> m_rayFree, m_rayOcc, m_rayReach;
 };
 
 /** Classification of (000) section 2: P > occupied: obstacle; P < free: free;
