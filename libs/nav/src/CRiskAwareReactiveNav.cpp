@@ -5,6 +5,7 @@
 #include <risknav/nav/CRiskAwareReactiveNav.h>
 #include <risknav/sim/CSimRobotInterface.h>
 
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/kinematics/CVehicleVelCmd_DiffDriven.h>
 #include <mrpt/nav/reactive/CLogFileRecord.h>
 #include <mrpt/nav/tpspace/CParameterizedTrajectoryGenerator.h>
@@ -131,7 +132,57 @@ void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& 
 }
 
 void CRiskAwareReactiveNav::saveConfigFile(mrpt::config::CConfigFileBase& c) const {
-    mrpt::nav::CReactiveNavigationSystem::saveConfigFile(c);
+    // Beyond MRPT 2.5.8, whose CReactiveNavigationSystem::saveConfigFile()
+    // output does not load back: it writes each section twice with its keys
+    // padded by spaces (an in-memory config then does not find them), and
+    // neither the PTGs (PTG<n>_Type, PTG<n>_*) nor the robot shape. Its
+    // text is read back (keys trimmed, sections merged), and the PTGs and the
+    // shape are added as MRPT's own loader reads them.
+    mrpt::config::CConfigFileMemory raw;
+    mrpt::nav::CReactiveNavigationSystem::saveConfigFile(raw);
+    std::string text;
+    raw.getContent(text);
+    const mrpt::config::CConfigFileMemory parsed(text);
+    auto copySection = [&](const mrpt::config::CConfigFileBase& from,
+                           const std::string& fromSection, const std::string& toSection,
+                           const std::string& prefix) {
+        std::vector<std::string> keys;
+        from.getAllKeys(fromSection, keys);
+        for (const auto& k : keys)
+            c.write(toSection, prefix + k, from.read_string(fromSection, k, ""));
+    };
+    std::vector<std::string> sections;
+    parsed.getAllSections(sections);
+    for (const auto& sec : sections)
+        copySection(parsed, sec, sec, "");
+    const std::string nav = "CReactiveNavigationSystem";
+    c.write(nav, "PTG_COUNT", int(getPTG_count()));
+    for (size_t i = 0; i < getPTG_count(); i++) {
+        const auto* ptg = getPTG(i);
+        const std::string prefix = "PTG" + std::to_string(i) + "_";
+        c.write(nav, prefix + "Type", std::string(ptg->GetRuntimeClass()->className));
+        mrpt::config::CConfigFileMemory own;
+        ptg->saveToConfigFile(own, "PTG");
+        std::string ownText;
+        own.getContent(ownText);
+        copySection(mrpt::config::CConfigFileMemory(ownText), "PTG", nav, prefix);
+    }
+    // MRPT reads the shape into floats: 9 digits give the same floats back
+    auto joined = [](const std::vector<double>& v) {
+        std::ostringstream os;
+        os.precision(9);
+        for (size_t i = 0; i < v.size(); i++)
+            os << (i ? " " : "") << float(v[i]);
+        return os.str();
+    };
+    if (m_robotShape.size() > 0) {
+        std::vector<double> xs, ys;
+        m_robotShape.getAllVertices(xs, ys);
+        c.write(nav, "RobotModel_shape2D_xs", joined(xs));
+        c.write(nav, "RobotModel_shape2D_ys", joined(ys));
+    }
+    if (m_robotShapeCircularRadius > 0)
+        c.write(nav, "RobotModel_circular_shape_radius", m_robotShapeCircularRadius);
     riskOptions.saveToConfigFile(c, kSection);
     robot.saveToConfigFile(c, "Robot");
     for (size_t i = 0; i < m_limiters.size(); i++)

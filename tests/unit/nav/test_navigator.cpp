@@ -2,6 +2,7 @@
 // inside it, driving the office world through CSimRobotInterface.
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/CIniConfig.h>
+#include <risknav/nav/CAdaptiveSpeedLimiter.h>
 #include <risknav/nav/CAfraidSpeedLimiter.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
 #include <risknav/sim/CSimRobotInterface.h>
@@ -13,6 +14,7 @@
 #include <mrpt/kinematics/CVehicleVelCmd_DiffDriven.h>
 #include <mrpt/math/CPolygon.h>
 #include <mrpt/nav/reactive/CLogFileRecord.h>
+#include <mrpt/nav/tpspace/CParameterizedTrajectoryGenerator.h>
 #include <mrpt/system/filesystem.h>
 
 #include <gtest/gtest.h>
@@ -142,12 +144,12 @@ TEST(RiskAwareNav, UnknownLimiterIsAClearError) {
     }
 }
 
-TEST(RiskAwareNav, OwnOptionsRoundTripThroughSaveConfigFile) {
-    // risknav's sections written by saveConfigFile() load back the same.
-    // (MRPT 2.5.8's own saveConfigFile() output does not load back into
-    // CReactiveNavigationSystem: "Value for 'min_obstacles_height' not found",
-    // with [CAbstractNavigator] written twice; so risknav's sections are
-    // checked on MRPT's shipped file.)
+TEST(RiskAwareNav, SaveConfigFileLoadsBackComplete) {
+    // What saveConfigFile() writes loads back, into CRiskAwareReactiveNav and
+    // into MRPT's bare engine, and saves again to the same text: MRPT's
+    // sections (with the PTGs and the robot shape, which MRPT 2.5.8's own
+    // writer leaves out) and risknav's. Options set after loading (a shape,
+    // a key) survive the trip.
     common::CIniConfig cfg(test::sourcePath("datasets/office/world.ini"));
     sim::CSimWorld world;
     world.loadFromConfigFile(cfg);
@@ -156,30 +158,55 @@ TEST(RiskAwareNav, OwnOptionsRoundTripThroughSaveConfigFile) {
     a.setMinLoggingLevel(mrpt::system::LVL_ERROR);
     b.setMinLoggingLevel(mrpt::system::LVL_ERROR);
     mrpt::config::CConfigFileMemory in(
-        navConfig("[CRiskAwareReactiveNav]\nspeed_limiters = CStoppingDistanceLimiter\n"
-                  "[CStoppingDistanceLimiter]\nmargin = 0.35\n[Robot]\nradius = 0.3\n"));
+        navConfig("[CRiskAwareReactiveNav]\nspeed_limiters = CStoppingDistanceLimiter "
+                  "CAdaptiveSpeedLimiter\n[CStoppingDistanceLimiter]\nmargin = 0.35\n"
+                  "[CAdaptiveSpeedLimiter]\nspeeds = 0.9 0.4\nmargins = 0.2 0.1\n"
+                  "[Robot]\nradius = 0.3\n"));
     a.loadConfigFile(in);
+    mrpt::math::CPolygon shape;
+    for (int i = 0; i < 5; i++)
+        shape.AddVertex(0.3 * std::cos(i * 2 * M_PI / 5),
+                        0.3 * std::sin(i * 2 * M_PI / 5));
+    a.changeRobotShape(shape);
+    a.params_abstract_ptg_navigator.robot_absolute_speed_limits.robotMax_V_mps = 0.8;
     mrpt::config::CConfigFileMemory saved;
     a.saveConfigFile(saved);
-    std::string ours;
-    for (const char* sec :
-         {"CRiskAwareReactiveNav", "CStoppingDistanceLimiter", "Robot"}) {
-        std::vector<std::string> keys;
-        saved.getAllKeys(sec, keys);
-        ASSERT_FALSE(keys.empty()) << sec;
-        ours += std::string("[") + sec + "]\n";
-        for (const auto& k : keys)
-            ours += k + " = " + saved.read_string(sec, k, "") + "\n";
-    }
-    mrpt::config::CConfigFileMemory again(navConfig(ours));
-    b.loadConfigFile(again);
-    ASSERT_EQ(b.limiters().size(), 1u);
+    std::string text;
+    saved.getContent(text);
+    // loaded from the text, as from a file
+    mrpt::config::CConfigFileMemory again(text);
+    ASSERT_NO_THROW(b.loadConfigFile(again));
+    mrpt::config::CConfigFileMemory savedAgain;
+    b.saveConfigFile(savedAgain);
+    std::string text2;
+    savedAgain.getContent(text2);
+    EXPECT_EQ(text, text2);
+    ASSERT_EQ(b.getPTG_count(), a.getPTG_count());
+    ASSERT_GE(a.getPTG_count(), 2u);
+    for (size_t i = 0; i < a.getPTG_count(); i++)
+        EXPECT_EQ(b.getPTG(i)->getDescription(), a.getPTG(i)->getDescription());
+    // the shape set after loading (MRPT holds it in floats), in both texts
+    EXPECT_NE(text2.find("RobotModel_shape2D_xs = 0.300000012 0.0927051008"),
+              std::string::npos)
+        << text2;
+    EXPECT_DOUBLE_EQ(
+        b.params_abstract_ptg_navigator.robot_absolute_speed_limits.robotMax_V_mps, 0.8);
+    ASSERT_EQ(b.limiters().size(), 2u);
     const auto* l =
         dynamic_cast<const sim::CStoppingDistanceLimiter*>(b.limiters()[0].get());
     ASSERT_TRUE(l);
     EXPECT_DOUBLE_EQ(l->options.margin, 0.35);
+    const auto* ad =
+        dynamic_cast<const nav::CAdaptiveSpeedLimiter*>(b.limiters()[1].get());
+    ASSERT_TRUE(ad);
+    EXPECT_EQ(ad->options.speed.speeds, (std::vector<double>{0.9, 0.4}));
     EXPECT_DOUBLE_EQ(b.robot.radius, 0.3);
     EXPECT_EQ(b.riskOptions.speed_limiters, a.riskOptions.speed_limiters);
+    // MRPT's bare engine reads the same file
+    mrpt::nav::CReactiveNavigationSystem bare(robotIf);
+    bare.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+    ASSERT_NO_THROW(bare.loadConfigFile(again));
+    EXPECT_EQ(bare.getPTG_count(), a.getPTG_count());
 }
 
 TEST(AfraidLimiter, SlowsAheadOfAZoneOnlyWhenHeadingIntoIt) {
