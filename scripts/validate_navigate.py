@@ -5,7 +5,7 @@ Runs the app on the committed datasets over several seeds and prints
 markdown tables: the office (stopping limiter), M1 (adaptive limiter vs the
 slowest speed), M2 (the lowest- and highest-U routes by dead reckoning) and
 the M3 afraid experiment (its own table). Usage:
-  python3 scripts/validate_navigate.py [--seeds N] [--out DIR]
+  python3 scripts/validate_navigate.py [--seeds N] [--out DIR] [--only office,m1,m2,m3]
 """
 import argparse
 import json
@@ -37,15 +37,32 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--seeds", type=int, default=5)
     ap.add_argument("--out", default="/tmp/validate_navigate")
+    ap.add_argument("--only", default="office,m1,m2,m3",
+                    help="comma-separated tables to run")
     a = ap.parse_args()
+    only = set(a.only.split(","))
     seeds = range(1, a.seeds + 1)
     head = ("| run | status | waypoints | time [s] | collisions | near misses | "
             "pose error at end [m] | MRPT errors |\n|---|---|---|---|---|---|---|---|")
+    if "office" in only:
+        office(a, seeds, head)
+    if "m1" in only:
+        m1(a, seeds, head)
+    if "m2" in only:
+        m2(a, seeds, head)
+    if "m3" in only:
+        m3(a, seeds)
+
+
+def office(a, seeds, head):
     print("### office, CStoppingDistanceLimiter (datasets/office/navigate.ini)\n")
     print(head)
     for s in seeds:
         print(row(f"seed {s}", run("datasets/office/navigate.ini", f"{a.out}/office{s}",
                                    "--seed", str(s))))
+
+
+def m1(a, seeds, head):
     print("\n### M1: CAdaptiveSpeedLimiter vs the slowest speed (datasets/office/navigate_m1.ini)\n")
     print(head + "")
     ratios = []
@@ -62,6 +79,9 @@ def main():
             ratios.append(ad["time_s"] / sl["time_s"])
     print(f"\ntime ratio adaptive / slowest where both reached: "
           f"{[round(r, 2) for r in ratios]}")
+
+
+def m2(a, seeds, head):
     print("\n### M2: risk routes by dead reckoning (datasets/risk-two-routes/navigate.ini)\n")
     print(head)
     err = {"best": [], "worst": []}
@@ -86,6 +106,9 @@ def main():
         if v:
             print(f"\n{k}: reached {len(v)}/{a.seeds}, final pose error mean "
                   f"{statistics.mean(v):.3f} m [{min(v):.3f}, {max(v):.3f}]")
+
+
+def m3(a, seeds):
     print("\n### M3: the afraid experiment (datasets/corridor-doors/afraid_experiment.ini)\n")
     run("datasets/corridor-doors/afraid_experiment.ini", f"{a.out}/m3",
         "--set", "AfraidExperiment.seeds=" + " ".join(str(s) for s in seeds))

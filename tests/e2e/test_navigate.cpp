@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <regex>
+#include <sstream>
 
 using namespace risknav::test;
 using nlohmann::json;
@@ -64,15 +65,17 @@ TEST(NavigateE2E, TheDocumentedConfigRuns) {
     EXPECT_EQ(s["status"], "goal_reached");
     const auto documented = iniKeys(sourcePath("config/risknav-navigate.ini"));
     for (const auto& k : iniKeys(out + "/config_effective.ini"))
-        if (k.rfind("[Navigate]", 0) == 0)
+        if (k.rfind("[Navigate]", 0) == 0) {
             EXPECT_TRUE(documented.count(k)) << k << " is not documented";
+        }
 }
 
 TEST(NavigateE2E, RiskRoutesBestAndWorstAreDriven) {
     // The lowest-U route of risk.ini (a GVG route with a sensing point) and
     // the highest-U one (B, the narrow straight corridor), by dead reckoning.
     const std::string cfg = sourcePath("datasets/risk-two-routes/navigate.ini");
-    const json best = navRun(cfg, freshDir("best"), "--seed 2");
+    const std::string bestOut = freshDir("best");
+    const json best = navRun(cfg, bestOut, "--seed 2");
     const json worst =
         navRun(cfg, freshDir("worst"), "--seed 2 --set Navigate.risk_route=worst");
     EXPECT_NE(best["route"].get<std::string>().find("SP2"), std::string::npos)
@@ -86,6 +89,32 @@ TEST(NavigateE2E, RiskRoutesBestAndWorstAreDriven) {
     EXPECT_GT(worst["pose_error_final_m"].get<double>(), 0.0);
     EXPECT_EQ(best["collisions"], 0);
     EXPECT_EQ(worst["collisions"], 0);
+    // The sensing fix sets the belief to the truth within the point's sigmas
+    // (1 mm, 1 mm, 0.1 rad): the next cycle's position error is millimetres
+    // plus one cycle of drift, not the odometry frame rotated about the world
+    // origin by the heading correction (that was a 0.7-2 m jump).
+    const auto lines = readLines(bestOut + "/cycles.csv");
+    ASSERT_GT(lines.size(), 2u);
+    const double tSense = best["tagged_events"][0]["t"].get<double>();
+    const double t0 = std::stod(lines[1].substr(lines[1].find(',') + 1));
+    bool checked = false;
+    for (size_t i = 1; i + 1 < lines.size() && !checked; i++) {
+        std::vector<std::string> f;
+        std::stringstream row(lines[i]);
+        for (std::string x; std::getline(row, x, ',');)
+            f.push_back(x);
+        ASSERT_GT(f.size(), 8u);
+        if (std::abs(std::stod(f[1]) - t0 - tSense) > 1e-3)
+            continue;
+        std::vector<std::string> g;
+        std::stringstream next(lines[i + 1]);
+        for (std::string x; std::getline(next, x, ',');)
+            g.push_back(x);
+        ASSERT_GT(g.size(), 8u);
+        EXPECT_LT(std::stod(g[8]), 0.03) << "pose error right after the sensing fix";
+        checked = true;
+    }
+    EXPECT_TRUE(checked) << "no cycle at the sensing time " << tSense;
 }
 
 TEST(NavigateE2E, AfraidExperimentOneSeedIsFasterThanSafeSpeed) {
@@ -117,8 +146,9 @@ TEST(NavigateE2E, UnreachableGoalIsANavigationErrorInTheSummary) {
     const json s = navRun(w + "/n.ini", freshDir("out"));
     EXPECT_NE(s["status"], "goal_reached");
     EXPECT_EQ(s["goal_reached"], false);
-    if (s["status"] == "navigation_error")
+    if (s["status"] == "navigation_error") {
         EXPECT_FALSE(s["navigation_error"].get<std::string>().empty());
+    }
 }
 
 struct TBad {
@@ -160,6 +190,11 @@ INSTANTIATE_TEST_SUITE_P(
              "exactly one of goals"},
         TBad{"bad_localization", "localization +=.*", "localization = gps",
              "[Navigate] localization"},
+        TBad{"start_sigma_two_numbers", "localization +=.*",
+             "localization = odometry\nstart_sigma = 0.1 0.1", "[Navigate] start_sigma"},
+        TBad{"start_sigma_negative", "localization +=.*",
+             "localization = odometry\nstart_sigma = 0.1 -0.1 1",
+             "[Navigate] start_sigma"},
         TBad{"nav_period_not_multiple", "nav_period +=.*", "nav_period = 0.07",
              "[Navigate] nav_period"},
         TBad{"unknown_key", "goal_tolerance", "goal_tolerence", "goal_tolerence"},

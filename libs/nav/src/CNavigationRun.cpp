@@ -405,6 +405,19 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     }
     mrpt::poses::CPose2D odoFix;  // believed = odoFix (+) odometry (odometry mode)
     std::mt19937_64 fixRng(setup.seed ^ 0x5EED5EEDull);
+    const auto& ss = options.start_sigma;
+    if (options.localization == "odometry" && (ss[0] > 0 || ss[1] > 0 || ss[2] > 0)) {
+        // The belief starts off by an error drawn with start_sigma (the
+        // risk evaluator's init_sigma_*), its own generator so that the
+        // sensing fixes draw the same numbers with or without it.
+        std::mt19937_64 startRng(setup.seed ^ 0x57A27E22ull);
+        std::normal_distribution<double> n(0, 1);
+        const double ex = ss[0] * n(startRng), ey = ss[1] * n(startRng),
+                     ephi = ss[2] * n(startRng);
+        const mrpt::poses::CPose2D belief0(options.start.x + ex, options.start.y + ey,
+                                           options.start.phi + ephi);
+        odoFix = belief0 + (-mrpt::poses::CPose2D(world.odometricPose()));
+    }
     TPose2D lastOdo = world.odometricPose();
     TPose2D believed = options.start;
 
@@ -500,8 +513,14 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
                 const TPose2D fix(truth.x + tag->sigmaX * n(fixRng),
                                   truth.y + tag->sigmaY * n(fixRng),
                                   truth.phi + tag->sigmaPhi * n(fixRng));
-                odoFix = mrpt::poses::CPose2D(fix) -
-                         mrpt::poses::CPose2D(world.odometricPose());
+                // believed = odoFix (+) odo must equal the fix now, so
+                // odoFix = fix (+) (-odo). (MRPT's binary "fix - odo" is the
+                // inverse composition (-odo) (+) fix, the fix seen from the
+                // odometry frame: composed on the left it would rotate the
+                // whole odometry track about the world origin by the heading
+                // correction, a jump of |odo| * dtheta.)
+                odoFix = mrpt::poses::CPose2D(fix) +
+                         (-mrpt::poses::CPose2D(world.odometricPose()));
                 char b[120];
                 std::snprintf(b, sizeof(b), "%s: pose fixed (error before %.3f m)",
                               tag->detail.c_str(), rec.poseError);

@@ -36,6 +36,15 @@ void TNavigateOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
     laps = readInt(c, s, "laps", laps);
     localization = readChoice(c, s, "localization", localization,
                               {"ground_truth", "odometry", "mcl"});
+    {
+        const auto ss = readNumbers(c, s, "start_sigma", {}, {}, 0);
+        if (!ss.empty()) {
+            if (ss.size() != 3)
+                throwBadKey(c, s, "start_sigma", readString(c, s, "start_sigma", ""),
+                            "expected sigma_x [m] sigma_y [m] sigma_heading [deg]");
+            start_sigma = {ss[0], ss[1], ss[2] * M_PI / 180.0};
+        }
+    }
     sim_dt = readDouble(c, s, "sim_dt", sim_dt);
     nav_period = readDouble(c, s, "nav_period", nav_period);
     duration_max = readDouble(c, s, "duration_max", duration_max);
@@ -62,6 +71,9 @@ void TNavigateOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
     writeKey(c, s, "mode", mode);
     writeKey(c, s, "laps", laps);
     writeKey(c, s, "localization", localization);
+    writeKey(c, s, "start_sigma",
+             std::vector<double>{start_sigma[0], start_sigma[1],
+                                 start_sigma[2] * 180.0 / M_PI});
     writeKey(c, s, "sim_dt", sim_dt);
     writeKey(c, s, "nav_period", nav_period);
     writeKey(c, s, "duration_max", duration_max);
@@ -90,6 +102,9 @@ void TNavigateOptions::validate() const {
               "best, worst or a route name");
     checkKey(s, "goal_tolerance", goal_tolerance, TRange::closed(0.05, 10, "m"));
     checkKey(s, "laps", laps, TRange::closed(1, 1000, "laps"));
+    checkKey(s, "start_sigma", std::vector<double>{start_sigma[0], start_sigma[1]},
+             TRange::closed(0, 10, "m"));
+    checkDegrees(s, "start_sigma", start_sigma[2], TRange::closed(0, 90, "deg"));
     checkKey(s, "sim_dt", sim_dt, TRange::closed(0.001, 0.5, "s"));
     checkKey(s, "nav_period", nav_period, TRange::closed(0.01, 2, "s"));
     const double ratio = nav_period / sim_dt;

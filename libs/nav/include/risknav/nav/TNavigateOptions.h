@@ -23,7 +23,12 @@ struct TNavigateOptions : public common::CValidatedOptions {
     std::string mode = "once";        ///< once | back_and_forth | loop
     int laps = 1;                     ///< passes of the route (mode != once)
     std::string localization = "ground_truth";  ///< ground_truth | odometry | mcl
-    double sim_dt = 0.05;                       ///< [s] physics step
+    /** localization = odometry: sigmas x [m], y [m], heading (radians in code)
+     * of the belief's error at the start, drawn once per seed (0 0 0 = the
+     * start is known exactly). risknav-risk-eval's init_sigma_* assume the
+     * robot starts with such an error. */
+    std::vector<double> start_sigma{0.0, 0.0, 0.0};
+    double sim_dt = 0.05;       ///< [s] physics step
     double nav_period = 0.2;    ///< [s] one navigation cycle (and rawlog frame)
     double duration_max = 600;  ///< [s] simulated; then status "timeout"
     uint64_t seed = 1;
