@@ -45,12 +45,16 @@ void CFreeSpaceMemory::update(const TFreeSpaceMap& local) {
     const int w = i1 - i0 + 1, h = j1 - j0 + 1;
     std::vector<int> total(size_t(w) * h, 0), free(total.size(), 0),
         obst(total.size(), 0);
+    // the memory column of each local column, once (not per cell)
+    std::vector<int> column(size_t(local.size));
+    for (int li = 0; li < local.size; li++)
+        column[size_t(li)] = x2idx(local.idx2x(li)) - i0;
     for (int lj = 0; lj < local.size; lj++) {
         const int j = y2idx(local.idx2y(lj)) - j0;
         if (j < 0 || j >= h)
             continue;
         for (int li = 0; li < local.size; li++) {
-            const int i = x2idx(local.idx2x(li)) - i0;
+            const int i = column[size_t(li)];
             if (i < 0 || i >= w)
                 continue;
             const size_t k = size_t(j) * w + i;
