@@ -1,4 +1,5 @@
 #include <risknav/mapping/CLocalProbGrid.h>
+#include <risknav/mapping/fast_atan2.h>
 
 #include <mrpt/math/wrap2pi.h>
 
@@ -29,8 +30,11 @@ std::pair<int, int> CLocalProbGrid::recenter(double x, double y) {
     const int di = x2idx(x) - m_n / 2, dj = y2idx(y) - m_n / 2;
     if (di == 0 && dj == 0)
         return {0, 0};
-    std::vector<float> p(m_p.size(), 0.5f);
-    std::vector<uint16_t> c(m_count.size(), 0);
+    // into the spare buffers (kept: no allocation per move), then swapped
+    std::vector<float>& p = m_pSpare;
+    std::vector<uint16_t>& c = m_countSpare;
+    p.assign(m_p.size(), 0.5f);
+    c.assign(m_count.size(), 0);
     for (int j = 0; j < m_n; j++) {
         const int sj = j + dj;
         if (sj < 0 || sj >= m_n)
@@ -93,12 +97,36 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
         }
     }
     // the ray whose angular sector holds a bearing (-1: none)
-    auto rayOf = [&](double dx, double dy) -> long {
-        const double b = sign * mrpt::math::wrapToPi(std::atan2(dy, dx) - syaw);
-        long ray = long(std::round((b + 0.5 * aperture) / step));
+    // the ray whose angular sector holds a bearing (-1: none): the sector
+    // model's formula, b = sign * wrapToPi(atan2 - yaw), ray = round(...)
+    auto rayFromIndex = [&](double x) -> long {
+        long ray = long(std::round(x));
         if (fullCircle)
             ray = ((ray % long(nRays)) + long(nRays)) % long(nRays);
         return ray < 0 || ray >= long(nRays) ? -1 : ray;
+    };
+    auto exactRayOf = [&](double dx, double dy) -> long {
+        const double b = sign * mrpt::math::wrapToPi(std::atan2(dy, dx) - syaw);
+        return rayFromIndex((b + 0.5 * aperture) / step);
+    };
+    // A speed-up giving the same rays: the polynomial atan2 is within
+    // kFastAtan2MaxError of libm's, so its ray index is within `slack` of
+    // the exact one; where that could round differently (near a sector
+    // boundary, or near the +-pi wrap) the exact formula decides.
+    const double yawWrapped = mrpt::math::wrapToPi(syaw);
+    const double slack = (2 * kFastAtan2MaxError + 1e-12) / step;
+    auto rayOf = [&](double dx, double dy) -> long {
+        if (!(slack < 0.25))
+            return exactRayOf(dx, dy);
+        double rel = fastAtan2(dy, dx) - yawWrapped;
+        rel = rel > M_PI ? rel - 2 * M_PI : (rel < -M_PI ? rel + 2 * M_PI : rel);
+        if (std::fabs(rel) > M_PI - 2 * slack * step)
+            return exactRayOf(dx, dy);
+        const double x = (sign * rel + 0.5 * aperture) / step;
+        const double off = x - std::floor(x);  // 0.5: a boundary
+        if (std::fabs(off - 0.5) < slack)
+            return exactRayOf(dx, dy);
+        return rayFromIndex(x);
     };
     // cheap tests first (the cost is one atan2 per cell): out of reach by the
     // squared distance; behind a sensor of <= 180 deg by the sign of the
@@ -196,13 +224,4 @@ void CLocalProbGrid::setCell(int i, int j, float p, uint16_t count) {
     m_count[index(i, j)] = count;
 }
 
-TCellClass classifyCell(float p, uint16_t observations, double occupiedThreshold,
-                        double freeThreshold) {
-    if (p > occupiedThreshold)
-        return TCellClass::Obstacle;
-    if (p < freeThreshold)
-        return TCellClass::Free;
-    return observations > 0 ? TCellClass::UndecidedObserved
-                            : TCellClass::UndecidedUnobserved;
-}
 }  // namespace risknav::mapping

@@ -4,18 +4,6 @@
 #include <stdexcept>
 
 namespace risknav::mapping {
-TFusedCell fuseCells(TCellClass a, TCellClass b) {
-    const auto freeWith = [](TCellClass x, TCellClass y) {
-        return x == TCellClass::Free &&
-               (y == TCellClass::Free || y == TCellClass::UndecidedObserved);
-    };
-    if (freeWith(a, b) || freeWith(b, a))
-        return TFusedCell::Free;
-    if (a == TCellClass::Obstacle || b == TCellClass::Obstacle)
-        return TFusedCell::Obstacle;
-    return TFusedCell::Undecided;
-}
-
 int TFreeSpaceMap::x2idx(double x) const {
     return int(std::floor((x - xMin) / resolution));
 }

@@ -21,21 +21,25 @@ std::vector<float> distanceTo(const std::vector<uint8_t>& source, int n, double 
     // OpenCV measures to the nearest zero pixel
     cv::Mat m(n + 2 * pad, n + 2 * pad, CV_8U, cv::Scalar(borderIsSource ? 0 : 255));
     bool any = borderIsSource;
-    for (int j = 0; j < n; j++)
+    for (int j = 0; j < n; j++) {
+        const uint8_t* src = &source[size_t(j) * n];
+        uint8_t* row = m.ptr<uint8_t>(j + pad) + pad;
         for (int i = 0; i < n; i++) {
-            const bool s = source[size_t(j) * n + i] != 0;
-            any = any || s;
-            m.at<uint8_t>(j + pad, i + pad) = s ? 0 : 255;
+            any = any || src[i] != 0;
+            row[i] = src[i] != 0 ? 0 : 255;
         }
+    }
     std::vector<float> out(size_t(n) * n, std::numeric_limits<float>::infinity());
     if (!any)
         return out;
     cv::Mat d;
     cv::distanceTransform(m, d, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
-    for (int j = 0; j < n; j++)
+    for (int j = 0; j < n; j++) {
+        const float* row = d.ptr<float>(j + pad) + pad;
+        float* o = &out[size_t(j) * n];
         for (int i = 0; i < n; i++)
-            out[size_t(j) * n + i] =
-                float(std::max(0.0, (d.at<float>(j + pad, i + pad) - 0.5) * res));
+            o[i] = float(std::max(0.0, (row[i] - 0.5) * res));
+    }
     return out;
 }
 }  // namespace

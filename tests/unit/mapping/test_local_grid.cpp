@@ -1,6 +1,7 @@
 // M1 mapping (Miura et al. 2006, section 2): Bayes update, N, classification,
 // fusion and the scrolling local grid.
 #include <risknav/mapping/CLocalProbGrid.h>
+#include <risknav/mapping/fast_atan2.h>
 #include <risknav/mapping/free_space.h>
 
 #include <gtest/gtest.h>
@@ -263,4 +264,61 @@ TEST(LocalProbGrid, TiledScanEqualsThePlainSectorModel) {
         }
     }
     EXPECT_GT(updatedCells, 50000);  // the scans did read many cells
+    // Cells a hair off a sector boundary (the scan turned so that the
+    // boundary between its two rays passes 1e-10-3e-8 rad from a cell's
+    // bearing, either side): the fast first guess of the ray can land on the
+    // wrong side there, and the exact formula must decide.
+    int boundaryCases = 0;
+    for (int trial = 0; trial < 40; trial++) {
+        mrpt::obs::CObservation2DRangeScan scan;
+        scan.aperture = float(M_PI);
+        scan.maxRange = 3.0f;
+        scan.rightToLeft = trial % 2 == 0;
+        scan.resizeScan(2);
+        scan.setScanRange(0, 1.0f);  // the two rays read a cell at 1 m differently
+        scan.setScanRange(1, 2.0f);
+        scan.setScanRangeValidity(0, true);
+        scan.setScanRangeValidity(1, true);
+        CLocalProbGrid g(60, 0.05, 0, 0);
+        const int ci = 30 + int(u(rng) * 20) - 10, cj = 30 + int(u(rng) * 20) - 10;
+        const double sx = g.idx2x(30) + 0.013, sy = g.idx2y(30) - 0.007;
+        const double bearing = std::atan2(g.idx2y(cj) - sy, g.idx2x(ci) - sx);
+        const double off[] = {1e-10, -1e-10, 3e-9, -3e-9, 1e-8, -1e-8, 3e-8, -3e-8};
+        // the boundary (b = 0) at the cell's bearing + off
+        const mrpt::math::TPose2D robot(sx, sy, bearing + off[trial % 8]);
+        std::vector<float> p(g.probabilities());
+        std::vector<uint16_t> count(g.counts());
+        bruteForceScan(p, count, g, robot, scan, m);
+        g.integrateScan(robot, scan, m);
+        for (size_t k = 0; k < p.size(); k++) {
+            ASSERT_EQ(g.counts()[k], count[k]) << "boundary trial " << trial;
+            ASSERT_EQ(g.probabilities()[k], p[k]) << "boundary trial " << trial;
+        }
+        boundaryCases++;
+    }
+    EXPECT_EQ(boundaryCases, 40);
+}
+
+// The bound integrateScan's fast path relies on: the polynomial atan2 within
+// kFastAtan2MaxError / 2 of libm's, on a dense sweep of directions and on
+// random points of every scale, the axes and the octant edges included.
+TEST(FastAtan2, WithinItsBoundOfLibm) {
+    double worst = 0;
+    for (int k = 0; k <= 2000000; k++) {
+        const double a = -M_PI + 2 * M_PI * k / 2000000.0;
+        const double x = std::cos(a), y = std::sin(a);
+        worst = std::max(worst, std::fabs(fastAtan2(y, x) - std::atan2(y, x)));
+    }
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1, 1), e(-8, 3);
+    for (int k = 0; k < 200000; k++) {
+        const double s = std::pow(10.0, e(rng));
+        const double x = s * u(rng), y = s * u(rng);
+        worst = std::max(worst, std::fabs(fastAtan2(y, x) - std::atan2(y, x)));
+    }
+    for (const double v : {1.0, -1.0, 0.0})
+        for (const double w : {1.0, -1.0, 0.0})
+            worst = std::max(worst, std::fabs(fastAtan2(v, w) - std::atan2(v, w)));
+    EXPECT_LT(worst, 0.5 * kFastAtan2MaxError);
+    EXPECT_GT(worst, 1e-9);  // it is an approximation: the fallback matters
 }

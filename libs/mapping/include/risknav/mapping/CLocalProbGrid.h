@@ -85,6 +85,8 @@ class CLocalProbGrid {
     double m_x0 = 0, m_y0 = 0;
     std::vector<float> m_p;
     std::vector<uint16_t> m_count;
+    std::vector<float> m_pSpare;  // recenter()'s buffers
+    std::vector<uint16_t> m_countSpare;
     // integrateScan's per-ray tables, kept to spare the allocations
     std::vector<uint8_t> m_rayValid;
     std::vector<double> m_rayFree, m_rayOcc, m_rayReach;
@@ -92,6 +94,13 @@ class CLocalProbGrid {
 
 /** Classification of (000) section 2: P > occupied: obstacle; P < free: free;
  * else undecided, with or without observation. */
-TCellClass classifyCell(float p, uint16_t observations, double occupiedThreshold,
-                        double freeThreshold);
+inline TCellClass classifyCell(float p, uint16_t observations, double occupiedThreshold,
+                               double freeThreshold) {
+    if (p > occupiedThreshold)
+        return TCellClass::Obstacle;
+    if (p < freeThreshold)
+        return TCellClass::Free;
+    return observations > 0 ? TCellClass::UndecidedObserved
+                            : TCellClass::UndecidedUnobserved;
+}
 }  // namespace risknav::mapping

@@ -15,7 +15,17 @@ enum class TFusedCell : uint8_t { Free, Obstacle, Undecided };
 /** Two-sensor fusion of (000) section 2: free if both sensors say free, or
  * one says free and the other undecided-with-observation; otherwise not free
  * (occupied for planning): Obstacle if either says obstacle, else Undecided. */
-TFusedCell fuseCells(TCellClass a, TCellClass b);
+inline TFusedCell fuseCells(TCellClass a, TCellClass b) {
+    const auto freeWith = [](TCellClass x, TCellClass y) {
+        return x == TCellClass::Free &&
+               (y == TCellClass::Free || y == TCellClass::UndecidedObserved);
+    };
+    if (freeWith(a, b) || freeWith(b, a))
+        return TFusedCell::Free;
+    if (a == TCellClass::Obstacle || b == TCellClass::Obstacle)
+        return TFusedCell::Obstacle;
+    return TFusedCell::Undecided;
+}
 
 /** The free-space map of one cycle, on the grids' cells. */
 struct TFreeSpaceMap {
