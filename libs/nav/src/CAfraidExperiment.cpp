@@ -325,8 +325,14 @@ void runAfraidExperiment(const TAppContext& ctx) {
         const double pos0 = axis.pos.front(), posLast = axis.pos.back();
         double s0 = kNaN, s1 = kNaN;
         if (std::isfinite(zFirst)) {
+            // A run ends within goal_tolerance of the goal (the route's end):
+            // the section ends before that, so that every run crosses its end,
+            // and starts earlier than lead_in where needed to keep its length
+            const double end = posLast - nr.options.goal_tolerance - 0.05;
             s0 = std::max(pos0, zFirst - xo.lead_in);
-            s1 = std::min(s0 + xo.section_length, posLast);
+            if (s0 + xo.section_length > end)
+                s0 = std::max(pos0, end - xo.section_length);
+            s1 = std::min(s0 + xo.section_length, end);
         }
         const TRunFigures fl = figures(rl, axis, s0, s1), fw = figures(rw, axis, s0, s1),
                           fo = figures(ro, axis, s0, s1);
