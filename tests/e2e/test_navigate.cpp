@@ -137,6 +137,22 @@ TEST(NavigateE2E, AfraidExperimentOneSeedIsFasterThanSafeSpeed) {
         EXPECT_FALSE(readFile(out + "/" + f).empty()) << f;
 }
 
+TEST(NavigateE2E, AfraidExperimentSectionEndsWhereEveryRunGets) {
+    // narrow_doors, seed 4: the 10 m section after the lead-in would end at
+    // the route's end, which the runs stop up to goal_tolerance short of; it
+    // ends before that (and starts earlier), so all three runs are measured.
+    const json s =
+        navRun(sourcePath("datasets/validation/navigate_afraid_narrow_doors.ini"),
+               freshDir("xp4"), "--seed 4");
+    ASSERT_EQ(s["per_seed"].size(), 1u);
+    const auto& p = s["per_seed"][0];
+    const double s0 = p["section"][0].get<double>(), s1 = p["section"][1].get<double>();
+    EXPECT_NEAR(s1 - s0, 10.0, 1e-9);
+    for (const char* run : {"learning", "with_limiter", "without_limiter"})
+        EXPECT_TRUE(p[run]["section_time_s"].is_number()) << run;
+    EXPECT_EQ(s["speedup_with_limiter"]["n"], 1);
+}
+
 TEST(NavigateE2E, UnreachableGoalIsANavigationErrorInTheSummary) {
     const std::string w = freshDir("w");
     std::string cfg = officeConfig();
