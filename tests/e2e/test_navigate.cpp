@@ -262,6 +262,13 @@ TEST(NavigateE2E, ViewpointPlanIsDrivenAsMrptWaypointsWithViewpointEvents) {
             EXPECT_FALSE(e["detail"].get<std::string>().empty());
         }
     EXPECT_GT(viewpoints, 0u);
+    // The plan is completed: every viewpoint (a waypoint that may not be
+    // skipped) reached, in order (seed 1 of the README's table)
+    size_t mustReach = 0;
+    for (const auto& wp : mrptSeq.waypoints)
+        mustReach += !wp.allow_skip;
+    EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
+    EXPECT_EQ(viewpoints, mustReach);
 }
 
 TEST(NavigateE2E, AdaptiveLimiterReachesTheOfficeDestinationsThroughTheEngine) {

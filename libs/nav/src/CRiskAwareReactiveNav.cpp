@@ -10,6 +10,7 @@
 #include <mrpt/nav/reactive/CLogFileRecord.h>
 #include <mrpt/nav/tpspace/CParameterizedTrajectoryGenerator.h>
 
+#include <mrpt/math/TSegment2D.h>
 #include <mrpt/math/wrap2pi.h>
 
 #include <cmath>
@@ -68,24 +69,44 @@ CRiskAwareReactiveNav::CRiskAwareReactiveNav(mrpt::nav::CRobot2NavInterface& r,
 void CRiskAwareReactiveNav::navigationStep() {
     const double limitDeg = riskOptions.turn_in_place_deg;
     std::optional<mrpt::math::TPoint2D> target;
+    double targetAllowed = 0;
+    std::optional<mrpt::math::TPoint2D> lastStepPose;
     if (limitDeg > 0 && getCurrentState() == NAVIGATING) {
         // The waypoint MRPT will aim at: the first one not yet reached.
         const auto st = getWaypointNavStatus();
+        if (st.last_robot_pose.x != mrpt::nav::TWaypoint::INVALID_NUM)
+            lastStepPose =
+                mrpt::math::TPoint2D(st.last_robot_pose.x, st.last_robot_pose.y);
         for (const auto& w : st.waypoints)
             if (!w.reached) {
                 target = w.target;
+                targetAllowed = w.allowed_distance;
                 break;
             }
-        if (!target && m_navigationParams)
+        if (!target && m_navigationParams) {
             target = mrpt::math::TPoint2D(m_navigationParams->target.target_coords.x,
                                           m_navigationParams->target.target_coords.y);
+            targetAllowed = m_navigationParams->target.targetAllowedDistance;
+        }
     }
     if (target) {
         mrpt::math::TPose2D pose, odo;
         mrpt::math::TTwist2D vel;
         mrpt::system::TTimeStamp ts;
         std::string frame;
-        if (m_robot.getCurrentPoseAndSpeeds(pose, vel, ts, odo, frame)) {
+        // MRPT's CWaypointsNavigator counts a waypoint as reached when the
+        // robot's move since its last step (the segment from that step's pose
+        // to now) passes within allowed_distance of it, and marks it so in
+        // its next step. Such a waypoint is not turned to: e.g. a route's
+        // first waypoint at the start (its bearing is atan2 of micrometres,
+        // noise) or one just passed, now behind the robot.
+        auto reachedByMrpt = [&](const mrpt::math::TPose2D& p) {
+            const mrpt::math::TPoint2D now(p.x, p.y);
+            const mrpt::math::TSegment2D move(now, lastStepPose.value_or(now));
+            return move.distance(*target) < targetAllowed;
+        };
+        if (m_robot.getCurrentPoseAndSpeeds(pose, vel, ts, odo, frame) &&
+            !reachedByMrpt(pose)) {
             const double bearing = mrpt::math::wrapToPi(
                 std::atan2(target->y - pose.y, target->x - pose.x) - pose.phi);
             const double deg = std::abs(bearing) * 180 / M_PI;
