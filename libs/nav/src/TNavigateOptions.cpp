@@ -105,6 +105,12 @@ void TNavigateOptions::validate() const {
     checkKey(s, "start_sigma", std::vector<double>{start_sigma[0], start_sigma[1]},
              TRange::closed(0, 10, "m"));
     checkDegrees(s, "start_sigma", start_sigma[2], TRange::closed(0, 90, "deg"));
+    checkRule(localization == "odometry" ||
+                  (start_sigma[0] == 0 && start_sigma[1] == 0 && start_sigma[2] == 0),
+              s, "start_sigma",
+              numberText(start_sigma[0]) + " " + numberText(start_sigma[1]) + " " +
+                  numberText(start_sigma[2] * 180 / M_PI),
+              "only with localization = odometry (here " + localization + ")");
     checkKey(s, "sim_dt", sim_dt, TRange::closed(0.001, 0.5, "s"));
     checkKey(s, "nav_period", nav_period, TRange::closed(0.01, 2, "s"));
     const double ratio = nav_period / sim_dt;
