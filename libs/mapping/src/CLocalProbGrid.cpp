@@ -78,33 +78,30 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
               j1 = std::min(m_n - 1, y2idx(sy + reach));
     if (i1 < i0 || j1 < j0)
         return;
-    // per ray: the reading's bounds, and how far it reads at all (no cell
-    // beyond rayReach gets a reading from it)
+    // per ray: the reading's bounds; m_rayOcc is also how far it reads at
+    // all (no cell beyond it gets a reading from that ray)
     m_rayValid.resize(nRays);
     m_rayFree.resize(nRays);
     m_rayOcc.resize(nRays);
-    m_rayReach.resize(nRays);
     for (size_t k = 0; k < nRays; k++) {
         m_rayValid[k] = scan.getScanRangeValidity(k);
         if (m_rayValid[k]) {
             const double R = scan.getScanRange(k), d = m.delta(R);
             m_rayFree[k] = R - d;
             m_rayOcc[k] = R + d;
-            m_rayReach[k] = R + d;
         } else {
             m_rayFree[k] = m_rayOcc[k] = maxRange;
-            m_rayReach[k] = maxRange;
         }
     }
-    // the ray whose angular sector holds a bearing (-1: none)
-    // the ray whose angular sector holds a bearing (-1: none): the sector
-    // model's formula, b = sign * wrapToPi(atan2 - yaw), ray = round(...)
-    auto rayFromIndex = [&](double x) -> long {
-        long ray = long(std::round(x));
+    // a ray index, wrapped for a full circle; -1: no such ray
+    auto validRay = [&](long ray) -> long {
         if (fullCircle)
             ray = ((ray % long(nRays)) + long(nRays)) % long(nRays);
         return ray < 0 || ray >= long(nRays) ? -1 : ray;
     };
+    // the ray whose angular sector holds a bearing (-1: none): the sector
+    // model's formula, b = sign * wrapToPi(atan2 - yaw), ray = round(...)
+    auto rayFromIndex = [&](double x) { return validRay(long(std::round(x))); };
     auto exactRayOf = [&](double dx, double dy) -> long {
         const double b = sign * mrpt::math::wrapToPi(std::atan2(dy, dx) - syaw);
         return rayFromIndex((b + 0.5 * aperture) / step);
@@ -141,7 +138,7 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
     // cell still gets its own ray as above.
     constexpr int kTile = 8;
     const double maxReach =
-        std::min(reach, *std::max_element(m_rayReach.begin(), m_rayReach.end()));
+        std::min(reach, *std::max_element(m_rayOcc.begin(), m_rayOcc.end()));
     for (int tj = j0; tj <= j1; tj += kTile)
         for (int ti = i0; ti <= i1; ti += kTile) {
             const int tiEnd = std::min(i1, ti + kTile - 1),
@@ -166,14 +163,10 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
                     const long kLo = long(std::floor((bLo + 0.5 * aperture) / step)) - 1;
                     const long kHi = long(std::ceil((bHi + 0.5 * aperture) / step)) + 1;
                     tileReach = -1;  // then at most maxReach (<= reach)
-                    for (long k = kLo; k <= kHi; k++) {
-                        long ray = k;
-                        if (fullCircle)
-                            ray = ((ray % long(nRays)) + long(nRays)) % long(nRays);
-                        if (ray >= 0 && ray < long(nRays))
+                    for (long k = kLo; k <= kHi; k++)
+                        if (const long ray = validRay(k); ray >= 0)
                             tileReach = std::max(
-                                tileReach, std::min(maxReach, m_rayReach[size_t(ray)]));
-                    }
+                                tileReach, std::min(maxReach, m_rayOcc[size_t(ray)]));
                     if (tileReach < 0)
                         continue;  // no ray's sector reaches the tile
                 }                  // else across the bearings' wrap: all rays

@@ -404,6 +404,16 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
         mcl.initialize(world.grid(), setup.seed);
     }
     mrpt::poses::CPose2D odoFix;  // believed = odoFix (+) odometry (odometry mode)
+    // The odoFix that makes the belief `pose` now: believed = odoFix (+) odo
+    // must equal it, so odoFix = pose (+) (-odo). (MRPT's binary "pose - odo"
+    // is the inverse composition (-odo) (+) pose, the pose seen from the
+    // odometry frame: composed on the left it would rotate the whole
+    // odometry track about the world origin by the heading correction, a
+    // jump of |odo| * dtheta.)
+    auto odoFixFor = [&](const TPose2D& pose) {
+        return mrpt::poses::CPose2D(pose) +
+               (-mrpt::poses::CPose2D(world.odometricPose()));
+    };
     std::mt19937_64 fixRng(setup.seed ^ 0x5EED5EEDull);
     const auto& ss = options.start_sigma;
     if (options.localization == "odometry" && (ss[0] > 0 || ss[1] > 0 || ss[2] > 0)) {
@@ -414,9 +424,8 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
         std::normal_distribution<double> n(0, 1);
         const double ex = ss[0] * n(startRng), ey = ss[1] * n(startRng),
                      ephi = ss[2] * n(startRng);
-        const mrpt::poses::CPose2D belief0(options.start.x + ex, options.start.y + ey,
-                                           options.start.phi + ephi);
-        odoFix = belief0 + (-mrpt::poses::CPose2D(world.odometricPose()));
+        odoFix = odoFixFor(TPose2D(options.start.x + ex, options.start.y + ey,
+                                   options.start.phi + ephi));
     }
     TPose2D lastOdo = world.odometricPose();
     TPose2D believed = options.start;
@@ -513,14 +522,7 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
                 const TPose2D fix(truth.x + tag->sigmaX * n(fixRng),
                                   truth.y + tag->sigmaY * n(fixRng),
                                   truth.phi + tag->sigmaPhi * n(fixRng));
-                // believed = odoFix (+) odo must equal the fix now, so
-                // odoFix = fix (+) (-odo). (MRPT's binary "fix - odo" is the
-                // inverse composition (-odo) (+) fix, the fix seen from the
-                // odometry frame: composed on the left it would rotate the
-                // whole odometry track about the world origin by the heading
-                // correction, a jump of |odo| * dtheta.)
-                odoFix = mrpt::poses::CPose2D(fix) +
-                         (-mrpt::poses::CPose2D(world.odometricPose()));
+                odoFix = odoFixFor(fix);
                 char b[120];
                 std::snprintf(b, sizeof(b), "%s: pose fixed (error before %.3f m)",
                               tag->detail.c_str(), rec.poseError);

@@ -89,7 +89,7 @@ class CLocalProbGrid {
     std::vector<uint16_t> m_countSpare;
     // integrateScan's per-ray tables, kept to spare the allocations
     std::vector<uint8_t> m_rayValid;
-    std::vector<double> m_rayFree, m_rayOcc, m_rayReach;
+    std::vector<double> m_rayFree, m_rayOcc;
 };
 
 /** Classification of (000) section 2: P > occupied: obstacle; P < free: free;
