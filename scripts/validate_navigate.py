@@ -3,13 +3,19 @@
 
 Runs the app on the committed datasets over several seeds and prints
 markdown tables: the office (stopping limiter), M1 (adaptive limiter vs the
-slowest speed), M2 (the lowest- and highest-U routes by dead reckoning) and
-the M3 afraid experiment (its own table). Usage:
-  python3 scripts/validate_navigate.py [--seeds N] [--out DIR] [--only office,m1,m2,m3]
+slowest speed), M1 on risknav-explore's validation worlds (m1worlds: the same
+config, its world, start, destinations and unmapped boxes swapped in), M2 (the
+lowest- and highest-U routes by dead reckoning) and the M3 afraid experiment
+(its own table). Usage:
+  python3 scripts/validate_navigate.py [--seeds N] [--out DIR]
+      [--only office,m1,m1worlds,m2,m3]
 """
 import argparse
+import concurrent.futures
+import configparser
 import json
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -37,7 +43,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--seeds", type=int, default=5)
     ap.add_argument("--out", default="/tmp/validate_navigate")
-    ap.add_argument("--only", default="office,m1,m2,m3",
+    ap.add_argument("--only", default="office,m1,m1worlds,m2,m3",
                     help="comma-separated tables to run")
     a = ap.parse_args()
     only = set(a.only.split(","))
@@ -48,6 +54,8 @@ def main():
         office(a, seeds, head)
     if "m1" in only:
         m1(a, seeds, head)
+    if "m1worlds" in only:
+        m1worlds(a, seeds)
     if "m2" in only:
         m2(a, seeds, head)
     if "m3" in only:
@@ -62,23 +70,68 @@ def office(a, seeds, head):
                                    "--seed", str(s))))
 
 
-def m1(a, seeds, head):
-    print("\n### M1: CAdaptiveSpeedLimiter vs the slowest speed (datasets/office/navigate_m1.ini)\n")
-    print(head + "")
+# The slowest-speed baseline of M1: the engine at the slowest candidate.
+SLOWEST = ["--set", "CAdaptiveSpeedLimiter.fixed_speed_index=3",
+           "--set", "CAbstractPTGBasedReactive.robotMax_V_mps=0.2",
+           "--set", "CReactiveNavigationSystem.PTG0_v_max_mps=0.2",
+           "--set", "CReactiveNavigationSystem.PTG1_v_max_mps=0.2"]
+
+
+def m1_pairs(cfg, out, seeds, head):
+    """Adaptive and slowest runs of one M1 config (2 at a time), the table rows."""
+    jobs = [(s, mode) for s in seeds for mode in ("adaptive", "slowest")]
+    with concurrent.futures.ThreadPoolExecutor(2) as ex:
+        res = dict(zip(jobs, ex.map(lambda j: run(
+            cfg, f"{out}/{j[1]}{j[0]}", "--seed", str(j[0]),
+            *(SLOWEST if j[1] == "slowest" else [])), jobs)))
+    print(head)
     ratios = []
     for s in seeds:
-        ad = run("datasets/office/navigate_m1.ini", f"{a.out}/m1a{s}", "--seed", str(s))
-        sl = run("datasets/office/navigate_m1.ini", f"{a.out}/m1s{s}", "--seed", str(s),
-                 "--set", "CAdaptiveSpeedLimiter.fixed_speed_index=3",
-                 "--set", "CAbstractPTGBasedReactive.robotMax_V_mps=0.2",
-                 "--set", "CReactiveNavigationSystem.PTG0_v_max_mps=0.2",
-                 "--set", "CReactiveNavigationSystem.PTG1_v_max_mps=0.2")
+        ad, sl = res[(s, "adaptive")], res[(s, "slowest")]
         print(row(f"seed {s} adaptive", ad))
         print(row(f"seed {s} slowest (0.2 m/s)", sl))
         if ad["goal_reached"] and sl["goal_reached"]:
             ratios.append(ad["time_s"] / sl["time_s"])
-    print(f"\ntime ratio adaptive / slowest where both reached: "
-          f"{[round(r, 2) for r in ratios]}")
+    done = sum(res[(s, "adaptive")]["goal_reached"] for s in seeds)
+    print(f"\nadaptive reached all destinations: {done}/{len(seeds)}; time ratio "
+          f"adaptive / slowest where both reached: {[round(r, 2) for r in ratios]}")
+
+
+def m1(a, seeds, head):
+    print("\n### M1: CAdaptiveSpeedLimiter vs the slowest speed (datasets/office/navigate_m1.ini)\n")
+    m1_pairs("datasets/office/navigate_m1.ini", f"{a.out}/m1", seeds, head)
+
+
+def m1_world_config(explore_ini, path):
+    """navigate_m1.ini with the world, start, destinations and unmapped boxes
+    of one of risknav-explore's validation configs (the same robot, sensors
+    and engine settings)."""
+    ex = configparser.ConfigParser(inline_comment_prefixes=("//", ";"), strict=False,
+                                   interpolation=None)
+    ex.read(os.path.join(ROOT, explore_ini))
+    text = open(os.path.join(ROOT, "datasets/office/navigate_m1.ini")).read()
+    text = text[:text.index("[Clutter1]")]  # the office's boxes go
+    text = re.sub(r"(?m)^start +=.*$", "start = " + ex["Explore"]["start"], text)
+    text = re.sub(r"(?m)^goals +=.*$", "goals = " + ex["Explore"]["destinations"], text)
+    world = os.path.join(ROOT, os.path.dirname(explore_ini), ex["World"]["map_file"])
+    text = re.sub(r"(?m)^map_file +=.*$", "map_file = " + world, text)
+    for sec in ex.sections():
+        if sec.startswith("Clutter"):
+            text += f"\n[{sec}]\n" + "".join(f"{k} = {v}\n" for k, v in ex[sec].items())
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def m1worlds(a, seeds):
+    """M1 through the engine on worlds its config was not tuned on."""
+    head = ("| run | status | waypoints | time [s] | collisions | near misses | "
+            "pose error at end [m] | MRPT errors |\n|---|---|---|---|---|---|---|---|")
+    os.makedirs(a.out, exist_ok=True)
+    for w in ("t_junction", "u_corridor", "rooms", "hall"):
+        cfg = os.path.join(a.out, f"navigate_m1_{w}.ini")
+        m1_world_config(f"datasets/validation/explore_{w}.ini", cfg)
+        print(f"\n### M1 on validation/{w} (risknav-explore's destinations)\n")
+        m1_pairs(cfg, f"{a.out}/m1_{w}", seeds, head)
 
 
 def m2(a, seeds, head):
