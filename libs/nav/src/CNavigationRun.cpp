@@ -439,6 +439,9 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
                        size_t(options.duration_max), "s", setup.quiet);
     size_t eventsSeen = 0;
     r.track.emplace_back(world.truePose().x, world.truePose().y);
+    // where and when the robot last moved stall_distance away (stall_timeout)
+    mrpt::math::TPoint2D stallSpot(world.truePose().x, world.truePose().y);
+    double stallSince = world.time();
     for (int cycle = 0;; cycle++) {
         const double t = world.time();
         const auto& scans = robotIf.senseNow();
@@ -541,6 +544,29 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
         if (st == mrpt::nav::CAbstractNavigator::IDLE && cycle > 0) {
             r.status = nav.getWaypointNavStatus().final_goal_reached ? "goal_reached"
                                                                      : "stopped";
+            break;
+        }
+        // Not a stall: the target under the robot (its footprint grown by the
+        // target's allowed distance), e.g. a viewpoint by a wall that MRPT
+        // approaches at mm/s as its obstacle ramp slows it (M4's plan: 45 s).
+        const auto ct = nav.currentTarget();
+        const bool targetUnder =
+            ct && std::hypot(ct->point.x - believed.x, ct->point.y - believed.y) <=
+                      world.robot.radius + ct->allowedDistance;
+        if (targetUnder || std::hypot(truth.x - stallSpot.x, truth.y - stallSpot.y) >
+                               options.stall_distance) {
+            stallSpot = mrpt::math::TPoint2D(truth.x, truth.y);
+            stallSince = t;
+        } else if (options.stall_timeout > 0 && t - stallSince >= options.stall_timeout) {
+            char b[200];
+            std::snprintf(b, sizeof(b),
+                          "stalled: within %.2f m of (%.2f, %.2f) for %.0f s "
+                          "(stall_timeout; MRPT's own alarm did not fire)",
+                          options.stall_distance, stallSpot.x, stallSpot.y,
+                          t - stallSince);
+            r.status = "stalled";
+            r.navError = b;
+            nav.cancel();
             break;
         }
         if (t >= options.duration_max) {

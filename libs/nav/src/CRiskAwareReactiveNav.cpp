@@ -66,29 +66,35 @@ CRiskAwareReactiveNav::CRiskAwareReactiveNav(mrpt::nav::CRobot2NavInterface& r,
     registerAllClasses_nav();
 }
 
+std::optional<CRiskAwareReactiveNav::TCurrentTarget>
+CRiskAwareReactiveNav::currentTarget() const {
+    if (getCurrentState() != NAVIGATING)
+        return std::nullopt;
+    for (const auto& w : getWaypointNavStatus().waypoints)
+        if (!w.reached)
+            return TCurrentTarget{w.target, w.allowed_distance};
+    if (m_navigationParams)
+        return TCurrentTarget{
+            mrpt::math::TPoint2D(m_navigationParams->target.target_coords.x,
+                                 m_navigationParams->target.target_coords.y),
+            m_navigationParams->target.targetAllowedDistance};
+    return std::nullopt;
+}
+
 void CRiskAwareReactiveNav::navigationStep() {
     const double limitDeg = riskOptions.turn_in_place_deg;
     std::optional<mrpt::math::TPoint2D> target;
     double targetAllowed = 0;
     std::optional<mrpt::math::TPoint2D> lastStepPose;
-    if (limitDeg > 0 && getCurrentState() == NAVIGATING) {
-        // The waypoint MRPT will aim at: the first one not yet reached.
-        const auto st = getWaypointNavStatus();
-        if (st.last_robot_pose.x != mrpt::nav::TWaypoint::INVALID_NUM)
-            lastStepPose =
-                mrpt::math::TPoint2D(st.last_robot_pose.x, st.last_robot_pose.y);
-        for (const auto& w : st.waypoints)
-            if (!w.reached) {
-                target = w.target;
-                targetAllowed = w.allowed_distance;
-                break;
-            }
-        if (!target && m_navigationParams) {
-            target = mrpt::math::TPoint2D(m_navigationParams->target.target_coords.x,
-                                          m_navigationParams->target.target_coords.y);
-            targetAllowed = m_navigationParams->target.targetAllowedDistance;
+    if (limitDeg > 0)
+        if (const auto ct = currentTarget()) {
+            target = ct->point;
+            targetAllowed = ct->allowedDistance;
+            const auto st = getWaypointNavStatus();
+            if (st.last_robot_pose.x != mrpt::nav::TWaypoint::INVALID_NUM)
+                lastStepPose =
+                    mrpt::math::TPoint2D(st.last_robot_pose.x, st.last_robot_pose.y);
         }
-    }
     if (target) {
         mrpt::math::TPose2D pose, odo;
         mrpt::math::TTwist2D vel;

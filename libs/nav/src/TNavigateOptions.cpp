@@ -48,6 +48,8 @@ void TNavigateOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
     sim_dt = readDouble(c, s, "sim_dt", sim_dt);
     nav_period = readDouble(c, s, "nav_period", nav_period);
     duration_max = readDouble(c, s, "duration_max", duration_max);
+    stall_timeout = readDouble(c, s, "stall_timeout", stall_timeout);
+    stall_distance = readDouble(c, s, "stall_distance", stall_distance);
     seed = static_cast<uint64_t>(
         readDouble(c, s, "seed", double(seed), TRange::closed(0, 9007199254740992.0)));
     start_time = readDouble(c, s, "start_time", start_time);
@@ -77,6 +79,8 @@ void TNavigateOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
     writeKey(c, s, "sim_dt", sim_dt);
     writeKey(c, s, "nav_period", nav_period);
     writeKey(c, s, "duration_max", duration_max);
+    writeKey(c, s, "stall_timeout", stall_timeout);
+    writeKey(c, s, "stall_distance", stall_distance);
     writeKey(c, s, "seed", std::to_string(seed));
     writeKey(c, s, "start_time", start_time);
     writeKey(c, s, "near_miss_distance", near_miss_distance);
@@ -117,6 +121,8 @@ void TNavigateOptions::validate() const {
     checkRule(std::abs(ratio - std::round(ratio)) <= 1e-6, s, "nav_period",
               numberText(nav_period), "must be a whole multiple of sim_dt");
     checkKey(s, "duration_max", duration_max, TRange::closed(1, 1e5, "s"));
+    checkKey(s, "stall_timeout", stall_timeout, TRange::closed(0, 1e5, "s"));
+    checkKey(s, "stall_distance", stall_distance, TRange::closed(0.001, 10, "m"));
     checkKey(s, "start_time", start_time, TRange::closed(0, 4e9, "s"));
     checkKey(s, "near_miss_distance", near_miss_distance, TRange::closed(0, 5, "m"));
     checkKey(s, "shape_margin", shape_margin, TRange::closed(0, 2, "m"));

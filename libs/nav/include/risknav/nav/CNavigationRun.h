@@ -49,7 +49,7 @@ struct TNavRunEvent {
 
 /** Everything one closed-loop run produced. */
 struct TNavRunResult {
-    std::string status;    ///< goal_reached | navigation_error | timeout
+    std::string status;    ///< goal_reached | navigation_error | stalled | timeout
     std::string navError;  ///< MRPT's error code and message ("" if none)
     std::vector<TNavCycle> cycles;
     std::vector<TNavRunEvent> events;

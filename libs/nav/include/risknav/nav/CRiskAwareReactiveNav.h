@@ -5,6 +5,7 @@
 
 #include <mrpt/nav/reactive/CReactiveNavigationSystem.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,14 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
 
     const std::vector<common::CSpeedLimiter::Ptr>& limiters() const { return m_limiters; }
     const TLimitRecord& lastLimit() const { return m_last; }
+
+    /** What MRPT aims at while navigating: the first waypoint not yet
+     * reached (or the single target), with its allowed distance. */
+    struct TCurrentTarget {
+        mrpt::math::TPoint2D point;
+        double allowedDistance = 0;
+    };
+    std::optional<TCurrentTarget> currentTarget() const;
 
   protected:
     /** What the limiters see this cycle: the robot, the believed pose, the

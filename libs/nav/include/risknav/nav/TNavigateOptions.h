@@ -31,6 +31,14 @@ struct TNavigateOptions : public common::CValidatedOptions {
     double sim_dt = 0.05;       ///< [s] physics step
     double nav_period = 0.2;    ///< [s] one navigation cycle (and rawlog frame)
     double duration_max = 600;  ///< [s] simulated; then status "timeout"
+    /** [s] the robot staying within stall_distance of one spot this long
+     * while navigating, its target not under it (within its radius + the
+     * target's allowed distance), ends the run, status "stalled" (0 = never). Beyond
+     * MRPT: its "not approaching" alarm watches the distance to the target,
+     * which a robot creeping at 1e-4 m/s against an edge keeps lowering, so
+     * it never fires. */
+    double stall_timeout = 30;
+    double stall_distance = 0.1;  ///< [m]
     uint64_t seed = 1;
     double start_time = 1.6e9;        ///< [s] UNIX time of t = 0
     double near_miss_distance = 0.2;  ///< [m]
