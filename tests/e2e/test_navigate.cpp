@@ -4,6 +4,7 @@
 #include <test_support.h>
 
 #include <mrpt/config/CConfigFile.h>
+#include <mrpt/img/CImage.h>
 #include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/nav/reactive/TWaypoint.h>
 
@@ -157,7 +158,8 @@ TEST(NavigateE2E, UnreachableGoalIsANavigationErrorInTheSummary) {
     const std::string w = freshDir("w");
     std::string cfg = officeConfig();
     cfg = std::regex_replace(cfg, std::regex("goals +=.*"), "goals = 3.0 6.6  3.0 8.0");
-    cfg = std::regex_replace(cfg, std::regex("duration_max +=.*"), "duration_max = 120");
+    cfg = std::regex_replace(cfg, std::regex("duration_max +=.*"),
+                             "duration_max = 120\nstall_timeout = 30");
     writeFile(w + "/n.ini", cfg);
     const json s = navRun(w + "/n.ini", freshDir("out"));
     EXPECT_EQ(s["goal_reached"], false);
@@ -200,7 +202,11 @@ INSTANTIATE_TEST_SUITE_P(
     Navigate, NavigateBadInput,
     ::testing::Values(
         TBad{"unknown_limiter", "speed_limiters = CStoppingDistanceLimiter",
-             "speed_limiters = CNoSuchLimiter", "CNoSuchLimiter"},
+             "speed_limiters = CNoSuchLimiter",
+             "[CRiskAwareReactiveNav] speed_limiters: unknown speed limiter "
+             "'CNoSuchLimiter' (known: "},
+        TBad{"limiter_value_names_its_section", "\\nmargin +=[^\\n]*", "\nmargin = -1",
+             "[CStoppingDistanceLimiter] margin = '-1'"},
         TBad{"limiter_section_missing", "\\[CStoppingDistanceLimiter\\]", "[Unused]",
              "has no [CStoppingDistanceLimiter] section"},
         TBad{"spawned_in_collision", "start +=.*", "start = 0.1 0.1 0",
@@ -228,10 +234,72 @@ INSTANTIATE_TEST_SUITE_P(
              "nav_period = 0.2\nstall_distance = 0", "[Navigate] stall_distance"},
         TBad{"stall_timeout_nan", "nav_period +=.*",
              "nav_period = 0.2\nstall_timeout = nan", "[Navigate] stall_timeout"},
+        TBad{"adaptive_speed_above_max_v", "speed_limiters = CStoppingDistanceLimiter",
+             "speed_limiters = CAdaptiveSpeedLimiter\n[CAdaptiveSpeedLimiter]\n"
+             "speeds = 3 0.7 0.35 0.2",
+             "[CAdaptiveSpeedLimiter] speeds = '3 0.7 0.35 0.2': the fastest must be at "
+             "most [Robot] max_v"},
+        TBad{"seed_fraction", "seed +=.*", "seed = 1.5",
+             "[Navigate] seed = '1.5': not an integer"},
+        TBad{"ptg_cache_dir_a_file", "nav_period +=.*",
+             "nav_period = 0.2\nptg_cache_dir = n.ini", "[Navigate] ptg_cache_dir"},
+        // MRPT takes these without a check, then fails every cycle (the run
+        // "completes"), throws a bare assert / bad_alloc, or builds for minutes
+        TBad{"mrpt_max_speed_negative", "\\[CRiskAwareReactiveNav\\]",
+             "[CAbstractPTGBasedReactive]\nrobotMax_V_mps = -1\n[CRiskAwareReactiveNav]",
+             "[CAbstractPTGBasedReactive] robotMax_V_mps = '-1'"},
+        TBad{
+            "mrpt_ptg_resolution_nan", "\\[CRiskAwareReactiveNav\\]",
+            "[CReactiveNavigationSystem]\nPTG0_resolution = nan\n[CRiskAwareReactiveNav]",
+            "[CReactiveNavigationSystem] PTG0_resolution = 'nan'"},
+        TBad{"mrpt_ptg_tiny_cells", "\\[CRiskAwareReactiveNav\\]",
+             "[CReactiveNavigationSystem]\nPTG1_resolution = "
+             "0.006\n[CRiskAwareReactiveNav]",
+             "at most 1000 cells over PTG1_refDistance"},
+        TBad{"mrpt_ptg_num_paths_huge", "\\[CRiskAwareReactiveNav\\]",
+             "[CReactiveNavigationSystem]\nPTG0_num_paths = 100000000\n"
+             "[CRiskAwareReactiveNav]",
+             "[CReactiveNavigationSystem] PTG0_num_paths = '100000000'"},
         TBad{"unknown_key", "goal_tolerance", "goal_tolerence", "goal_tolerence"},
         TBad{"engine_key_missing", "engine_config +=.*",
              "engine_config =", "MRPT's reactive engine refused the config"}),
     [](const auto& i) { return std::string(i.param.name); });
+
+TEST(NavigateE2E, RiskRoutesOfAnotherMapOrStartAreAClearError) {
+    // risk_config's routes are planned on its own map and start: a map that
+    // differs from [World]'s (here by one wall pixel cleared) or a start
+    // elsewhere would make U meaningless for this world.
+    const std::string w = freshDir("w");
+    const std::string dir = sourcePath("datasets/risk-two-routes");
+    mrpt::img::CImage img;
+    ASSERT_TRUE(img.loadFromFile(dir + "/two_routes.png", 0));
+    img.setPixel(0, 0, 0xFFFFFF);
+    ASSERT_TRUE(img.saveToFile(w + "/other.png"));
+    writeFile(w + "/risk.ini", std::regex_replace(readFile(dir + "/risk.ini"),
+                                                  std::regex("map_file +=[^\\n]*"),
+                                                  "map_file = other.png"));
+    std::string cfg =
+        std::regex_replace(readFile(dir + "/navigate.ini"), std::regex("two_routes.png"),
+                           dir + "/two_routes.png");
+    writeFile(w + "/other_map.ini",
+              std::regex_replace(cfg, std::regex("risk.ini"), w + "/risk.ini"));
+    writeFile(w + "/other_start.ini",
+              std::regex_replace(
+                  std::regex_replace(cfg, std::regex("risk.ini"), dir + "/risk.ini"),
+                  std::regex("start +=[^\\n]*"), "start = 3.0 7.0 0"));
+    const TEarlierOutput earlier{{"summary.json", "{\"earlier\": true}\n"}};
+    for (const auto& [file, expect] : std::vector<std::pair<std::string, std::string>>{
+             {"other_map.ini",
+              "is not [World]'s (480 x 280 of 0.05 m from (0, 0)): the same grid, other "
+              "walls"},
+             {"other_start.ini", "the risk evaluator's routes start at (2.00, 7.00)"}}) {
+        const std::string out = freshDir("out");
+        writeEarlierOutput(out, earlier);
+        const auto r = run(binPath("risknav-navigate") + " -q -o '" + out + "' '" + w +
+                           "/" + file + "'");
+        expectBadInput(r, expect, out, earlier, "risknav-navigate: error: ");
+    }
+}
 
 TEST(NavigateE2E, AfraidFileOfAnotherMapIsAClearError) {
     // A valid .afraid file, but of a 10 x 10 m map at 0.1 m: not the office's.

@@ -57,11 +57,11 @@ TAppArgs parseAppArgs(const std::vector<std::string>& args, const TAppInfo& info
             a.version = true;
         else if (s == "-q" || s == "--quiet")
             a.quiet = true;
-        else if (s == "-o" || s == "--out")
-            a.outDir = value(i, s);
-        else if (s.rfind("--out=", 0) == 0)
-            a.outDir = s.substr(6);
-        else if (s == "--set")
+        else if (s == "-o" || s == "--out" || s.rfind("--out=", 0) == 0) {
+            a.outDir = s.rfind("--out=", 0) == 0 ? s.substr(6) : value(i, s);
+            if (a.outDir.empty())
+                throw CBadInputError(s + ": the output directory is empty");
+        } else if (s == "--set")
             a.sets.push_back(value(i, s));
         else if (s.rfind("--set=", 0) == 0)
             a.sets.push_back(s.substr(6));

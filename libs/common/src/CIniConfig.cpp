@@ -128,11 +128,22 @@ bool CIniConfig::isOverridden(const std::string& section, const std::string& key
 }
 
 bool CIniConfig::hasKey(const std::string& section, const std::string& key) const {
-    std::vector<std::string> keys;
-    getAllKeys(section, keys);
-    const auto k = lower(key);
-    return std::any_of(keys.begin(), keys.end(),
-                       [&](const auto& s) { return lower(s) == k; });
+    auto it = m_keys.find(section);
+    if (it == m_keys.end()) {
+        std::vector<std::string> keys;
+        getAllKeys(section, keys);
+        std::set<std::string> low;
+        for (const auto& k : keys)
+            low.insert(lower(k));
+        it = m_keys.emplace(section, std::move(low)).first;
+    }
+    return it->second.count(lower(key)) > 0;
+}
+
+void CIniConfig::writeString(const std::string& section, const std::string& name,
+                             const std::string& str) {
+    mrpt::config::CConfigFile::writeString(section, name, str);
+    m_keys.clear();
 }
 
 std::vector<std::string> CIniConfig::sections() const {

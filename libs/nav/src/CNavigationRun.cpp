@@ -16,6 +16,7 @@
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/system/filesystem.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -210,6 +211,41 @@ void CNavigationRun::loadRoute(CIniConfig& c) {
     CIniConfig rc(options.risk_config);
     ev.loadFromConfigFile(rc);
     ev.evaluate();
+    // Its routes are planned for its map and start: the world's must be the
+    // same (an .afraid file is checked the same way), or U means nothing here.
+    {
+        const auto& a = ev.grid();
+        const auto& b = world.grid();
+        const bool sameGeometry =
+            a.getSizeX() == b.getSizeX() && a.getSizeY() == b.getSizeY() &&
+            std::abs(a.getResolution() - b.getResolution()) < 1e-9 &&
+            std::abs(a.getXMin() - b.getXMin()) < 1e-6 &&
+            std::abs(a.getYMin() - b.getYMin()) < 1e-6;
+        size_t differ = 0;
+        if (sameGeometry)
+            for (unsigned y = 0; y < a.getSizeY(); y++)
+                for (unsigned x = 0; x < a.getSizeX(); x++)
+                    differ += (a.getCell(int(x), int(y)) < 0.5) !=
+                              (b.getCell(int(x), int(y)) < 0.5);
+        if (!sameGeometry || differ > 0) {
+            char why[240];
+            std::snprintf(why, sizeof(why),
+                          "its map (%u x %u cells of %.3g m from (%.3g, %.3g)) is not "
+                          "[World]'s (%u x %u of %.3g m from (%.3g, %.3g))%s",
+                          a.getSizeX(), a.getSizeY(), a.getResolution(), a.getXMin(),
+                          a.getYMin(), b.getSizeX(), b.getSizeY(), b.getResolution(),
+                          b.getXMin(), b.getYMin(),
+                          sameGeometry ? ": the same grid, other walls" : "");
+            throwBadKey(c, kSec, "risk_config", options.risk_config, why);
+        }
+        const auto& s0 = ev.options.start;
+        if (std::hypot(s0.x - options.start.x, s0.y - options.start.y) >
+            options.goal_tolerance)
+            throwBadKey(c, kSec, "start", readString(c, kSec, "start", ""),
+                        "the risk evaluator's routes start at " + pointText(s0.x, s0.y) +
+                            " (" + options.risk_config +
+                            "), more than goal_tolerance away");
+    }
     const auto& rows = ev.rows();
     long pick = -1;
     if (options.risk_route == "best")
@@ -361,7 +397,23 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     nav.setEngineConfig(m_engine.get());
     nav.loadConfigFile(c);
     nav.params_abstract_ptg_navigator.ptg_cache_files_directory = ptgCacheDir();
-    fs::create_directories(ptgCacheDir());
+    {
+        // MRPT writes its PTG grids there: a file, or a folder that cannot
+        // be written, is the key's error (not a filesystem exception)
+        const std::string dir = ptgCacheDir();
+        std::error_code ec;
+        fs::create_directories(dir, ec);
+        bool ok = !ec && fs::is_directory(dir, ec);
+        if (ok) {
+            const fs::path probe =
+                fs::path(dir) / (".risknav-write-probe." + std::to_string(getpid()));
+            ok = bool(std::ofstream(probe));
+            fs::remove(probe, ec);
+        }
+        if (!ok)
+            throwBadKey(c, "Navigate", "ptg_cache_dir", dir,
+                        "cannot create or write this directory (MRPT's PTG cache)");
+    }
     if (setup.maxSpeed)
         nav.changeCurrentRobotSpeedLimits().robotMax_V_mps = *setup.maxSpeed;
     // The world's robot is a disc: MRPT gets the 24-gon around it grown by

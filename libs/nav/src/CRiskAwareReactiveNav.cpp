@@ -1,6 +1,7 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/config_read.h>
 #include <risknav/common/stopping.h>
+#include <risknav/nav/CAdaptiveSpeedLimiter.h>
 #include <risknav/nav/CLayeredConfig.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
 #include <risknav/sim/CSimRobotInterface.h>
@@ -22,6 +23,47 @@ using namespace risknav::common;
 namespace risknav::nav {
 namespace {
 const char* kSection = "CRiskAwareReactiveNav";
+
+// Values MRPT 2.5.8 takes without a check and then fails on at every step
+// (robotMax_V_mps <= 0 or NaN: an assert each cycle, the run "completes"),
+// throws on as a bare assert or bad_alloc in initialize() (a PTG's
+// resolution NaN or 1e-6 m, refDistance 1e6 m), or builds for minutes (a
+// PTG's num_paths 1e8): exit 2 naming the key, before MRPT builds anything.
+void checkEngineValues(const mrpt::config::CConfigFileBase& c,
+                       const mrpt::config::CConfigFileBase& layered,
+                       const mrpt::nav::CReactiveNavigationSystem& nav) {
+    auto check = [&](const std::string& sec, const std::string& key, double v,
+                     const TRange& r) {
+        if (!r.contains(v))  // the text as written (MRPT wraps num_paths to 16 bits)
+            throwBadKey(c, sec, key, layered.read_string(sec, key, numberText(v)),
+                        r.describe());
+    };
+    const std::string abs = "CAbstractPTGBasedReactive";
+    const auto& p = nav.getCurrentRobotSpeedLimits();
+    check(abs, "robotMax_V_mps", p.robotMax_V_mps, TRange{0, 100, true, false, "m/s"});
+    check(abs, "robotMax_W_degps", p.robotMax_W_radps * 180 / M_PI,
+          TRange{0, 3600, true, false, "deg/s"});
+    const std::string sec = "CReactiveNavigationSystem";
+    for (size_t i = 0; i < nav.getPTG_count(); i++) {
+        const auto* ptg = nav.getPTG(i);
+        const std::string k = "PTG" + std::to_string(i) + "_";
+        const double ref = ptg->getRefDistance();
+        check(sec, k + "refDistance", ref, TRange{0, 100, true, false, "m"});
+        check(sec, k + "num_paths", ptg->getAlphaValuesCount(),
+              TRange::closed(2, 2000, "paths"));
+        // the cell size of MRPT's collision grid (CPTG_DiffDrive_*)
+        const double res = layered.read_double(sec, k + "resolution", 0.05);
+        check(sec, k + "resolution", res, TRange::closed(0.005, 1, "m"));
+        if (ref / res > 1000)
+            throwBadKey(c, sec, k + "resolution", numberText(res),
+                        "at most 1000 cells over " + k + "refDistance = " +
+                            numberText(ref) + " m (MRPT's collision grid)");
+        check(sec, k + "v_max_mps", ptg->getMaxLinVel(),
+              TRange{0, 100, true, false, "m/s"});
+        check(sec, k + "w_max_dps", ptg->getMaxAngVel() * 180 / M_PI,
+              TRange{0, 3600, true, false, "deg/s"});
+    }
+}
 
 // The class name without its namespace: the limiter's config section.
 std::string shortName(const std::string& n) {
@@ -135,17 +177,25 @@ void CRiskAwareReactiveNav::navigationStep() {
 }
 
 void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& c) {
-    if (m_engine)
-        mrpt::nav::CReactiveNavigationSystem::loadConfigFile(
-            CLayeredConfig(c, *m_engine));
-    else
+    if (m_engine) {
+        const CLayeredConfig layered(c, *m_engine);
+        mrpt::nav::CReactiveNavigationSystem::loadConfigFile(layered);
+        checkEngineValues(c, layered, *this);
+    } else {
         mrpt::nav::CReactiveNavigationSystem::loadConfigFile(c);
+        checkEngineValues(c, c, *this);
+    }
     loadOptions(riskOptions, c, kSection);
     loadOptions(robot, c, "Robot");
     std::vector<CSpeedLimiter::Ptr> made;
     for (const auto& name : riskOptions.speed_limiters) {
-        auto l =
-            CSpeedLimiter::Factory(name);  // unknown: CBadInputError, names the known
+        CSpeedLimiter::Ptr l;
+        try {
+            l = CSpeedLimiter::Factory(name);
+        } catch (const CBadInputError& e) {  // unknown: names the known ones
+            throw CBadInputError(configWhere(c) + "[" + kSection +
+                                 "] speed_limiters: " + e.what());
+        }
         if (!c.sectionExists(shortName(name)))
             throw CBadInputError(configWhere(c) + "[" + kSection +
                                  "] speed_limiters names " + name +
@@ -153,6 +203,13 @@ void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& 
                                  "] section (its options; an empty section takes the "
                                  "defaults)");
         l->loadConfig(c, shortName(name));
+        // candidate speeds the robot cannot reach would be silently capped
+        if (const auto* a = dynamic_cast<const CAdaptiveSpeedLimiter*>(l.get());
+            a && a->options.speed.speeds.front() > robot.max_v + 1e-9)
+            throwBadKey(c, shortName(name), "speeds",
+                        c.read_string(shortName(name), "speeds", ""),
+                        "the fastest must be at most [Robot] max_v = " +
+                            numberText(robot.max_v) + " m/s");
         made.push_back(l);
     }
     m_limiters = std::move(made);

@@ -15,6 +15,7 @@ IMPLEMENTS_MRPT_OBJECT(CStoppingDistanceLimiter, risknav::common::CSpeedLimiter,
 
 void CStoppingDistanceLimiter::TOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& c, const std::string& s) {
+    section = s;
     enabled = readBool(c, s, "enabled", enabled);
     margin = readDouble(c, s, "margin", margin);
     lateral_margin = readDouble(c, s, "lateral_margin", lateral_margin);
@@ -30,8 +31,8 @@ void CStoppingDistanceLimiter::TOptions::saveToConfigFile(
 }
 
 void CStoppingDistanceLimiter::TOptions::validate() const {
-    checkKey("StoppingRule", "margin", margin, TRange::closed(0, 10, "m"));
-    checkKey("StoppingRule", "lateral_margin", lateral_margin, TRange::closed(0, 2, "m"));
+    checkKey(section, "margin", margin, TRange::closed(0, 10, "m"));
+    checkKey(section, "lateral_margin", lateral_margin, TRange::closed(0, 2, "m"));
 }
 
 void CStoppingDistanceLimiter::loadConfig(const mrpt::config::CConfigFileBase& c,

@@ -49,6 +49,10 @@ TEST(CommandLine, UsageErrorsAreBadInput) {
     EXPECT_THROW(parse({}), CBadInputError);
     EXPECT_THROW(parse({"--bogus", "w.ini"}), CBadInputError);
     EXPECT_THROW(parse({"--out"}), CBadInputError);
+    // an empty value would otherwise take the next option as the folder
+    EXPECT_THROW(parse({"w.ini", "--out", "", "-q"}), CBadInputError);
+    EXPECT_THROW(parse({"w.ini", "--out="}), CBadInputError);
+    EXPECT_THROW(parse({"w.ini", "-o", ""}), CBadInputError);
     EXPECT_THROW(parse({"--seed", "-3", "w.ini"}), CBadInputError);
     EXPECT_THROW(parse({"--seed", "12x", "w.ini"}), CBadInputError);
     EXPECT_THROW(parse({"w.ini", "extra"}),

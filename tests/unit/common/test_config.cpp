@@ -162,6 +162,21 @@ TEST(CIniConfig, ReportsKeysNobodyRead) {
     EXPECT_NE(e.find("unknown key [Robot] max_vv"), std::string::npos) << e;
 }
 
+TEST(CIniConfig, HasKeyIgnoresKeyCaseAndSeesKeysWrittenLater) {
+    CIniConfig c(iniFile("[Robot]\nmax_v = 1\n[Other]\nk = 1\n"));
+    EXPECT_TRUE(c.hasKey("Robot", "max_v"));
+    EXPECT_TRUE(c.hasKey("Robot", "MAX_V"));
+    EXPECT_FALSE(c.hasKey("Robot", "k"));
+    EXPECT_FALSE(c.hasKey("Nowhere", "k"));
+    // hasKey() lists a section's keys once; a write (--set, the apps' own
+    // writes) must not leave that list stale
+    c.write("Robot", "radius", 0.3);
+    c.write("Nowhere", "k", 1);
+    EXPECT_TRUE(c.hasKey("Robot", "radius"));
+    EXPECT_TRUE(c.hasKey("Nowhere", "k"));
+    EXPECT_TRUE(c.hasKey("Robot", "max_v"));
+}
+
 TEST(CIniConfig, OverridesNeverTouchTheFileOnDisk) {
     const std::string text = "[Route]\nspeed = 0.2 // m/s\n\n\n[Other]\nk=1\n";
     const std::string p = iniFile(text);

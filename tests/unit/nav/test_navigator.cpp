@@ -161,7 +161,7 @@ TEST(RiskAwareNav, SaveConfigFileLoadsBackComplete) {
         navConfig("[CRiskAwareReactiveNav]\nspeed_limiters = CStoppingDistanceLimiter "
                   "CAdaptiveSpeedLimiter\n[CStoppingDistanceLimiter]\nmargin = 0.35\n"
                   "[CAdaptiveSpeedLimiter]\nspeeds = 0.9 0.4\nmargins = 0.2 0.1\n"
-                  "[Robot]\nradius = 0.3\n"));
+                  "[Robot]\nradius = 0.3\nmax_v = 1.0\n"));
     a.loadConfigFile(in);
     mrpt::math::CPolygon shape;
     for (int i = 0; i < 5; i++)

@@ -51,6 +51,9 @@ class CIniConfig : public mrpt::config::CConfigFile {
     std::string readString(const std::string& section, const std::string& name,
                            const std::string& defaultStr,
                            bool failIfNotFound = false) const override;
+    /** MRPT's write, and hasKey()'s key sets forgotten. */
+    void writeString(const std::string& section, const std::string& name,
+                     const std::string& str) override;
 
   private:
     /** Throws CBadInputError (file, line) for a key given twice in a section
@@ -59,6 +62,9 @@ class CIniConfig : public mrpt::config::CConfigFile {
     static void checkLines(const std::string& path);
     std::string m_path, m_folder;
     mutable std::set<std::pair<std::string, std::string>> m_read;
+    /** hasKey(): each section's keys (lower case) by section, listed once: MRPT's
+     * getAllKeys() per call made a 10000-waypoint route_file quadratic. */
+    mutable std::map<std::string, std::set<std::string>> m_keys;
     std::set<std::pair<std::string, std::string>> m_overridden;  ///< lower case
 };
 

@@ -24,6 +24,9 @@ class CStoppingDistanceLimiter : public common::CSpeedLimiter {
          * "both" (the nearer of the two: a robot that lags its planned turn
          * sweeps between them). */
         std::string corridor = "both";
+        /** The section read (its errors name it): [StoppingRule] of
+         * risknav-simulate, [CStoppingDistanceLimiter] in MRPT's engine. */
+        std::string section = "StoppingRule";
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                 const std::string& s) override;
