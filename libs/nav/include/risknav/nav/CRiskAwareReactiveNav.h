@@ -67,7 +67,11 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
 
     /** MRPT's loadConfigFile() plus [CRiskAwareReactiveNav], [Robot] and each
      * limiter's section. An unknown limiter name throws CBadInputError
-     * naming the known ones. */
+     * naming the known ones. Values MRPT 2.5.8 takes unchecked throw
+     * CBadInputError naming the key: robotMax_V_mps / robotMax_W_degps not in
+     * (0, 100] m/s / (0, 3600] deg/s; a PTG's refDistance not in (0, 100] m,
+     * num_paths not in [2, 2000], resolution not in [5 mm, 1 m] or more than
+     * 1000 cells over refDistance, v_max / w_max as the robot's. */
     void loadConfigFile(const mrpt::config::CConfigFileBase& c) override;
     void saveConfigFile(mrpt::config::CConfigFileBase& c) const override;
     /** MRPT's engine sections from `engine` (e.g. the user's MRPT
