@@ -55,7 +55,7 @@ def main():
     if "m1" in only:
         m1(a, seeds, head)
     if "m1worlds" in only:
-        m1worlds(a, seeds)
+        m1worlds(a, seeds, head)
     if "m2" in only:
         m2(a, seeds, head)
     if "m3" in only:
@@ -122,10 +122,8 @@ def m1_world_config(explore_ini, path):
         f.write(text)
 
 
-def m1worlds(a, seeds):
+def m1worlds(a, seeds, head):
     """M1 through the engine on worlds its config was not tuned on."""
-    head = ("| run | status | waypoints | time [s] | collisions | near misses | "
-            "pose error at end [m] | MRPT errors |\n|---|---|---|---|---|---|---|---|")
     os.makedirs(a.out, exist_ok=True)
     for w in ("t_junction", "u_corridor", "rooms", "hall"):
         cfg = os.path.join(a.out, f"navigate_m1_{w}.ini")

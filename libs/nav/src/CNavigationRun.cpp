@@ -601,12 +601,15 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
         // Not a stall: the target under the robot (its footprint grown by the
         // target's allowed distance), e.g. a viewpoint by a wall that MRPT
         // approaches at mm/s as its obstacle ramp slows it (M4's plan: 45 s).
-        const auto ct = nav.currentTarget();
-        const bool targetUnder =
-            ct && std::hypot(ct->point.x - believed.x, ct->point.y - believed.y) <=
-                      world.robot.radius + ct->allowedDistance;
-        if (targetUnder || std::hypot(truth.x - stallSpot.x, truth.y - stallSpot.y) >
-                               options.stall_distance) {
+        // (asked only while the robot is on the spot: it copies MRPT's route)
+        auto targetUnder = [&] {
+            const auto ct = nav.currentTarget();
+            return ct && std::hypot(ct->point.x - believed.x, ct->point.y - believed.y) <=
+                             world.robot.radius + ct->allowedDistance;
+        };
+        if (std::hypot(truth.x - stallSpot.x, truth.y - stallSpot.y) >
+                options.stall_distance ||
+            targetUnder()) {
             stallSpot = mrpt::math::TPoint2D(truth.x, truth.y);
             stallSince = t;
         } else if (options.stall_timeout > 0 && t - stallSince >= options.stall_timeout) {

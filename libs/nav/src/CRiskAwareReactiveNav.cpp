@@ -38,17 +38,18 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
             throwBadKey(c, sec, key, layered.read_string(sec, key, numberText(v)),
                         r.describe());
     };
+    const TRange speed{0, 100, true, false, "m/s"}, turn{0, 3600, true, false, "deg/s"},
+        reach{0, 100, true, false, "m"};
     const std::string abs = "CAbstractPTGBasedReactive";
     const auto& p = nav.getCurrentRobotSpeedLimits();
-    check(abs, "robotMax_V_mps", p.robotMax_V_mps, TRange{0, 100, true, false, "m/s"});
-    check(abs, "robotMax_W_degps", p.robotMax_W_radps * 180 / M_PI,
-          TRange{0, 3600, true, false, "deg/s"});
+    check(abs, "robotMax_V_mps", p.robotMax_V_mps, speed);
+    check(abs, "robotMax_W_degps", p.robotMax_W_radps * 180 / M_PI, turn);
     const std::string sec = "CReactiveNavigationSystem";
     for (size_t i = 0; i < nav.getPTG_count(); i++) {
         const auto* ptg = nav.getPTG(i);
         const std::string k = "PTG" + std::to_string(i) + "_";
         const double ref = ptg->getRefDistance();
-        check(sec, k + "refDistance", ref, TRange{0, 100, true, false, "m"});
+        check(sec, k + "refDistance", ref, reach);
         check(sec, k + "num_paths", ptg->getAlphaValuesCount(),
               TRange::closed(2, 2000, "paths"));
         // the cell size of MRPT's collision grid (CPTG_DiffDrive_*)
@@ -58,10 +59,8 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
             throwBadKey(c, sec, k + "resolution", numberText(res),
                         "at most 1000 cells over " + k + "refDistance = " +
                             numberText(ref) + " m (MRPT's collision grid)");
-        check(sec, k + "v_max_mps", ptg->getMaxLinVel(),
-              TRange{0, 100, true, false, "m/s"});
-        check(sec, k + "w_max_dps", ptg->getMaxAngVel() * 180 / M_PI,
-              TRange{0, 3600, true, false, "deg/s"});
+        check(sec, k + "v_max_mps", ptg->getMaxLinVel(), speed);
+        check(sec, k + "w_max_dps", ptg->getMaxAngVel() * 180 / M_PI, turn);
     }
 }
 
@@ -110,9 +109,14 @@ CRiskAwareReactiveNav::CRiskAwareReactiveNav(mrpt::nav::CRobot2NavInterface& r,
 
 std::optional<CRiskAwareReactiveNav::TCurrentTarget>
 CRiskAwareReactiveNav::currentTarget() const {
+    return currentTarget(getWaypointNavStatus());
+}
+
+std::optional<CRiskAwareReactiveNav::TCurrentTarget> CRiskAwareReactiveNav::currentTarget(
+    const mrpt::nav::TWaypointStatusSequence& st) const {
     if (getCurrentState() != NAVIGATING)
         return std::nullopt;
-    for (const auto& w : getWaypointNavStatus().waypoints)
+    for (const auto& w : st.waypoints)
         if (!w.reached)
             return TCurrentTarget{w.target, w.allowed_distance};
     if (m_navigationParams)
@@ -128,15 +132,16 @@ void CRiskAwareReactiveNav::navigationStep() {
     std::optional<mrpt::math::TPoint2D> target;
     double targetAllowed = 0;
     std::optional<mrpt::math::TPoint2D> lastStepPose;
-    if (limitDeg > 0)
-        if (const auto ct = currentTarget()) {
+    if (limitDeg > 0) {
+        const auto st = getWaypointNavStatus();  // one copy for both
+        if (const auto ct = currentTarget(st)) {
             target = ct->point;
             targetAllowed = ct->allowedDistance;
-            const auto st = getWaypointNavStatus();
             if (st.last_robot_pose.x != mrpt::nav::TWaypoint::INVALID_NUM)
                 lastStepPose =
                     mrpt::math::TPoint2D(st.last_robot_pose.x, st.last_robot_pose.y);
         }
+    }
     if (target) {
         mrpt::math::TPose2D pose, odo;
         mrpt::math::TTwist2D vel;

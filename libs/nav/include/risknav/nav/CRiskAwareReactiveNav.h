@@ -106,6 +106,9 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     void loggingGetWSObstaclesAndShape(mrpt::nav::CLogFileRecord& out_log) override;
 
   private:
+    /** currentTarget() from a copy of MRPT's waypoint status. */
+    std::optional<TCurrentTarget> currentTarget(
+        const mrpt::nav::TWaypointStatusSequence& st) const;
     std::vector<common::CSpeedLimiter::Ptr> m_limiters;
     TLimitRecord m_last;
     const mrpt::config::CConfigFileBase* m_engine = nullptr;
