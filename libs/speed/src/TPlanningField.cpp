@@ -1,6 +1,6 @@
 #include <risknav/speed/TPlanningField.h>
 
-#include <opencv2/imgproc.hpp>
+#include <risknav/mapping/distance_transform.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,32 +14,19 @@ namespace {
 /** Distance [m] from every cell to the nearest cell where `source` is set,
  * measured to that cell's near edge (centre distance - half a cell: a robot
  * disc at a cell centre with radius below this does not touch it);
- * `borderIsSource`: the ring outside the grid counts as a source. */
+ * `borderIsSource`: the ring outside the grid counts as a source. The
+ * centre distance is the float square root of the exact squared one (what
+ * OpenCV's precise transform, used here before, gives). */
 std::vector<float> distanceTo(const std::vector<uint8_t>& source, int n, double res,
                               bool borderIsSource) {
-    const int pad = borderIsSource ? 1 : 0;
-    // OpenCV measures to the nearest zero pixel
-    cv::Mat m(n + 2 * pad, n + 2 * pad, CV_8U, cv::Scalar(borderIsSource ? 0 : 255));
-    bool any = borderIsSource;
-    for (int j = 0; j < n; j++) {
-        const uint8_t* src = &source[size_t(j) * n];
-        uint8_t* row = m.ptr<uint8_t>(j + pad) + pad;
-        for (int i = 0; i < n; i++) {
-            any = any || src[i] != 0;
-            row[i] = src[i] != 0 ? 0 : 255;
-        }
-    }
-    std::vector<float> out(size_t(n) * n, std::numeric_limits<float>::infinity());
-    if (!any)
-        return out;
-    cv::Mat d;
-    cv::distanceTransform(m, d, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
-    for (int j = 0; j < n; j++) {
-        const float* row = d.ptr<float>(j + pad) + pad;
-        float* o = &out[size_t(j) * n];
-        for (int i = 0; i < n; i++)
-            o[i] = float(std::max(0.0, (row[i] - 0.5) * res));
-    }
+    std::vector<int32_t> d2;
+    mapping::squaredDistanceTransform(source, n, n, borderIsSource, d2);
+    // one source anywhere gives every cell a distance: none, or all
+    if (d2.empty() || d2[0] == mapping::kNoSource)
+        return std::vector<float>(d2.size(), std::numeric_limits<float>::infinity());
+    std::vector<float> out(d2.size());
+    for (size_t k = 0; k < d2.size(); k++)
+        out[k] = float(std::max(0.0, (double(std::sqrt(float(d2[k]))) - 0.5) * res));
     return out;
 }
 }  // namespace

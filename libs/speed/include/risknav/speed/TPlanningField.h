@@ -7,7 +7,7 @@ namespace risknav::speed {
 /** What the planners and the speed rules read from one cycle's free-space
  * map: per cell the clearance [m] to the nearest non-free cell (obstacle or
  * undecided; the ring outside the grid counts as non-free). Exact Euclidean
- * distances (OpenCV's distance transform) from the cell's centre to the other
+ * distances (mapping::squaredDistanceTransform) from the cell's centre to the other
  * cell's near edge (centre distance - half a cell). A frontier cell is an
  * undecided cell 4-adjacent to a free cell: where the unknown begins
  * (undecided cells walled off behind obstacles are none).

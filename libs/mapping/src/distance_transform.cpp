@@ -1,0 +1,100 @@
+#include <risknav/mapping/distance_transform.h>
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace risknav::mapping {
+void squaredDistanceTransform(const std::vector<uint8_t>& source, int w, int h,
+                              bool borderIsSource, std::vector<int32_t>& out) {
+    if (w < 0 || h < 0 || source.size() != size_t(w) * size_t(h))
+        throw std::invalid_argument("distance transform: source is not w x h");
+    out.assign(source.size(), kNoSource);
+    if (source.empty())
+        return;
+    // Pass 1, along the columns, all columns at once row by row (contiguous,
+    // branch-free): the distance in cells to the nearest source in the same
+    // column; kFar (> any real one, and kFar + 1 does not overflow) for none.
+    const int32_t kFar = 1 << 24;
+    std::vector<int32_t> col(source.size());
+    const int32_t edge = borderIsSource ? 1 : kFar;
+    for (int i = 0; i < w; i++)
+        col[size_t(i)] = source[size_t(i)] ? 0 : edge;
+    for (int j = 1; j < h; j++) {
+        const uint8_t* s = &source[size_t(j) * w];
+        const int32_t* up = &col[size_t(j - 1) * w];
+        int32_t* c = &col[size_t(j) * w];
+        for (int i = 0; i < w; i++)
+            c[i] = s[i] ? 0 : std::min(up[i] + 1, kFar);
+    }
+    {
+        int32_t* c = &col[size_t(h - 1) * w];
+        for (int i = 0; i < w; i++)
+            c[i] = std::min(c[i], edge);
+    }
+    for (int j = h - 2; j >= 0; j--) {
+        const int32_t* down = &col[size_t(j + 1) * w];
+        int32_t* c = &col[size_t(j) * w];
+        for (int i = 0; i < w; i++)
+            c[i] = std::min(c[i], down[i] + 1);
+    }
+    // Pass 2, along each row: the lower envelope of the parabolas
+    // (x - q)^2 + f(q), f(q) = col(q)^2, over the cells q that have one
+    // (and the border cells q = -1 and q = w with f = 0 when the border is a
+    // source). Exact integers: a breakpoint is kept as a fraction
+    // num / den (den > 0) and compared by cross-multiplication.
+    const size_t cap = size_t(w) + 2;
+    std::vector<int64_t> vq(cap), vh(cap), zn(cap), zd(cap);  // vh = f(q) + q^2
+    for (int j = 0; j < h; j++) {
+        const int32_t* c = &col[size_t(j) * w];
+        int32_t* o = &out[size_t(j) * w];
+        int k = -1;  // the last parabola of the envelope; z[0] = -inf
+        auto push = [&](int64_t q, int64_t f) {
+            const int64_t hq = f + q * q;
+            int64_t num = 0, den = 1;
+            while (k >= 0) {
+                num = hq - vh[size_t(k)];
+                den = 2 * (q - vq[size_t(k)]);
+                // parabola k is nowhere the lowest: it meets the new one at
+                // or before where it meets parabola k - 1
+                if (k > 0 && num * zd[size_t(k)] <= zn[size_t(k)] * den)
+                    k--;
+                else
+                    break;
+            }
+            k++;
+            vq[size_t(k)] = q;
+            vh[size_t(k)] = hq;
+            zn[size_t(k)] = num;
+            zd[size_t(k)] = den;
+        };
+        if (borderIsSource)
+            push(-1, 0);
+        // A source inside a run of sources (its row neighbours sources too)
+        // is lowest only at its own cell, which is 0 anyway: not pushed
+        // (most of a map that is still unknown is such runs).
+        for (int i = 0; i < w; i++)
+            if (c[i] < kFar &&
+                !(c[i] == 0 && i > 0 && i + 1 < w && c[i - 1] == 0 && c[i + 1] == 0))
+                push(i, int64_t(c[i]) * c[i]);
+        if (borderIsSource)
+            push(w, 0);
+        if (k < 0)
+            continue;  // no source in this row's reach
+        // each cell takes the envelope's parabola over it: the next one
+        // starts where x > its breakpoint, i.e. x * den > num
+        int e = 0;
+        for (int64_t x = 0; x < w; x++) {
+            while (e < k && x * zd[size_t(e) + 1] > zn[size_t(e) + 1])
+                e++;
+            if (c[x] == 0) {
+                o[x] = 0;
+                continue;
+            }
+            const int64_t d = x - vq[size_t(e)];
+            const int64_t v = d * d + vh[size_t(e)] - vq[size_t(e)] * vq[size_t(e)];
+            o[x] = v >= int64_t(kNoSource) ? kNoSource : int32_t(v);
+        }
+    }
+}
+}  // namespace risknav::mapping
