@@ -260,6 +260,12 @@ INSTANTIATE_TEST_SUITE_P(
              "[CReactiveNavigationSystem]\nPTG0_num_paths = 100000000\n"
              "[CRiskAwareReactiveNav]",
              "[CReactiveNavigationSystem] PTG0_num_paths = '100000000'"},
+        TBad{"unstick_time_negative", "speed_limiters = CStoppingDistanceLimiter",
+             "speed_limiters = CStoppingDistanceLimiter\nunstick_time = -5",
+             "[CRiskAwareReactiveNav] unstick_time = '-5'"},
+        TBad{"unstick_heading_zero", "speed_limiters = CStoppingDistanceLimiter",
+             "speed_limiters = CStoppingDistanceLimiter\nunstick_heading_deg = 0",
+             "[CRiskAwareReactiveNav] unstick_heading_deg = '0'"},
         TBad{"unknown_key", "goal_tolerance", "goal_tolerence", "goal_tolerence"},
         TBad{"engine_key_missing", "engine_config +=.*",
              "engine_config =", "MRPT's reactive engine refused the config"}),
@@ -367,6 +373,20 @@ TEST(NavigateE2E, AdaptiveLimiterReachesTheOfficeDestinationsThroughTheEngine) {
     const double limited = s["time_per_limiter_s"]["CAdaptiveSpeedLimiter"].get<double>();
     EXPECT_GT(limited, 5.0);
     EXPECT_LT(limited, s["time_s"].get<double>() * 0.9);
+}
+
+TEST(NavigateE2E, AStuckRobotIsTurnedToItsTargetAndGoesOn) {
+    // Office seed 9: after the first destination MRPT froze at the
+    // door-to-corridor turn (1e-4 m/s, heading fixed, 55 deg off the next
+    // destination) and the run ended stalled after 120 s with 1 of 4. With
+    // the unstick turn (unstick_time 5 s) it completes.
+    const json s = navRun(sourcePath("datasets/office/navigate_m1.ini"), freshDir("m1s9"),
+                          "--seed 9");
+    EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
+    EXPECT_EQ(s["waypoints_reached"], 4);
+    EXPECT_EQ(s["collisions"], 0);
+    ASSERT_TRUE(s["time_per_limiter_s"].contains("unstick"));
+    EXPECT_GT(s["time_per_limiter_s"]["unstick"].get<double>(), 0.0);
 }
 
 TEST(NavigateE2E, BadWaypointFileIsAClearError) {

@@ -546,7 +546,8 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
         const auto& lim = nav.lastLimit();
         rec.desired = lim.desired;
         rec.limit = lim.limit;
-        rec.limiter = lim.turning ? "turn_in_place" : lim.limiter;
+        rec.limiter =
+            lim.unsticking ? "unstick" : (lim.turning ? "turn_in_place" : lim.limiter);
         rec.reason = lim.reason;
         rec.clearance = world.pointClearance(truth.x, truth.y) - world.robot.radius;
         rec.waypoint = nav.getWaypointNavStatus().waypoint_index_current_goal;

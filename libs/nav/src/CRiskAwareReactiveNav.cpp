@@ -80,6 +80,8 @@ void CRiskAwareReactiveNav::TOptions::loadFromConfigFile(
         speed_limiters.push_back(name);
     turn_in_place_deg = readDouble(c, s, "turn_in_place_deg", turn_in_place_deg);
     turn_rate_deg = readDouble(c, s, "turn_rate_deg", turn_rate_deg);
+    unstick_time = readDouble(c, s, "unstick_time", unstick_time);
+    unstick_heading_deg = readDouble(c, s, "unstick_heading_deg", unstick_heading_deg);
 }
 
 void CRiskAwareReactiveNav::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
@@ -90,6 +92,8 @@ void CRiskAwareReactiveNav::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     writeKey(c, s, "speed_limiters", list);
     writeKey(c, s, "turn_in_place_deg", turn_in_place_deg);
     writeKey(c, s, "turn_rate_deg", turn_rate_deg);
+    writeKey(c, s, "unstick_time", unstick_time);
+    writeKey(c, s, "unstick_heading_deg", unstick_heading_deg);
 }
 
 void CRiskAwareReactiveNav::TOptions::validate() const {
@@ -98,6 +102,9 @@ void CRiskAwareReactiveNav::TOptions::validate() const {
     checkKey(kSection, "turn_in_place_deg", turn_in_place_deg,
              TRange::closed(0, 180, "deg"));
     checkKey(kSection, "turn_rate_deg", turn_rate_deg, TRange::closed(1, 360, "deg/s"));
+    checkKey(kSection, "unstick_time", unstick_time, TRange::closed(0, 1e5, "s"));
+    checkKey(kSection, "unstick_heading_deg", unstick_heading_deg,
+             TRange::closed(1, 180, "deg"));
 }
 
 CRiskAwareReactiveNav::CRiskAwareReactiveNav(mrpt::nav::CRobot2NavInterface& r,
@@ -132,7 +139,7 @@ void CRiskAwareReactiveNav::navigationStep() {
     std::optional<mrpt::math::TPoint2D> target;
     double targetAllowed = 0;
     std::optional<mrpt::math::TPoint2D> lastStepPose;
-    if (limitDeg > 0) {
+    if (limitDeg > 0 || riskOptions.unstick_time > 0) {
         const auto st = getWaypointNavStatus();  // one copy for both
         if (const auto ct = currentTarget(st)) {
             target = ct->point;
@@ -163,7 +170,27 @@ void CRiskAwareReactiveNav::navigationStep() {
             const double bearing = mrpt::math::wrapToPi(
                 std::atan2(target->y - pose.y, target->x - pose.x) - pose.phi);
             const double deg = std::abs(bearing) * 180 / M_PI;
-            m_turning = deg > (m_turning ? limitDeg / 3 : limitDeg);
+            // stuck: neither 5 cm nor 5 deg of motion for unstick_time (a
+            // robot MRPT dithers by +-5 deg is not caught: turned to a
+            // target behind a corner, MRPT's way round it was lost); a clock
+            // gone back, or a new run, starts the watch again
+            const double now = mrpt::Clock::toDouble(mrpt::Clock::now());
+            if (!m_stillPose || now < m_stillSince ||
+                std::hypot(pose.x - m_stillPose->x, pose.y - m_stillPose->y) > 0.05 ||
+                std::abs(mrpt::math::wrapToPi(pose.phi - m_stillPose->phi)) >
+                    5 * M_PI / 180) {
+                m_stillPose = pose;
+                m_stillSince = now;
+            }
+            const bool stuck = riskOptions.unstick_time > 0 &&
+                               now - m_stillSince >= riskOptions.unstick_time;
+            const double unstickDeg = riskOptions.unstick_heading_deg;
+            if (m_turning)
+                m_turning = deg > (m_unsticking ? unstickDeg : limitDeg) / 3;
+            else if (limitDeg > 0 && deg > limitDeg)
+                m_turning = true, m_unsticking = false;
+            else if (stuck && deg > unstickDeg)
+                m_turning = true, m_unsticking = true;
             if (m_turning) {
                 mrpt::kinematics::CVehicleVelCmd_DiffDriven cmd;
                 cmd.lin_vel = 0;
@@ -172,11 +199,12 @@ void CRiskAwareReactiveNav::navigationStep() {
                 m_robot.changeSpeeds(cmd);
                 m_last = {};
                 m_last.turning = true;
+                m_last.unsticking = m_unsticking;
                 return;
             }
         }
     }
-    m_turning = false;
+    m_turning = m_unsticking = false;
     m_last = {};  // set by generate_vel_cmd() when MRPT sends a new command
     mrpt::nav::CReactiveNavigationSystem::navigationStep();
 }

@@ -34,6 +34,8 @@ TRgb limiterColour(const std::string& name) {
         return {0, 160, 70};
     if (name == "turn_in_place")
         return {120, 120, 120};
+    if (name == "unstick")
+        return {20, 20, 20};
     return {150, 60, 190};
 }
 }  // namespace
@@ -197,7 +199,9 @@ void drawSpeedProfile(const TNavRunResult& r, const std::string& title,
                        ? "robot speed, no limiter active"
                        : (who == "turn_in_place"
                               ? "robot speed, turning in place to a waypoint behind"
-                              : "robot speed, limited by " + who))
+                              : (who == "unstick"
+                                     ? "robot speed, turning a stuck robot to its target"
+                                     : "robot speed, limited by " + who)))
                 : "";
         plot.addSeries(label, x, y, limiterColour(who), 2);
         i = j;

@@ -37,6 +37,14 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
          * PTG would drive a robot with a forward laser backwards blind. */
         double turn_in_place_deg = 100;
         double turn_rate_deg = 30;  ///< [deg/s] of that turn
+        /** [s] Beyond MRPT: a robot that has neither left a 5 cm circle
+         * nor turned 5 deg for this long while MRPT navigates (MRPT 2.5.8
+         * can creep at 1e-4 m/s for minutes at a turn, its own "not
+         * approaching" alarm silent) is turned in place toward its target
+         * when that is more than unstick_heading_deg off its heading, until
+         * it is within a third of that angle (0 = off). */
+        double unstick_time = 5;
+        double unstick_heading_deg = 15;  ///< [deg] see unstick_time
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                 const std::string& section) override;
@@ -52,6 +60,7 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
         double desired = 0;    ///< [m/s] |v| MRPT chose
         double limit = 0;      ///< [m/s] the smallest limit (desired when none limited)
         bool turning = false;  ///< this cycle turned in place (MRPT did not plan)
+        bool unsticking = false;  ///< that turn is an unstick turn (unstick_time)
     };
 
     CRiskAwareReactiveNav(mrpt::nav::CRobot2NavInterface& robot,
@@ -62,7 +71,8 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     common::TRobotOptions robot;  ///< [Robot]: radius, decel, t_delay for the limiters
 
     /** MRPT's step, or a turn in place toward a target behind the robot
-     * (turn_in_place_deg) until it is within a third of that angle. */
+     * (turn_in_place_deg) until it is within a third of that angle, or
+     * toward the target of a robot stuck for unstick_time. */
     void navigationStep() override;
 
     /** MRPT's loadConfigFile() plus [CRiskAwareReactiveNav], [Robot] and each
@@ -113,6 +123,10 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     TLimitRecord m_last;
     const mrpt::config::CConfigFileBase* m_engine = nullptr;
     bool m_turning = false;
+    bool m_unsticking = false;
+    /** Where and when the robot last moved 5 cm or turned 5 deg (unstick_time). */
+    std::optional<mrpt::math::TPose2D> m_stillPose;
+    double m_stillSince = 0;
 };
 
 /** Registers libs/nav's MRPT classes and the limiters of the libraries below
