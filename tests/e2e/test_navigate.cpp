@@ -263,6 +263,10 @@ INSTANTIATE_TEST_SUITE_P(
         TBad{"unstick_time_negative", "speed_limiters = CStoppingDistanceLimiter",
              "speed_limiters = CStoppingDistanceLimiter\nunstick_time = -5",
              "[CRiskAwareReactiveNav] unstick_time = '-5'"},
+        TBad{"unstick_time_too_short", "speed_limiters = CStoppingDistanceLimiter",
+             "speed_limiters = CStoppingDistanceLimiter\nunstick_time = 0.2",
+             "[CRiskAwareReactiveNav] unstick_time = '0.2': must be 0 (off) or at least "
+             "2"},
         TBad{"unstick_heading_zero", "speed_limiters = CStoppingDistanceLimiter",
              "speed_limiters = CStoppingDistanceLimiter\nunstick_heading_deg = 0",
              "[CRiskAwareReactiveNav] unstick_heading_deg = '0'"},

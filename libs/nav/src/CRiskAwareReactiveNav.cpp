@@ -103,6 +103,9 @@ void CRiskAwareReactiveNav::TOptions::validate() const {
              TRange::closed(0, 180, "deg"));
     checkKey(kSection, "turn_rate_deg", turn_rate_deg, TRange::closed(1, 360, "deg/s"));
     checkKey(kSection, "unstick_time", unstick_time, TRange::closed(0, 1e5, "s"));
+    // below 2 s a robot driving 0.25 m/s (5 cm a 0.2 s cycle) would count as stuck
+    checkRule(unstick_time == 0 || unstick_time >= 2, kSection, "unstick_time",
+              numberText(unstick_time), "must be 0 (off) or at least 2 s");
     checkKey(kSection, "unstick_heading_deg", unstick_heading_deg,
              TRange::closed(1, 180, "deg"));
 }

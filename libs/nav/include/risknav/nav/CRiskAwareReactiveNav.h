@@ -42,7 +42,7 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
          * can creep at 1e-4 m/s for minutes at a turn, its own "not
          * approaching" alarm silent) is turned in place toward its target
          * when that is more than unstick_heading_deg off its heading, until
-         * it is within a third of that angle (0 = off). */
+         * it is within a third of that angle (0 = off, else >= 2 s). */
         double unstick_time = 5;
         double unstick_heading_deg = 15;  ///< [deg] see unstick_time
 
