@@ -21,7 +21,9 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-APP = os.path.join(ROOT, "build", "bin", "risknav-navigate")
+# RISKNAV_NAVIGATE: another build of the app (e.g. a copy, while this one is rebuilt)
+APP = os.environ.get("RISKNAV_NAVIGATE",
+                     os.path.join(ROOT, "build", "bin", "risknav-navigate"))
 
 
 def run(cfg, out, *extra):

@@ -32,6 +32,29 @@ std::string officeConfig() {
                               std::regex("office.png"),
                               sourcePath("datasets/office/office.png"));
 }
+// cycles.csv without its last column (step_ms, the wall time of a step).
+std::vector<std::string> cyclesWithoutStepTime(const std::string& file) {
+    std::vector<std::string> lines = readLines(file);
+    for (auto& l : lines)
+        l = l.substr(0, l.rfind(','));
+    return lines;
+}
+// The run's config_effective.ini, given as the config, runs the same run:
+// it carries the engine's, the navigator's, the limiters' and MCL's sections.
+void expectEffectiveConfigReproduces(const std::string& out, const json& s) {
+    const std::string eff = out + "/config_effective.ini";
+    const auto keys = iniKeys(eff);
+    for (const char* k : {"[CRiskAwareReactiveNav]speed_limiters",
+                          "[CReactiveNavigationSystem]PTG0_Type", "[Robot]max_v"})
+        EXPECT_TRUE(keys.count(k)) << k;
+    const std::string again = out + "-again";
+    const json r = navRun(eff, again);
+    EXPECT_EQ(r["time_s"], s["time_s"]);
+    EXPECT_EQ(r["distance_m"], s["distance_m"]);
+    EXPECT_EQ(r["status"], s["status"]);
+    EXPECT_EQ(cyclesWithoutStepTime(again + "/cycles.csv"),
+              cyclesWithoutStepTime(out + "/cycles.csv"));
+}
 }  // namespace
 
 TEST(NavigateE2E, OfficeReachesEveryWaypointWithTheStoppingLimiter) {
@@ -368,8 +391,8 @@ TEST(NavigateE2E, AdaptiveLimiterReachesTheOfficeDestinationsThroughTheEngine) {
     // M1 inside MRPT's engine: the robot does not know the map; the limiter
     // builds its grids from the scans and limits the speed (seed 1 of
     // scripts/validate_navigate.py's table).
-    const json s =
-        navRun(sourcePath("datasets/office/navigate_m1.ini"), freshDir("m1"), "--seed 1");
+    const std::string out = freshDir("m1");
+    const json s = navRun(sourcePath("datasets/office/navigate_m1.ini"), out, "--seed 1");
     EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
     EXPECT_EQ(s["waypoints_reached"], 4);
     EXPECT_EQ(s["collisions"], 0);
@@ -377,6 +400,9 @@ TEST(NavigateE2E, AdaptiveLimiterReachesTheOfficeDestinationsThroughTheEngine) {
     const double limited = s["time_per_limiter_s"]["CAdaptiveSpeedLimiter"].get<double>();
     EXPECT_GT(limited, 5.0);
     EXPECT_LT(limited, s["time_s"].get<double>() * 0.9);
+    EXPECT_TRUE(
+        iniKeys(out + "/config_effective.ini").count("[CAdaptiveSpeedLimiter]speeds"));
+    expectEffectiveConfigReproduces(out, s);
 }
 
 TEST(NavigateE2E, AStuckRobotIsTurnedToItsTargetAndGoesOn) {
@@ -425,17 +451,52 @@ TEST(NavigateE2E, BadWaypointFileIsAClearError) {
     }
 }
 
+TEST(NavigateE2E, UnstickTurnsToOneTargetAreCappedSoMrptsErrorShows) {
+    // M1 in validation/explore_rooms.png (scripts/validate_navigate.py's
+    // m1worlds, seed 5): the robot gets stuck at a wall with its second
+    // destination behind it. Turning it to that target for ever hid MRPT's
+    // verdict and ran to the end; after 3 turns MRPT is left to give it.
+    const std::string w = freshDir("w");
+    std::string cfg = readFile(sourcePath("datasets/office/navigate_m1.ini"));
+    cfg = cfg.substr(0, cfg.find("[Clutter1]"));  // the office's boxes go
+    cfg = std::regex_replace(cfg, std::regex("(^|\\n)start +=[^\\n]*"),
+                             "$1start = 2.0 2.5 0");
+    cfg = std::regex_replace(cfg, std::regex("(^|\\n)goals +=[^\\n]*"),
+                             "$1goals = 9.0 2.0  15.0 9.5  16.0 2.5  3.0 4.0");
+    cfg = std::regex_replace(
+        cfg, std::regex("(^|\\n)map_file +=[^\\n]*"),
+        "$1map_file = " + sourcePath("datasets/validation/explore_rooms.png"));
+    cfg += "\n[Clutter1]\nx = 14.0\ny = 3.5\nradius = 0.3\n";  // explore_rooms.ini's
+    writeFile(w + "/n.ini", cfg);
+    const std::string out = freshDir("out");
+    const json s = navRun(w + "/n.ini", out, "--seed 5");
+    EXPECT_EQ(s["status"], "navigation_error") << s["navigation_error"];
+    EXPECT_EQ(s["waypoints_reached"], 1);
+    const auto lines = readLines(out + "/cycles.csv");
+    int turns = 0;
+    bool before = false;
+    for (size_t i = 1; i < lines.size(); i++) {
+        const bool now = lines[i].find(",unstick,target ") != std::string::npos;
+        turns += now && !before;
+        before = now;
+    }
+    EXPECT_EQ(turns, 3);
+}
+
 TEST(NavigateE2E, MclLocalizationOnTheLaserKeepsThePoseErrorSmall) {
     // The same best route, localized by MRPT's CMonteCarloLocalization2D on
     // the simulated laser and the map instead of dead reckoning.
-    const json s = navRun(sourcePath("datasets/risk-two-routes/navigate.ini"),
-                          freshDir("mcl"), "--seed 1 --set Navigate.localization=mcl");
+    const std::string out = freshDir("mcl");
+    const json s = navRun(sourcePath("datasets/risk-two-routes/navigate.ini"), out,
+                          "--seed 1 --set Navigate.localization=mcl");
     EXPECT_EQ(s["localization"], "mcl");
     EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
     EXPECT_LT(s["pose_error_final_m"].get<double>(), 0.3);
     EXPECT_GT(s["pose_error_max_m"].get<double>(),
               0.0);  // it is an estimate, not the truth
     EXPECT_EQ(s["collisions"], 0);
+    EXPECT_TRUE(iniKeys(out + "/config_effective.ini").count("[PF_options]PF_algorithm"));
+    expectEffectiveConfigReproduces(out, s);
 }
 
 TEST(NavigateE2E, AfraidExperimentIsReproducible) {

@@ -169,7 +169,13 @@ void CIniConfig::throwOnUnreadKeys(const std::vector<std::string>& only) const {
     const auto unknown = unreadKeys(only);
     if (unknown.empty())
         return;
-    std::string msg = m_path + ": unknown key " + unknown.front();
+    // "[section] key": a key that came from --set is said to
+    const std::string& first = unknown.front();
+    const auto close = first.find("] ");
+    const bool fromSet =
+        close != std::string::npos &&
+        isOverridden(first.substr(1, close - 1), first.substr(close + 2));
+    std::string msg = m_path + (fromSet ? " (--set)" : "") + ": unknown key " + first;
     if (unknown.size() > 1)
         msg += " (and " + std::to_string(unknown.size() - 1) + " more)";
     throw CBadInputError(msg + "; see config/ for the documented keys");

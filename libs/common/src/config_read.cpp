@@ -86,6 +86,19 @@ std::string TRange::describe() const {
     return d;
 }
 
+void copyConfigKeys(
+    const CConfigFileBase& from, CConfigFileBase& to,
+    const std::function<bool(const std::string&, const std::string&)>& skip) {
+    std::vector<std::string> sections, keys;
+    from.getAllSections(sections);
+    for (const auto& s : sections) {
+        from.getAllKeys(s, keys);
+        for (const auto& k : keys)
+            if (!skip || !skip(s, k))
+                to.write(s, k, from.read_string(s, k, ""));
+    }
+}
+
 std::string configWhere(const CConfigFileBase& c) {
     if (const auto* ini = dynamic_cast<const CIniConfig*>(&c))
         return ini->path() + ": ";

@@ -503,7 +503,14 @@ void runAfraidExperiment(const TAppContext& ctx) {
     mrpt::config::CConfigFileMemory effective;
     xo.saveToConfigFile(effective, kSec);
     nr.saveToConfigFile(effective);
-    lo.saveToConfigFile(effective, "CAfraidSpeedLimiter");
+    {
+        // without afraid_file: the experiment learns it (and refuses the key)
+        mrpt::config::CConfigFileMemory l;
+        lo.saveToConfigFile(l, "CAfraidSpeedLimiter");
+        copyConfigKeys(l, effective, [](const std::string&, const std::string& k) {
+            return k == "afraid_file";
+        });
+    }
     proto.detector.saveToConfigFile(effective);
     proto.mcl.saveToConfigFile(effective);
     commitRun(ctx, out, summary, effective);

@@ -98,6 +98,8 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
         const_cast<mrpt::system::CTimeLogger&>(probe.getDelaysTimeLogger()).disable();
         try {
             probe.loadConfigFile(c);
+            m_navigatorConfig = mrpt::config::CConfigFileMemory();
+            probe.saveConfigFile(m_navigatorConfig);
         } catch (const CBadInputError&) {
             throw;
         } catch (const std::exception& e) {
@@ -188,6 +190,7 @@ void CNavigationRun::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
     world.saveToConfigFile(c);
     if (options.localization == "mcl")
         mcl.saveToConfigFile(c);
+    copyConfigKeys(m_navigatorConfig, c);
 }
 
 void CNavigationRun::loadRoute(CIniConfig& c) {

@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <optional>
+#include <set>
 #include <sstream>
 
 using namespace risknav::common;
@@ -23,6 +24,29 @@ using namespace risknav::common;
 namespace risknav::nav {
 namespace {
 const char* kSection = "CRiskAwareReactiveNav";
+constexpr int kMaxUnstickTurns = 3;  // per target (see navigationStep())
+
+// A config that records the keys read from it (which of the keys MRPT's
+// saveConfigFile() writes its loadConfigFile() reads back).
+class CReadRecordingConfig : public mrpt::config::CConfigFileMemory {
+  public:
+    using mrpt::config::CConfigFileMemory::CConfigFileMemory;
+    bool wasRead(const std::string& section, const std::string& key) const {
+        return m_read.count(section + "\n" + key) > 0;
+    }
+
+  protected:
+    std::string readString(const std::string& section, const std::string& name,
+                           const std::string& def,
+                           bool failIfNotFound = false) const override {
+        m_read.insert(section + "\n" + name);
+        return mrpt::config::CConfigFileMemory::readString(section, name, def,
+                                                           failIfNotFound);
+    }
+
+  private:
+    mutable std::set<std::string> m_read;
+};
 
 // Values MRPT 2.5.8 takes without a check and then fails on at every step
 // (robotMax_V_mps <= 0 or NaN: an assert each cycle, the run "completes"),
@@ -178,6 +202,8 @@ void CRiskAwareReactiveNav::navigationStep() {
             // target behind a corner, MRPT's way round it was lost); a clock
             // gone back, or a new run, starts the watch again
             const double now = mrpt::Clock::toDouble(mrpt::Clock::now());
+            if (m_stillPose && now < m_stillSince)
+                m_unstuck.reset();
             if (!m_stillPose || now < m_stillSince ||
                 std::hypot(pose.x - m_stillPose->x, pose.y - m_stillPose->y) > 0.05 ||
                 std::abs(mrpt::math::wrapToPi(pose.phi - m_stillPose->phi)) >
@@ -185,15 +211,35 @@ void CRiskAwareReactiveNav::navigationStep() {
                 m_stillPose = pose;
                 m_stillSince = now;
             }
-            const bool stuck = riskOptions.unstick_time > 0 &&
-                               now - m_stillSince >= riskOptions.unstick_time;
+            const double stillFor = now - m_stillSince;
+            const bool stuck =
+                riskOptions.unstick_time > 0 && stillFor >= riskOptions.unstick_time;
+            // At most kMaxUnstickTurns per target, counted again once the
+            // robot got 0.5 m nearer to it than at the last one: at a target
+            // behind a wall, turning to it for ever would hide MRPT's own
+            // verdict (its timeout approaching the target, way_seems_blocked)
+            // and run to the end; one turn only left U-corridor robots
+            // creeping for 100 s at a bend that a second turn gets them out of.
+            const double dist = std::hypot(target->x - pose.x, target->y - pose.y);
+            const bool sameTarget =
+                m_unstuck && std::hypot(m_unstuck->target.x - target->x,
+                                        m_unstuck->target.y - target->y) < 1e-6;
+            const bool nearer = sameTarget && dist < m_unstuck->distance - 0.5;
+            const bool mayUnstick =
+                !sameTarget || nearer || m_unstuck->turns < kMaxUnstickTurns;
             const double unstickDeg = riskOptions.unstick_heading_deg;
             if (m_turning)
                 m_turning = deg > (m_unsticking ? unstickDeg : limitDeg) / 3;
             else if (limitDeg > 0 && deg > limitDeg)
                 m_turning = true, m_unsticking = false;
-            else if (stuck && deg > unstickDeg)
+            else if (stuck && deg > unstickDeg && mayUnstick) {
                 m_turning = true, m_unsticking = true;
+                m_unstuck = TUnstick{*target, dist,
+                                     sameTarget && !nearer ? m_unstuck->turns + 1 : 1};
+                m_unstickReason = "target " + numberText(std::round(deg)) +
+                                  " deg off after " + numberText(std::round(stillFor)) +
+                                  " s without motion";
+            }
             if (m_turning) {
                 mrpt::kinematics::CVehicleVelCmd_DiffDriven cmd;
                 cmd.lin_vel = 0;
@@ -203,6 +249,10 @@ void CRiskAwareReactiveNav::navigationStep() {
                 m_last = {};
                 m_last.turning = true;
                 m_last.unsticking = m_unsticking;
+                m_last.reason = m_unsticking
+                                    ? m_unstickReason
+                                    : "target " + numberText(std::round(deg)) +
+                                          " deg off, more than turn_in_place_deg";
                 return;
             }
         }
@@ -262,30 +312,22 @@ void CRiskAwareReactiveNav::saveConfigFile(mrpt::config::CConfigFileBase& c) con
     mrpt::nav::CReactiveNavigationSystem::saveConfigFile(raw);
     std::string text;
     raw.getContent(text);
-    const mrpt::config::CConfigFileMemory parsed(text);
-    auto copySection = [&](const mrpt::config::CConfigFileBase& from,
-                           const std::string& fromSection, const std::string& toSection,
-                           const std::string& prefix) {
-        std::vector<std::string> keys;
-        from.getAllKeys(fromSection, keys);
-        for (const auto& k : keys)
-            c.write(toSection, prefix + k, from.read_string(fromSection, k, ""));
-    };
-    std::vector<std::string> sections;
-    parsed.getAllSections(sections);
-    for (const auto& sec : sections)
-        copySection(parsed, sec, sec, "");
+    CReadRecordingConfig all(text);
     const std::string nav = "CReactiveNavigationSystem";
-    c.write(nav, "PTG_COUNT", int(getPTG_count()));
+    all.write(nav, "PTG_COUNT", int(getPTG_count()));
     for (size_t i = 0; i < getPTG_count(); i++) {
         const auto* ptg = getPTG(i);
         const std::string prefix = "PTG" + std::to_string(i) + "_";
-        c.write(nav, prefix + "Type", std::string(ptg->GetRuntimeClass()->className));
+        all.write(nav, prefix + "Type", std::string(ptg->GetRuntimeClass()->className));
         mrpt::config::CConfigFileMemory own;
         ptg->saveToConfigFile(own, "PTG");
         std::string ownText;
         own.getContent(ownText);
-        copySection(mrpt::config::CConfigFileMemory(ownText), "PTG", nav, prefix);
+        const mrpt::config::CConfigFileMemory parsed(ownText);
+        std::vector<std::string> keys;
+        parsed.getAllKeys("PTG", keys);
+        for (const auto& k : keys)
+            all.write(nav, prefix + k, parsed.read_string("PTG", k, ""));
     }
     // MRPT reads the shape into floats: 9 digits give the same floats back
     auto joined = [](const std::vector<double>& v) {
@@ -298,11 +340,24 @@ void CRiskAwareReactiveNav::saveConfigFile(mrpt::config::CConfigFileBase& c) con
     if (m_robotShape.size() > 0) {
         std::vector<double> xs, ys;
         m_robotShape.getAllVertices(xs, ys);
-        c.write(nav, "RobotModel_shape2D_xs", joined(xs));
-        c.write(nav, "RobotModel_shape2D_ys", joined(ys));
+        all.write(nav, "RobotModel_shape2D_xs", joined(xs));
+        all.write(nav, "RobotModel_shape2D_ys", joined(ys));
     }
     if (m_robotShapeCircularRadius > 0)
-        c.write(nav, "RobotModel_circular_shape_radius", m_robotShapeCircularRadius);
+        all.write(nav, "RobotModel_circular_shape_radius", m_robotShapeCircularRadius);
+    // MRPT also writes keys it never reads (e.g. [CMultiObjectiveMotion-
+    // OptimizerBase] dummy, dummy2), which a loader that rejects unknown keys
+    // refuses: only the keys a fresh engine reads from it are kept.
+    {
+        mrpt::nav::CReactiveNavigationSystem reader(m_robot, false, false);
+        reader.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+        reader.logging_enable_console_output = false;
+        const_cast<mrpt::system::CTimeLogger&>(reader.getDelaysTimeLogger()).disable();
+        reader.loadConfigFile(all);
+    }
+    copyConfigKeys(all, c, [&](const std::string& sec, const std::string& k) {
+        return !all.wasRead(sec, k);
+    });
     riskOptions.saveToConfigFile(c, kSection);
     robot.saveToConfigFile(c, "Robot");
     for (size_t i = 0; i < m_limiters.size(); i++)

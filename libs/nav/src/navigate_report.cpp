@@ -130,6 +130,14 @@ void drawTrajectory(const CNavigationRun& run, const TNavRunResult& r,
     for (const auto& e : r.events)
         if (e.kind == "viewpoint" || e.kind == "sensing")
             img.marker({e.x, e.y}, CMapImage::TMarker::Square, {0, 150, 150}, 12, 2);
+    size_t unsticks = 0;
+    for (size_t i = 0; i < r.cycles.size(); i++)
+        if (r.cycles[i].limiter == "unstick" &&
+            (i == 0 || r.cycles[i - 1].limiter != "unstick")) {
+            const auto& p = r.cycles[i].truePose;
+            img.marker({p.x, p.y}, CMapImage::TMarker::Triangle, {20, 20, 20}, 12, 2);
+            unsticks++;
+        }
     const auto& s = run.options.start;
     img.marker({s.x, s.y}, CMapImage::TMarker::Square, {0, 160, 0}, 14, 2);
     if (!r.track.empty())
@@ -153,6 +161,9 @@ void drawTrajectory(const CNavigationRun& run, const TNavRunResult& r,
         img.legendMarker("collision", CMapImage::TMarker::Cross, {220, 0, 0});
     if (r.safety.nearMisses())
         img.legendMarker("near miss", CMapImage::TMarker::Circle, {200, 0, 200});
+    if (unsticks)
+        img.legendMarker("unstick turn (" + std::to_string(unsticks) + ")",
+                         CMapImage::TMarker::Triangle, {20, 20, 20});
     if (!run.tags.empty())
         img.legendMarker("viewpoint / sensing point", CMapImage::TMarker::Square,
                          {0, 150, 150});
@@ -206,6 +217,11 @@ void drawSpeedProfile(const TNavRunResult& r, const std::string& title,
         plot.addSeries(label, x, y, limiterColour(who), 2);
         i = j;
     }
+    // A turn in place adds no distance: each unstick turn is a line where it began.
+    for (size_t i = 0; i < r.cycles.size(); i++)
+        if (r.cycles[i].limiter == "unstick" &&
+            (i == 0 || r.cycles[i - 1].limiter != "unstick"))
+            plot.addVLine(r.cycles[i].distance, "unstick turn", limiterColour("unstick"));
     for (const auto& e : r.events)
         if (e.kind == "viewpoint" || e.kind == "sensing") {
             double dist = 0;

@@ -197,6 +197,10 @@ TEST(CIniConfig, OverridesFromTheCommandLine) {
     EXPECT_EQ(readInt(c, "Route", "laps", 1, TRange::any()), 4);
     c.applyOverride("Route.lapz=4");  // a typo is caught as an unknown key
     EXPECT_EQ(c.unreadKeys(), (std::vector<std::string>{"[Route] lapz"}));
+    EXPECT_EQ(
+        errorOf([&] { c.throwOnUnreadKeys(); }),
+        c.path() +
+            " (--set): unknown key [Route] lapz; see config/ for the documented keys");
     EXPECT_NE(errorOf([&] {
                   c.applyOverride("Route_speed=1");
               }).find("expected SECTION.KEY=VALUE"),
@@ -258,4 +262,20 @@ TEST(CIniConfig, DuplicateKeysAndLinesWithoutEqualsAreErrors) {
     EXPECT_NO_THROW(
         CIniConfig(iniFile("; c\n# c\n// c\n@define R 0.25\n[A]\nk = ${R}\n"
                            "l = 1 \\\n  2\n[B]\nk = 2\n")));
+}
+
+TEST(ConfigRead, CopyConfigKeysCopiesAllButTheSkipped) {
+    mrpt::config::CConfigFileMemory from, to;
+    from.write("A", "x", 1);
+    from.write("A", "y", "two");
+    from.write("B", "z", 3.5);
+    to.write("A", "x", 0);
+    copyConfigKeys(from, to, [](const std::string& s, const std::string& k) {
+        return s == "A" && k == "y";
+    });
+    EXPECT_EQ(to.read_int("A", "x", -1), 1);  // overwritten
+    EXPECT_FALSE(to.keyExists("A", "y"));
+    EXPECT_DOUBLE_EQ(to.read_double("B", "z", 0), 3.5);
+    copyConfigKeys(from, to);
+    EXPECT_EQ(to.read_string("A", "y", ""), "two");
 }

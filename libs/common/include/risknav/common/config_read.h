@@ -2,6 +2,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -121,6 +122,12 @@ void checkRule(bool ok, const std::string& section, const std::string& key,
  * options wrote with saveToConfigFile() into `saved`. */
 std::string effectiveConfigText(const std::string& sourcePath,
                                 const mrpt::config::CConfigFileMemory& saved);
+
+/** Writes every key of `from` into `to` (same sections), but those for
+ * which `skip(section, key)` is true. */
+void copyConfigKeys(
+    const mrpt::config::CConfigFileBase& from, mrpt::config::CConfigFileBase& to,
+    const std::function<bool(const std::string&, const std::string&)>& skip = {});
 
 /** "file.ini: " for a CIniConfig, "" otherwise: prefix of every message;
  * with the section and key: "file.ini (--set): " when --set gave that key. */

@@ -8,6 +8,7 @@
 #include <risknav/sim/CSimRobotInterface.h>
 #include <risknav/sim/CSimWorld.h>
 
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/nav/reactive/TWaypoint.h>
 
@@ -114,6 +115,10 @@ class CNavigationRun {
      * loads itself are listed in `otherSections` (not reported unknown). */
     void loadFromConfigFile(common::CIniConfig& c, std::optional<uint64_t> seed,
                             const std::vector<std::string>& otherSections = {});
+    /** Every key the run reads: [Navigate], the world's sections, MRPT's
+     * engine sections as the engine loaded them (engine_config included),
+     * [CRiskAwareReactiveNav], [Robot], each limiter's and sensor model's
+     * section, and MCL's; loaded as a config, it reproduces the run. */
     void saveToConfigFile(mrpt::config::CConfigFileBase& c) const;
 
     /** The waypoints of a run of `laps` laps (mode back_and_forth / loop). */
@@ -126,6 +131,8 @@ class CNavigationRun {
   private:
     common::CIniConfig* m_cfg = nullptr;
     std::unique_ptr<common::CIniConfig> m_engine;  // [Navigate] engine_config
+    // the probe navigator's saveConfigFile(): the engine and limiter sections
+    mrpt::config::CConfigFileMemory m_navigatorConfig;
     void loadRoute(common::CIniConfig& c);
     void checkAgainstMap(const common::CIniConfig& c) const;
 };

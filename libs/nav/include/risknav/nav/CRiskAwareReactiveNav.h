@@ -42,7 +42,9 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
          * can creep at 1e-4 m/s for minutes at a turn, its own "not
          * approaching" alarm silent) is turned in place toward its target
          * when that is more than unstick_heading_deg off its heading, until
-         * it is within a third of that angle (0 = off, else >= 2 s). */
+         * it is within a third of that angle (0 = off, else >= 2 s). At most
+         * 3 turns per target, counted again once the robot got 0.5 m nearer
+         * to it, so that MRPT's own error at an unreachable target shows. */
         double unstick_time = 5;
         double unstick_heading_deg = 15;  ///< [deg] see unstick_time
 
@@ -127,6 +129,15 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     /** Where and when the robot last moved 5 cm or turned 5 deg (unstick_time). */
     std::optional<mrpt::math::TPose2D> m_stillPose;
     double m_stillSince = 0;
+    /** The last unstick turn: its target, the robot's distance to it, and
+     * the turns to that target since the robot last got 0.5 m nearer. */
+    struct TUnstick {
+        mrpt::math::TPoint2D target;
+        double distance = 0;
+        int turns = 0;
+    };
+    std::optional<TUnstick> m_unstuck;
+    std::string m_unstickReason;
 };
 
 /** Registers libs/nav's MRPT classes and the limiters of the libraries below
