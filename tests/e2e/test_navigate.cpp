@@ -83,6 +83,16 @@ TEST(NavigateE2E, OfficeReachesEveryWaypointWithTheStoppingLimiter) {
     EXPECT_EQ(again["distance_m"], s["distance_m"]);
 }
 
+TEST(NavigateE2E, TheEffectiveConfigKeepsEngineValuesMrptSavesWrongly) {
+    // MRPT 2.5.8 saves a default obstacle filter and a PTG's cte_a0v as its
+    // cte_a0w_deg: values other than those must come back as given.
+    const std::string out = freshDir("eff");
+    const json s = navRun(sourcePath("datasets/office/navigate.ini"), out,
+                          "--set CPointCloudFilterByDistance.min_dist=0.15 "
+                          "--set CReactiveNavigationSystem.PTG1_cte_a0w_deg=40");
+    expectEffectiveConfigReproduces(out, s);
+}
+
 TEST(NavigateE2E, TheDocumentedConfigRuns) {
     const std::string out = freshDir("cfg");
     const json s = navRun(sourcePath("config/risknav-navigate.ini"), out);

@@ -8,12 +8,15 @@
 
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/kinematics/CVehicleVelCmd_DiffDriven.h>
+#include <mrpt/maps/CPointCloudFilterByDistance.h>
 #include <mrpt/nav/reactive/CLogFileRecord.h>
+#include <mrpt/nav/tpspace/CPTG_DiffDrive_alpha.h>
 #include <mrpt/nav/tpspace/CParameterizedTrajectoryGenerator.h>
 
 #include <mrpt/math/TSegment2D.h>
 #include <mrpt/math/wrap2pi.h>
 
+#include <cctype>
 #include <cmath>
 #include <optional>
 #include <set>
@@ -26,25 +29,53 @@ namespace {
 const char* kSection = "CRiskAwareReactiveNav";
 constexpr int kMaxUnstickTurns = 3;  // per target (see navigationStep())
 
+// A robot that does nothing: MRPT's navigator only loads a config here, but
+// its destructor stops the robot it is given (not the one being driven).
+class CNullRobot : public mrpt::nav::CRobot2NavInterface {
+  public:
+    bool getCurrentPoseAndSpeeds(mrpt::math::TPose2D&, mrpt::math::TTwist2D&,
+                                 mrpt::system::TTimeStamp&, mrpt::math::TPose2D&,
+                                 std::string&) override {
+        return false;
+    }
+    bool changeSpeeds(const mrpt::kinematics::CVehicleVelCmd&) override { return false; }
+    bool stop(bool) override { return true; }
+    mrpt::kinematics::CVehicleVelCmd::Ptr getEmergencyStopCmd() override {
+        return getStopCmd();
+    }
+    mrpt::kinematics::CVehicleVelCmd::Ptr getStopCmd() override {
+        return std::make_shared<mrpt::kinematics::CVehicleVelCmd_DiffDriven>();
+    }
+    bool senseObstacles(mrpt::maps::CSimplePointsMap&,
+                        mrpt::system::TTimeStamp&) override {
+        return false;
+    }
+};
+
 // A config that records the keys read from it (which of the keys MRPT's
 // saveConfigFile() writes its loadConfigFile() reads back).
 class CReadRecordingConfig : public mrpt::config::CConfigFileMemory {
   public:
     using mrpt::config::CConfigFileMemory::CConfigFileMemory;
     bool wasRead(const std::string& section, const std::string& key) const {
-        return m_read.count(section + "\n" + key) > 0;
+        return m_read.count(lower(section + "\n" + key)) > 0;
     }
 
   protected:
     std::string readString(const std::string& section, const std::string& name,
                            const std::string& def,
                            bool failIfNotFound = false) const override {
-        m_read.insert(section + "\n" + name);
+        m_read.insert(lower(section + "\n" + name));  // MRPT ignores case
         return mrpt::config::CConfigFileMemory::readString(section, name, def,
                                                            failIfNotFound);
     }
 
   private:
+    static std::string lower(std::string s) {
+        for (auto& ch : s)
+            ch = char(std::tolower(static_cast<unsigned char>(ch)));
+        return s;
+    }
     mutable std::set<std::string> m_read;
 };
 
@@ -224,6 +255,8 @@ void CRiskAwareReactiveNav::navigationStep() {
             const bool sameTarget =
                 m_unstuck && std::hypot(m_unstuck->target.x - target->x,
                                         m_unstuck->target.y - target->y) < 1e-6;
+            if (!sameTarget)
+                m_unstuck.reset();  // a new target (or the same one again later)
             const bool nearer = sameTarget && dist < m_unstuck->distance - 0.5;
             const bool mayUnstick =
                 !sameTarget || nearer || m_unstuck->turns < kMaxUnstickTurns;
@@ -234,8 +267,12 @@ void CRiskAwareReactiveNav::navigationStep() {
                 m_turning = true, m_unsticking = false;
             else if (stuck && deg > unstickDeg && mayUnstick) {
                 m_turning = true, m_unsticking = true;
-                m_unstuck = TUnstick{*target, dist,
-                                     sameTarget && !nearer ? m_unstuck->turns + 1 : 1};
+                // the reference is the nearest the robot was at a turn: pushed
+                // back and returning does not count as getting nearer
+                m_unstuck = sameTarget && !nearer
+                                ? TUnstick{*target, std::min(dist, m_unstuck->distance),
+                                           m_unstuck->turns + 1}
+                                : TUnstick{*target, dist, 1};
                 m_unstickReason = "target " + numberText(std::round(deg)) +
                                   " deg off after " + numberText(std::round(stillFor)) +
                                   " s without motion";
@@ -263,13 +300,25 @@ void CRiskAwareReactiveNav::navigationStep() {
 }
 
 void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& c) {
+    // MRPT 2.5.8's CPTG_DiffDrive_alpha::saveToConfigFile() writes cte_a0v
+    // as cte_a0w_deg: the text read is kept for saveConfigFile()
+    auto keepA0w = [this](const mrpt::config::CConfigFileBase& src) {
+        m_a0wText.assign(getPTG_count(), "");
+        for (size_t i = 0; i < getPTG_count(); i++)
+            if (dynamic_cast<const mrpt::nav::CPTG_DiffDrive_alpha*>(getPTG(i)))
+                m_a0wText[i] =
+                    src.read_string("CReactiveNavigationSystem",
+                                    "PTG" + std::to_string(i) + "_cte_a0w_deg", "");
+    };
     if (m_engine) {
         const CLayeredConfig layered(c, *m_engine);
         mrpt::nav::CReactiveNavigationSystem::loadConfigFile(layered);
         checkEngineValues(c, layered, *this);
+        keepA0w(layered);
     } else {
         mrpt::nav::CReactiveNavigationSystem::loadConfigFile(c);
         checkEngineValues(c, c, *this);
+        keepA0w(c);
     }
     loadOptions(riskOptions, c, kSection);
     loadOptions(robot, c, "Robot");
@@ -328,6 +377,18 @@ void CRiskAwareReactiveNav::saveConfigFile(mrpt::config::CConfigFileBase& c) con
         parsed.getAllKeys("PTG", keys);
         for (const auto& k : keys)
             all.write(nav, prefix + k, parsed.read_string("PTG", k, ""));
+        if (i < m_a0wText.size() && !m_a0wText[i].empty())
+            all.write(nav, prefix + "cte_a0w_deg", m_a0wText[i]);
+    }
+    // MRPT 2.5.8 writes a default-constructed obstacle filter's options, not
+    // those of the filter it uses
+    if (const auto f = std::dynamic_pointer_cast<mrpt::maps::CPointCloudFilterByDistance>(
+            m_WS_filter)) {
+        mrpt::config::CConfigFileMemory own;  // its keys padded, as above: re-read
+        f->options.saveToConfigFile(own, "CPointCloudFilterByDistance");
+        std::string ownText;
+        own.getContent(ownText);
+        copyConfigKeys(mrpt::config::CConfigFileMemory(ownText), all);
     }
     // MRPT reads the shape into floats: 9 digits give the same floats back
     auto joined = [](const std::vector<double>& v) {
@@ -349,7 +410,8 @@ void CRiskAwareReactiveNav::saveConfigFile(mrpt::config::CConfigFileBase& c) con
     // OptimizerBase] dummy, dummy2), which a loader that rejects unknown keys
     // refuses: only the keys a fresh engine reads from it are kept.
     {
-        mrpt::nav::CReactiveNavigationSystem reader(m_robot, false, false);
+        CNullRobot nobody;
+        mrpt::nav::CReactiveNavigationSystem reader(nobody, false, false);
         reader.setMinLoggingLevel(mrpt::system::LVL_ERROR);
         reader.logging_enable_console_output = false;
         const_cast<mrpt::system::CTimeLogger&>(reader.getDelaysTimeLogger()).disable();

@@ -218,10 +218,15 @@ void drawSpeedProfile(const TNavRunResult& r, const std::string& title,
         i = j;
     }
     // A turn in place adds no distance: each unstick turn is a line where it began.
+    bool unstickLabelled = false;
     for (size_t i = 0; i < r.cycles.size(); i++)
         if (r.cycles[i].limiter == "unstick" &&
-            (i == 0 || r.cycles[i - 1].limiter != "unstick"))
-            plot.addVLine(r.cycles[i].distance, "unstick turn", limiterColour("unstick"));
+            (i == 0 || r.cycles[i - 1].limiter != "unstick")) {
+            // turns at one spot would print their labels over each other
+            plot.addVLine(r.cycles[i].distance, unstickLabelled ? "" : "unstick turn",
+                          limiterColour("unstick"));
+            unstickLabelled = true;
+        }
     for (const auto& e : r.events)
         if (e.kind == "viewpoint" || e.kind == "sensing") {
             double dist = 0;

@@ -138,6 +138,8 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     };
     std::optional<TUnstick> m_unstuck;
     std::string m_unstickReason;
+    /** Each PTG's cte_a0w_deg as read (CPTG_DiffDrive_alpha; else ""). */
+    std::vector<std::string> m_a0wText;
 };
 
 /** Registers libs/nav's MRPT classes and the limiters of the libraries below
