@@ -246,7 +246,7 @@ void CRiskAwareReactiveNav::navigationStep() {
             const bool stuck =
                 riskOptions.unstick_time > 0 && stillFor >= riskOptions.unstick_time;
             // At most kMaxUnstickTurns per target, counted again once the
-            // robot got 0.5 m nearer to it than at the last one: at a target
+            // robot got 0.5 m nearer to it than at the nearest turn: at a target
             // behind a wall, turning to it for ever would hide MRPT's own
             // verdict (its timeout approaching the target, way_seems_blocked)
             // and run to the end; one turn only left U-corridor robots
