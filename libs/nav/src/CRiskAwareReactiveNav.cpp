@@ -52,6 +52,14 @@ class CNullRobot : public mrpt::nav::CRobot2NavInterface {
     }
 };
 
+// MRPT's savers pad key names with spaces (a memory config then does not
+// find them): their text read back, keys trimmed.
+mrpt::config::CConfigFileMemory reparsed(const mrpt::config::CConfigFileMemory& m) {
+    std::string text;
+    m.getContent(text);
+    return mrpt::config::CConfigFileMemory(text);
+}
+
 // A config that records the keys read from it (which of the keys MRPT's
 // saveConfigFile() writes its loadConfigFile() reads back).
 class CReadRecordingConfig : public mrpt::config::CConfigFileMemory {
@@ -370,9 +378,7 @@ void CRiskAwareReactiveNav::saveConfigFile(mrpt::config::CConfigFileBase& c) con
         all.write(nav, prefix + "Type", std::string(ptg->GetRuntimeClass()->className));
         mrpt::config::CConfigFileMemory own;
         ptg->saveToConfigFile(own, "PTG");
-        std::string ownText;
-        own.getContent(ownText);
-        const mrpt::config::CConfigFileMemory parsed(ownText);
+        const mrpt::config::CConfigFileMemory parsed = reparsed(own);
         std::vector<std::string> keys;
         parsed.getAllKeys("PTG", keys);
         for (const auto& k : keys)
@@ -384,11 +390,9 @@ void CRiskAwareReactiveNav::saveConfigFile(mrpt::config::CConfigFileBase& c) con
     // those of the filter it uses
     if (const auto f = std::dynamic_pointer_cast<mrpt::maps::CPointCloudFilterByDistance>(
             m_WS_filter)) {
-        mrpt::config::CConfigFileMemory own;  // its keys padded, as above: re-read
+        mrpt::config::CConfigFileMemory own;
         f->options.saveToConfigFile(own, "CPointCloudFilterByDistance");
-        std::string ownText;
-        own.getContent(ownText);
-        copyConfigKeys(mrpt::config::CConfigFileMemory(ownText), all);
+        copyConfigKeys(reparsed(own), all);
     }
     // MRPT reads the shape into floats: 9 digits give the same floats back
     auto joined = [](const std::vector<double>& v) {
