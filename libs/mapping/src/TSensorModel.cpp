@@ -37,13 +37,6 @@ void TSensorModel::validate() const {
              TRange::closed(0, 1, "1/m"));
 }
 
-double bayesUpdate(double p, bool occupiedReading, const TSensorModel& m) {
-    const double le =
-        occupiedReading ? m.p_obs_given_obstacle : 1.0 - m.p_obs_given_obstacle;
-    const double lf = occupiedReading ? m.p_obs_given_free : 1.0 - m.p_obs_given_free;
-    return le * p / (le * p + lf * (1.0 - p));
-}
-
 int necessaryObservations(const TSensorModel& m, double freeThreshold, double pStart) {
     if (!(m.p_obs_given_obstacle > m.p_obs_given_free))
         throw std::invalid_argument("a free reading never lowers P(E) with this model");

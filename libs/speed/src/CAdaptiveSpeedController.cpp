@@ -82,8 +82,17 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
         }
         if (pruneByCost && gk > bestCost)
             break;
-        const double toGoal = std::hypot(m.idx2x(i) - goal.x, m.idx2y(j) - goal.y);
-        if (toGoal < nearestDist) {
+        // libm's hypot only where the squared distance cannot decide (a
+        // speed-up: one per popped cell was a tenth of the cycle)
+        const double gx = m.idx2x(i) - goal.x, gy = m.idx2y(j) - goal.y;
+        double toGoal = -1;
+        auto distToGoal = [&] {
+            if (toGoal < 0)
+                toGoal = std::hypot(gx, gy);
+            return toGoal;
+        };
+        if (!(gx * gx + gy * gy > nearestDist * nearestDist * (1 + 1e-9)) &&
+            distToGoal() < nearestDist) {
             nearestDist = toGoal;
             nearest = {m.idx2x(i), m.idx2y(j)};
         }
@@ -91,6 +100,7 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
         // in a straight line): path to it + the cost on from it, over the
         // open frontier and the map's edge
         if (field.wayOnDist[k] <= band) {
+            distToGoal();
             const double straight = gk + m_o.frontier_goal_weight * toGoal;
             if (straight < bestStraight) {
                 bestStraight = straight;

@@ -256,6 +256,79 @@ TEST(PlanningField, FreeCellsOnTheMapsEdgeAreTheWayOnWhereTheMapEnds) {
     EXPECT_NEAR(at(f.wayOnDist, 0.0, 0.0), 4.95 - 0.025, 0.03);  // only the edges
 }
 
+TEST(PlanningField, ClearanceAndWayOnDistanceEqualBruteForceOnRandomMaps) {
+    // The field's definitions cell by cell, by brute force: clearance to the
+    // nearest non-free cell or the ring outside the grid, the ways on
+    // (frontier cells and free ring cells at least minOpening from every
+    // obstacle cell) and the distance to them, each as centre to near edge
+    // of the sqrtf of the exact squared centre distance.
+    std::mt19937 rng(7);
+    for (int trial = 0; trial < 12; trial++) {
+        const int n = 24 + trial;
+        auto m = risknav::test::localMap(0, 0, n * 0.05, TFusedCell::Free);
+        std::uniform_int_distribution<int> cell(0, 99);
+        const int pObst = 4 + 3 * (trial % 4), pUnd = 10 + 5 * (trial % 3);
+        for (auto& c : m.cells) {
+            const int r = cell(rng);
+            c = r < pObst ? TFusedCell::Obstacle
+                          : (r < pObst + pUnd ? TFusedCell::Undecided : TFusedCell::Free);
+        }
+        const double minOpening = trial % 3 == 0 ? 0.0 : 0.1 + 0.05 * (trial % 4);
+        const auto f = computePlanningField(m, minOpening);
+        auto measured = [&](long d2) {
+            return float(std::max(0.0, (double(std::sqrt(float(d2))) - 0.5) * 0.05));
+        };
+        auto at = [&](int i, int j) { return m.cells[m.index(i, j)]; };
+        std::vector<std::pair<int, int>> wayOn;
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++) {
+                bool way = false;
+                if (at(i, j) == TFusedCell::Undecided)
+                    for (const auto& [di, dj] :
+                         {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}})
+                        way = way || (m.inside(i + di, j + dj) &&
+                                      at(i + di, j + dj) == TFusedCell::Free);
+                const bool ring = (i == 0 || j == 0 || i == n - 1 || j == n - 1) &&
+                                  at(i, j) == TFusedCell::Free;
+                if (!way && !ring)
+                    continue;
+                bool near = false;
+                for (int b = 0; b < n && minOpening > 0; b++)
+                    for (int a = 0; a < n; a++)
+                        near = near || (at(a, b) == TFusedCell::Obstacle &&
+                                        measured(long(a - i) * (a - i) +
+                                                 long(b - j) * (b - j)) < minOpening);
+                if (!near)
+                    wayOn.emplace_back(i, j);
+            }
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++) {
+                const size_t k = m.index(i, j);
+                // clearance: the ring outside the grid is a source
+                long best = std::min({long(i + 1) * (i + 1), long(n - i) * (n - i),
+                                      long(j + 1) * (j + 1), long(n - j) * (n - j)});
+                for (int b = 0; b < n; b++)
+                    for (int a = 0; a < n; a++)
+                        if (at(a, b) != TFusedCell::Free)
+                            best = std::min(
+                                best, long(a - i) * (a - i) + long(b - j) * (b - j));
+                ASSERT_EQ(f.clearance[k], measured(best))
+                    << trial << " " << i << " " << j;
+                long bestWay = -1;
+                for (const auto& [a, b] : wayOn) {
+                    const long d2 = long(a - i) * (a - i) + long(b - j) * (b - j);
+                    if (bestWay < 0 || d2 < bestWay)
+                        bestWay = d2;
+                }
+                if (bestWay < 0)
+                    ASSERT_TRUE(std::isinf(f.wayOnDist[k]));
+                else
+                    ASSERT_EQ(f.wayOnDist[k], measured(bestWay))
+                        << trial << " " << i << " " << j;
+            }
+    }
+}
+
 TEST(SpeedController, TheMemoryKeepsTheRobotOutOfAForgottenDeadEndRoom) {
     // The T junction's trap in small: east of a wall (x in [2, 2.2], door at
     // |y| < 0.5) lies a room the local map has forgotten (undecided); the

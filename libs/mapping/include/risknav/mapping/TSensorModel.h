@@ -38,7 +38,13 @@ struct TSensorModel : public common::CValidatedOptions {
  *  occupied reading: P' = P(O|E) P / (P(O|E) P + P(O|~E) (1 - P));
  *  free reading:     P' = P(~O|E) P / (P(~O|E) P + P(~O|~E) (1 - P)),
  * with P(~O|.) = 1 - P(O|.). */
-double bayesUpdate(double p, bool occupiedReading, const TSensorModel& m);
+inline double bayesUpdate(double p, bool occupiedReading, const TSensorModel& m) {
+    // inline: it runs once per cell and scan (CLocalProbGrid::integrateScan)
+    const double le =
+        occupiedReading ? m.p_obs_given_obstacle : 1.0 - m.p_obs_given_obstacle;
+    const double lf = occupiedReading ? m.p_obs_given_free : 1.0 - m.p_obs_given_free;
+    return le * p / (le * p + lf * (1.0 - p));
+}
 
 /** The necessary number of observations N of (000) section 3.2 (typical-case
  * analysis): free readings applied to a cell from P = pStart until P falls
