@@ -381,7 +381,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         TBad{"start_inside_obstacle", "", "start_x = 0.45\nstart_y = 0.6",
              "start_x = 2.0\nstart_y = 1.2", "",
-             "[ViewpointPlan] start_x = '2': the start (2, 1.2) lies inside an obstacle"},
+             "[ViewpointPlan] start_x = '2.0': the start (2, 1.2) lies inside an "
+             "obstacle"},
         TBad{"goal_too_near", "", "goal_y = 0.6", "goal_y = 0.2", "",
              "the goal (3.95, 0.2) is nearer an obstacle than the robot radius 0.3 m"},
         TBad{"start_outside", "", "start_x = 0.45", "start_x = -3", "",

@@ -188,7 +188,7 @@ void CAfraidLearner::loadFromConfigFile(const CIniConfig& c,
         c.throwOnUnreadKeys();
         prepare();
     } catch (const CConfigKeyError& e) {
-        throw CBadInputError(configWhere(c, e.section, e.key) + e.what());
+        throw CBadInputError(configWhere(c, e.section, e.key) + typedValueMessage(c, e));
     }
 }
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 
@@ -115,8 +116,9 @@ std::string configWhere(const CConfigFileBase& c, const std::string& section,
 void throwBadKey(const CConfigFileBase& c, const std::string& section,
                  const std::string& key, const std::string& value,
                  const std::string& rule) {
-    throw CBadInputError(configWhere(c, section, key) + "[" + section + "] " + key +
-                         " = '" + value + "': " + rule);
+    throw CBadInputError(
+        configWhere(c, section, key) +
+        typedValueMessage(c, CConfigKeyError(section, key, value, rule)));
 }
 
 double readDouble(const CConfigFileBase& c, const std::string& s, const std::string& k,
@@ -253,6 +255,45 @@ std::string configRelativePath(const CConfigFileBase& c, const std::string& path
         if (const auto* ini = dynamic_cast<const CIniConfig*>(&c))
             p = fs::path(ini->folder()) / p;
     return p.lexically_normal().string();
+}
+
+std::string typedValueMessage(const mrpt::config::CConfigFileBase& c,
+                              const CConfigKeyError& e) {
+    if (!c.keyExists(e.section, e.key))
+        return e.what();
+    // the numbers of the file's text (a list: separated by blanks or commas,
+    // in brackets or not) and of the value printed
+    auto tokens = [](const std::string& t, const char* seps) {
+        std::vector<std::string> out;
+        std::string cur;
+        for (const char ch : t + seps[0]) {
+            if (std::strchr(seps, ch)) {
+                if (!cur.empty())
+                    out.push_back(cur);
+                cur.clear();
+            } else {
+                cur += ch;
+            }
+        }
+        return out;
+    };
+    const auto typed = tokens(c.read_string(e.section, e.key, ""), " \t,[]");
+    const auto printed = tokens(e.value, " ");
+    if (typed.empty() || typed.size() != printed.size())
+        return e.what();
+    std::string value, rule = e.rule;
+    for (size_t k = 0; k < typed.size(); k++) {
+        char* end = nullptr;
+        const double v = std::strtod(typed[k].c_str(), &end);
+        if (*end != '\0' || numberText(v) != printed[k])
+            return e.what();  // not another spelling of the same numbers
+        value += (k ? " " : "") + typed[k];
+        // an element the rule quotes
+        const std::string q = "'" + printed[k] + "'";
+        if (const auto at = rule.find(q); at != std::string::npos)
+            rule.replace(at, q.size(), "'" + typed[k] + "'");
+    }
+    return "[" + e.section + "] " + e.key + " = '" + value + "': " + rule;
 }
 
 std::string numberText(double v) {

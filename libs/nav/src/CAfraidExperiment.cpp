@@ -196,7 +196,7 @@ void runAfraidExperiment(const TAppContext& ctx) {
     try {
         lo.validate();
     } catch (const CConfigKeyError& e) {
-        throw CBadInputError(configWhere(c, e.section, e.key) + e.what());
+        throw CBadInputError(configWhere(c, e.section, e.key) + typedValueMessage(c, e));
     }
     afraid::CAfraidLearner proto;
     proto.detector.loadFromConfigFile(c);

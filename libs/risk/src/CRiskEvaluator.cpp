@@ -116,7 +116,7 @@ void CRiskEvaluator::loadFromConfigFile(const CIniConfig& c) {
     try {
         prepare();
     } catch (const CConfigKeyError& e) {
-        throw CBadInputError(configWhere(c, e.section, e.key) + e.what());
+        throw CBadInputError(configWhere(c, e.section, e.key) + typedValueMessage(c, e));
     }
 }
 

@@ -279,3 +279,32 @@ TEST(ConfigRead, CopyConfigKeysCopiesAllButTheSkipped) {
     copyConfigKeys(from, to);
     EXPECT_EQ(to.read_string("A", "y", ""), "two");
 }
+
+TEST(ConfigRead, AValueErrorFromValidateQuotesTheValueAsTyped) {
+    // validate() sees the parsed number; the message quotes the file's text
+    // when it is that one number (a tester's finding: '1e+09' for 1e9)
+    struct TOpts {
+        double v = 0;
+        std::vector<double> list;
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                const std::string& s) {
+            v = readDouble(c, s, "v", v);
+            list = readNumbers(c, s, "list", {1.0});
+        }
+        void validate() const {
+            checkKey("S", "v", v, TRange::closed(0, 100));
+            checkKey("S", "list", list, TRange::closed(0, 100));
+        }
+    };
+    const std::string p = iniFile("[S]\nv = 1e9\nlist = 1 2e3\n");
+    CIniConfig c(p);
+    TOpts o;
+    EXPECT_EQ(errorOf([&] { loadOptions(o, c, "S"); }),
+              p + ": [S] v = '1e9': must be in [0, 100]");
+    CIniConfig c2(iniFile("[S]\nv = 5\nlist = 1 2e3\n"));
+    const std::string e = errorOf([&] { loadOptions(o, c2, "S"); });
+    EXPECT_EQ(e, c2.path() + ": [S] list = '1 2e3': '2e3' must be in [0, 100]");
+    // text that is not the same numbers (a rule on a derived value) stays
+    EXPECT_EQ(typedValueMessage(c2, CConfigKeyError("S", "v", "6", "rule")),
+              "[S] v = '6': rule");
+}

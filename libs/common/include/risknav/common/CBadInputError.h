@@ -20,8 +20,10 @@ class CConfigKeyError : public std::runtime_error {
                     const std::string& value, const std::string& rule)
         : std::runtime_error("[" + section + "] " + key + " = '" + value + "': " + rule),
           section(section),
-          key(key) {}
-    std::string section, key;
+          key(key),
+          value(value),
+          rule(rule) {}
+    std::string section, key, value, rule;
 };
 
 }  // namespace risknav::common

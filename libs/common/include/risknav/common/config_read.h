@@ -139,6 +139,14 @@ std::string configWhere(const mrpt::config::CConfigFileBase& c,
                               const std::string& section, const std::string& key,
                               const std::string& value, const std::string& rule);
 
+class CConfigKeyError;
+
+/** e.what(), but with the value as the config spells it ('1e9', not the
+ * '1e+09' validate() prints) when the config's text for that key is that
+ * one number. */
+std::string typedValueMessage(const mrpt::config::CConfigFileBase& c,
+                              const CConfigKeyError& e);
+
 /** Loads an options struct (MRPT style: loadFromConfigFile(c, section) then
  * validate()) and turns a CConfigKeyError from validate() into a
  * CBadInputError that names the file. */
@@ -157,6 +165,6 @@ void risknav::common::loadOptions(OPTIONS& o, const mrpt::config::CConfigFileBas
     try {
         o.validate();
     } catch (const CConfigKeyError& e) {
-        throw CBadInputError(configWhere(c, e.section, e.key) + e.what());
+        throw CBadInputError(configWhere(c, e.section, e.key) + typedValueMessage(c, e));
     }
 }
