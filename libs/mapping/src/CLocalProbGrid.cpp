@@ -35,17 +35,16 @@ std::pair<int, int> CLocalProbGrid::recenter(double x, double y) {
     std::vector<uint16_t>& c = m_countSpare;
     p.assign(m_p.size(), 0.5f);
     c.assign(m_count.size(), 0);
-    for (int j = 0; j < m_n; j++) {
+    // per row, the cells i with a source i + di inside: one contiguous copy
+    const int iBegin = std::max(0, -di), iEnd = std::min(m_n, m_n - di);
+    for (int j = 0; j < m_n && iBegin < iEnd; j++) {
         const int sj = j + dj;
         if (sj < 0 || sj >= m_n)
             continue;
-        for (int i = 0; i < m_n; i++) {
-            const int si = i + di;
-            if (si < 0 || si >= m_n)
-                continue;
-            p[index(i, j)] = m_p[index(si, sj)];
-            c[index(i, j)] = m_count[index(si, sj)];
-        }
+        const size_t from = index(iBegin + di, sj), to = index(iBegin, j);
+        const size_t len = size_t(iEnd - iBegin);
+        std::copy_n(m_p.begin() + long(from), len, p.begin() + long(to));
+        std::copy_n(m_count.begin() + long(from), len, c.begin() + long(to));
     }
     m_p.swap(p);
     m_count.swap(c);

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <mrpt/math/wrap2pi.h>
 
 #include <algorithm>
@@ -156,6 +158,39 @@ TEST(LocalGrid, RecenterMovesContentByWholeCells) {
     g.recenter(-20, 0);  // everything scrolls out
     for (float p : g.probabilities())
         EXPECT_FLOAT_EQ(p, 0.5f);
+}
+
+TEST(LocalGrid, RecenterKeepsEveryCellAtItsWorldPlace) {
+    // every cell against its world position, for shifts in all directions,
+    // beyond the grid included
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> pr(0.01f, 0.99f);
+    for (const auto& [mx, my] : std::vector<std::pair<double, double>>{
+             {0.3, 0.0}, {-0.45, 0.2}, {0.0, -0.6}, {1.2, 1.3}, {-2.0, -2.4}, {7, 0}}) {
+        CLocalProbGrid g(12, 0.1, 0.0, 0.0);
+        std::map<std::pair<int, int>, std::pair<float, uint16_t>> world;  // cm -> cell
+        auto key = [&](int i, int j) {
+            return std::pair{int(std::lround(g.idx2x(i) * 100)),
+                             int(std::lround(g.idx2y(j) * 100))};
+        };
+        for (int j = 0; j < 12; j++)
+            for (int i = 0; i < 12; i++) {
+                const float p = pr(rng);
+                const auto n = uint16_t(rng() % 50);
+                g.setCell(i, j, p, n);
+                world[key(i, j)] = {p, n};
+            }
+        g.recenter(mx, my);
+        for (int j = 0; j < 12; j++)
+            for (int i = 0; i < 12; i++) {
+                const auto it = world.find(key(i, j));
+                const float p = it == world.end() ? 0.5f : it->second.first;
+                const uint16_t n = it == world.end() ? 0 : it->second.second;
+                ASSERT_EQ(g.probability(i, j), p)
+                    << mx << " " << my << " " << i << " " << j;
+                ASSERT_EQ(g.observations(i, j), n);
+            }
+    }
 }
 
 TEST(LocalGrid, ProbabilitiesStayClampedSoANewObjectShowsQuickly) {
