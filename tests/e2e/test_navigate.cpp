@@ -420,8 +420,10 @@ TEST(NavigateE2E, AStuckRobotIsTurnedToItsTargetAndGoesOn) {
     // door-to-corridor turn (1e-4 m/s, heading fixed, 55 deg off the next
     // destination) and the run ended stalled after 120 s with 1 of 4. With
     // the unstick turn (unstick_time 5 s) it completes.
+    // Without the guide (guide_lookahead = 0): with it, MRPT is aimed round
+    // that turn and the robot does not get stuck there.
     const json s = navRun(sourcePath("datasets/office/navigate_m1.ini"), freshDir("m1s9"),
-                          "--seed 9");
+                          "--seed 9 --set CRiskAwareReactiveNav.guide_lookahead=0");
     EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
     EXPECT_EQ(s["waypoints_reached"], 4);
     EXPECT_EQ(s["collisions"], 0);
@@ -461,12 +463,10 @@ TEST(NavigateE2E, BadWaypointFileIsAClearError) {
     }
 }
 
-TEST(NavigateE2E, UnstickTurnsToOneTargetAreCappedSoMrptsErrorShows) {
-    // M1 in validation/explore_rooms.png (scripts/validate_navigate.py's
-    // m1worlds, seed 5): the robot gets stuck at a wall with its second
-    // destination behind it. Turning it to that target for ever hid MRPT's
-    // verdict and ran to the end; after 3 turns MRPT is left to give it.
-    const std::string w = freshDir("w");
+namespace {
+/** navigate_m1.ini in validation/explore_rooms.png with explore_rooms.ini's
+ * start, destinations and box (scripts/validate_navigate.py's m1worlds). */
+std::string roomsM1Config(const std::string& dir) {
     std::string cfg = readFile(sourcePath("datasets/office/navigate_m1.ini"));
     cfg = cfg.substr(0, cfg.find("[Clutter1]"));  // the office's boxes go
     cfg = std::regex_replace(cfg, std::regex("(^|\\n)start +=[^\\n]*"),
@@ -477,9 +477,32 @@ TEST(NavigateE2E, UnstickTurnsToOneTargetAreCappedSoMrptsErrorShows) {
         cfg, std::regex("(^|\\n)map_file +=[^\\n]*"),
         "$1map_file = " + sourcePath("datasets/validation/explore_rooms.png"));
     cfg += "\n[Clutter1]\nx = 14.0\ny = 3.5\nradius = 0.3\n";  // explore_rooms.ini's
-    writeFile(w + "/n.ini", cfg);
+    writeFile(dir + "/n.ini", cfg);
+    return dir + "/n.ini";
+}
+}  // namespace
+
+TEST(NavigateE2E, TheAdaptiveLimitersWayLeadsMrptRoundTheRoomsWalls) {
+    // Seed 5 in the rooms world: MRPT aimed straight at the second
+    // destination stops at the wall it lies behind (next test); aimed 1.5 m
+    // ahead on the limiter's own planned way (guide_lookahead, on the map the
+    // robot builds) it gets round, through the doors, to all four.
     const std::string out = freshDir("out");
-    const json s = navRun(w + "/n.ini", out, "--seed 5");
+    const json s = navRun(roomsM1Config(freshDir("w")), out, "--seed 5");
+    EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
+    EXPECT_EQ(s["waypoints_reached"], 4);
+    EXPECT_EQ(s["collisions"], 0);
+    EXPECT_TRUE(iniKeys(out + "/config_effective.ini")
+                    .count("[CRiskAwareReactiveNav]guide_lookahead"));
+}
+
+TEST(NavigateE2E, UnstickTurnsToOneTargetAreCappedSoMrptsErrorShows) {
+    // The same without the guide: the robot gets stuck at a wall with its
+    // second destination behind it. Turning it to that target for ever hid
+    // MRPT's verdict and ran to the end; after 3 turns MRPT is left to give it.
+    const std::string out = freshDir("out");
+    const json s = navRun(roomsM1Config(freshDir("w")), out,
+                          "--seed 5 --set CRiskAwareReactiveNav.guide_lookahead=0");
     EXPECT_EQ(s["status"], "navigation_error") << s["navigation_error"];
     EXPECT_EQ(s["waypoints_reached"], 1);
     const auto lines = readLines(out + "/cycles.csv");

@@ -296,4 +296,15 @@ TSpeedLimit CAdaptiveSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const 
     return {v, reason};
 }
 
+std::optional<mrpt::math::TPoint2D> CAdaptiveSpeedLimiter::guidePoint(
+    const mrpt::math::TPose2D& pose, double lookahead) const {
+    if (!m_last || !m_pipeline || m_last->reason == speed::TSpeedReason::Unreachable ||
+        m_last->path.points.size() < 2)
+        return std::nullopt;
+    const auto& path = m_last->path;
+    return path.points[speed::lookaheadPoint(path, m_pipeline->field(), {pose.x, pose.y},
+                                             lookahead)
+                           .ahead];
+}
+
 }  // namespace risknav::nav

@@ -145,6 +145,7 @@ void CRiskAwareReactiveNav::TOptions::loadFromConfigFile(
     turn_rate_deg = readDouble(c, s, "turn_rate_deg", turn_rate_deg);
     unstick_time = readDouble(c, s, "unstick_time", unstick_time);
     unstick_heading_deg = readDouble(c, s, "unstick_heading_deg", unstick_heading_deg);
+    guide_lookahead = readDouble(c, s, "guide_lookahead", guide_lookahead);
 }
 
 void CRiskAwareReactiveNav::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
@@ -157,6 +158,7 @@ void CRiskAwareReactiveNav::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     writeKey(c, s, "turn_rate_deg", turn_rate_deg);
     writeKey(c, s, "unstick_time", unstick_time);
     writeKey(c, s, "unstick_heading_deg", unstick_heading_deg);
+    writeKey(c, s, "guide_lookahead", guide_lookahead);
 }
 
 void CRiskAwareReactiveNav::TOptions::validate() const {
@@ -171,6 +173,7 @@ void CRiskAwareReactiveNav::TOptions::validate() const {
               numberText(unstick_time), "must be 0 (off) or at least 2 s");
     checkKey(kSection, "unstick_heading_deg", unstick_heading_deg,
              TRange::closed(1, 180, "deg"));
+    checkKey(kSection, "guide_lookahead", guide_lookahead, TRange::closed(0, 20, "m"));
 }
 
 CRiskAwareReactiveNav::CRiskAwareReactiveNav(mrpt::nav::CRobot2NavInterface& r,
@@ -233,8 +236,11 @@ void CRiskAwareReactiveNav::navigationStep() {
         };
         if (m_robot.getCurrentPoseAndSpeeds(pose, vel, ts, odo, frame) &&
             !reachedByMrpt(pose)) {
+            // turned to where MRPT is aimed: the guide point when a limiter
+            // gives one (guide_lookahead), else the waypoint
+            const mrpt::math::TPoint2D aim = guidePoint(pose, *target).value_or(*target);
             const double bearing = mrpt::math::wrapToPi(
-                std::atan2(target->y - pose.y, target->x - pose.x) - pose.phi);
+                std::atan2(aim.y - pose.y, aim.x - pose.x) - pose.phi);
             const double deg = std::abs(bearing) * 180 / M_PI;
             // stuck: neither 5 cm nor 5 deg of motion for unstick_time (a
             // robot MRPT dithers by +-5 deg is not caught: turned to a
@@ -305,6 +311,58 @@ void CRiskAwareReactiveNav::navigationStep() {
     m_turning = m_unsticking = false;
     m_last = {};  // set by generate_vel_cmd() when MRPT sends a new command
     mrpt::nav::CReactiveNavigationSystem::navigationStep();
+}
+
+std::optional<mrpt::math::TPoint2D> CRiskAwareReactiveNav::guidePoint(
+    const mrpt::math::TPose2D& pose, const mrpt::math::TPoint2D& target) const {
+    const double L = riskOptions.guide_lookahead;
+    if (!(L > 0) || std::hypot(target.x - pose.x, target.y - pose.y) <= L)
+        return std::nullopt;
+    for (const auto& l : m_limiters)
+        if (auto g = l->guidePoint(pose, L))
+            return g;
+    return std::nullopt;
+}
+
+void CRiskAwareReactiveNav::performNavigationStep() {
+    std::optional<mrpt::math::TPoint2D> guide;
+    if (m_navigationParams && !m_navigationParams->target.targetIsRelative) {
+        const auto& t = m_navigationParams->target.target_coords;
+        guide = guidePoint(m_curPoseVel.pose, mrpt::math::TPoint2D(t.x, t.y));
+    }
+    if (!guide) {
+        mrpt::nav::CReactiveNavigationSystem::performNavigationStep();
+        return;
+    }
+    // MRPT aims at the guide point for this step only (as its one target:
+    // CWaypointsNavigator's multiple_targets, the waypoints it may head to,
+    // are set aside too): its waypoint bookkeeping (reached, the timeout
+    // approaching it) ran before, on the waypoint; no slow-down approaching
+    // the guide point (relative speed 1)
+    auto* wp = dynamic_cast<TNavigationParamsWaypoints*>(m_navigationParams.get());
+    const auto saved = m_navigationParams->target;
+    std::vector<TargetInfo> savedMultiple;
+    m_realTarget = mrpt::math::TPoint2D(saved.target_coords.x, saved.target_coords.y);
+    m_navigationParams->target.target_coords.x = guide->x;
+    m_navigationParams->target.target_coords.y = guide->y;
+    m_navigationParams->target.targetDesiredRelSpeed = 1.0;
+    if (wp)
+        savedMultiple.swap(wp->multiple_targets);
+    auto restore = [&] {
+        m_realTarget.reset();
+        if (!m_navigationParams)
+            return;
+        m_navigationParams->target = saved;
+        if (auto* w = dynamic_cast<TNavigationParamsWaypoints*>(m_navigationParams.get()))
+            w->multiple_targets = savedMultiple;
+    };
+    try {
+        mrpt::nav::CReactiveNavigationSystem::performNavigationStep();
+    } catch (...) {
+        restore();
+        throw;
+    }
+    restore();
 }
 
 void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& c) {
@@ -438,7 +496,9 @@ TSpeedLimitInput CRiskAwareReactiveNav::limiterInput(
     in.desiredSpeed = desired;
     in.obstacles = &m_WS_Obstacles;
     in.time = mrpt::Clock::toDouble(mrpt::Clock::now());
-    if (m_navigationParams)
+    if (m_realTarget)
+        in.target = m_realTarget;  // the waypoint, not the guide point MRPT aims at
+    else if (m_navigationParams)
         in.target = mrpt::math::TPoint2D(m_navigationParams->target.target_coords.x,
                                          m_navigationParams->target.target_coords.y);
     // MRPT's chosen trajectory, sampled every ~5 cm over the stopping

@@ -170,36 +170,8 @@ std::pair<double, double> follow(const TPlannedPath& path, const TPlanningField&
     const auto& pts = path.points;
     if (pts.size() < 2)
         return {0.0, 0.0};
-    size_t c = 0;
-    double best = 1e18;
-    for (size_t k = 0; k < pts.size(); k++) {
-        const double d = std::hypot(pts[k].x - p.x, pts[k].y - p.y);
-        if (d < best) {
-            best = d;
-            c = k;
-        }
-    }
     const double L = std::max(0.3, 0.5 * v + 0.15);
-    size_t t = c;
-    while (t + 1 < pts.size() && std::hypot(pts[t].x - p.x, pts[t].y - p.y) < L)
-        t++;
-    const double res = field.map.resolution;
-    auto chordKeepsClearance = [&](size_t to) {
-        double pathClear = std::numeric_limits<double>::infinity();
-        for (size_t k = c; k <= to; k++)
-            pathClear = std::min(pathClear, field.clearanceAt(pts[k].x, pts[k].y));
-        const double len = std::hypot(pts[to].x - p.x, pts[to].y - p.y);
-        const int n = int(std::ceil(len / (0.5 * res)));
-        for (int s = 1; s <= n; s++) {
-            const double f = double(s) / n;
-            if (field.clearanceAt(p.x + f * (pts[to].x - p.x),
-                                  p.y + f * (pts[to].y - p.y)) < pathClear - 0.5 * res)
-                return false;
-        }
-        return true;
-    };
-    while (t > c + 1 && !chordKeepsClearance(t))
-        t--;
+    const size_t t = lookaheadPoint(path, field, {p.x, p.y}, L).ahead;
     const double alpha =
         mrpt::math::wrapToPi(std::atan2(pts[t].y - p.y, pts[t].x - p.x) - p.phi);
     // where the robot has less than 10 cm to spare, an arc that starts off

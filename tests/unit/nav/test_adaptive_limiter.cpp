@@ -232,6 +232,29 @@ TEST(AdaptiveLimiter, ANarrowGapLimitsToTheGapRulesSpeed) {
     EXPECT_DOUBLE_EQ(lim2.back().maxSpeed, 1.1);
 }
 
+TEST(AdaptiveLimiter, ItsGuidePointLiesAheadOnItsPlannedWayRoundAWall) {
+    // A wall between the robot and its target, open at its north end: the
+    // planned way goes north round it, and the guide point is on that way,
+    // lookahead ahead, north of the straight line to the target.
+    auto g = freeMap(-4, 4, -3, 3);
+    wall(g, 0.0, -3, 0.1, 1.5);
+    auto w = syntheticWorld(g, 5.0);
+    auto l = makeLimiter("[CAdaptiveSpeedLimiter]\n");
+    const TPose2D pose(-1.0, 0, 0);
+    EXPECT_FALSE(l->guidePoint(pose, 1.5));  // nothing planned yet
+    standAndLook(l, w, pose, TPoint2D(1.5, 0), 15);
+    const auto& d = *asAdaptive(l).lastDecision();
+    ASSERT_NE(d.reason, speed::TSpeedReason::Unreachable);
+    const auto gp = l->guidePoint(pose, 1.5);
+    ASSERT_TRUE(gp);
+    EXPECT_NEAR(std::hypot(gp->x - pose.x, gp->y - pose.y), 1.5, 0.1);
+    EXPECT_GT(gp->y, 0.5) << gp->x << " " << gp->y;  // round the wall's north end
+    EXPECT_LT(gp->x, 0.0);                           // not through the wall
+    // the stopping-distance limiter plans no way: no guide point
+    auto stop = common::CSpeedLimiter::Factory("CStoppingDistanceLimiter");
+    EXPECT_FALSE(stop->guidePoint(pose, 1.5));
+}
+
 TEST(AdaptiveLimiter, BadOrMissingKeysAreClearErrorsNamingSectionAndKey) {
     nav::registerAllClasses_nav();
     struct TCase {

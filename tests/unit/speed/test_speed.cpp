@@ -396,6 +396,51 @@ TEST(SpeedController, ASwitchCostHoldsThePreviousTemporaryDestination) {
     EXPECT_LT(std::hypot(b.x + 2.6, b.y), 1.0);  // held west
 }
 
+TEST(GridPathPlanner, TheLookaheadPointIsAheadOnThePathAndKeepsItsClearance) {
+    const auto m = openMap(100);  // 5 m, all free
+    const auto f = computePlanningField(m);
+    TPlannedPath p;
+    for (int k = 0; k <= 40; k++)
+        p.points.emplace_back(-2.0 + 0.05 * k, 0.0);  // 2 m east along y = 0
+    // from beside the path: nearest is the foot, ahead the first >= L from there
+    auto la = lookaheadPoint(p, f, {-1.5, 0.1}, 0.5);
+    EXPECT_EQ(la.nearest, 10u);
+    EXPECT_NEAR(p.points[la.ahead].x, -1.0, 0.051);
+    // beyond the end: the last point
+    EXPECT_EQ(lookaheadPoint(p, f, {-1.5, 0.0}, 10.0).ahead, 40u);
+    EXPECT_EQ(lookaheadPoint(TPlannedPath{}, f, {0, 0}, 1.0).ahead, 0u);
+    // Round a wall's corner: east along y = 0.8 above a wall (x in [0, 0.4],
+    // top y = 0.3), then south along x = 0.8. From (-0.5, 0.8) the point
+    // 1.5 m away lies down the far side, and the chord to it passes 2 cm from
+    // the wall's corner (the path keeps 0.4 m): pulled back to where the
+    // chord keeps the path's clearance, on the top stretch or just round.
+    auto w = openMap(100);
+    fillRect(w, 0.0, -10, 0.4, 0.3, TFusedCell::Obstacle);
+    const auto fw = computePlanningField(w);
+    TPlannedPath east;
+    for (int k = 0; k <= 26; k++)
+        east.points.emplace_back(-0.5 + 0.05 * k, 0.8);
+    for (int k = 1; k <= 20; k++)
+        east.points.emplace_back(0.8, 0.8 - 0.05 * k);
+    const TPoint2D from(-0.5, 0.8);
+    size_t unpulled = 0;
+    while (unpulled + 1 < east.points.size() &&
+           std::hypot(east.points[unpulled].x - from.x,
+                      east.points[unpulled].y - from.y) < 1.5)
+        unpulled++;
+    ASSERT_LT(east.points[unpulled].y, 0.3);  // down the far side
+    const auto la2 = lookaheadPoint(east, fw, from, 1.5);
+    EXPECT_LT(la2.ahead, unpulled);
+    EXPECT_GT(east.points[la2.ahead].y, 0.5);
+    const auto& q = east.points[la2.ahead];
+    for (int k = 1; k <= 50; k++) {  // the chord keeps >= 0.3 m
+        const double t = k / 50.0;
+        EXPECT_GT(
+            fw.clearanceAt(from.x + t * (q.x - from.x), from.y + t * (q.y - from.y)),
+            0.3);
+    }
+}
+
 TEST(GridPathPlanner, TheEscapeNeverComesNearerThanTheStartUnlessThereIsNoOtherWay) {
     // a hand-made field: clearance 0.5 everywhere (>= the inflation 0.3)
     // but around the start cell (10, 10), which has 0.20

@@ -65,6 +65,16 @@ class CSpeedLimiter : public mrpt::rtti::CObject {
      * without a robot or with a negative / non-finite desired speed. */
     TSpeedLimit limit(const TSpeedLimitInput& in) const;
 
+    /** Where a limiter that plans a way itself (the adaptive limiter's
+     * path, on its own map) would have the robot steer from `pose`: a point
+     * on that way `lookahead` [m] ahead, in the frame of the limiter's input
+     * pose; nullopt (the default) when it plans none. From the last limit()
+     * call. */
+    virtual std::optional<mrpt::math::TPoint2D> guidePoint(
+        const mrpt::math::TPose2D& pose, double lookahead) const {
+        return std::nullopt;
+    }
+
     /** The limiter's own options, in its own section. */
     virtual void loadConfig(const mrpt::config::CConfigFileBase& c,
                             const std::string& section) = 0;

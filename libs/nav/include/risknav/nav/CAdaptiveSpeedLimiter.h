@@ -119,6 +119,11 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
 
     /** Forgets the map and the measured cycle (a new run). */
     void reset();
+    /** The look-ahead point (speed::lookaheadPoint) on the last decision's
+     * path, from `pose`; nullopt before the first decision, when it found
+     * no way (unreachable) or its path has fewer than 2 points. */
+    std::optional<mrpt::math::TPoint2D> guidePoint(const mrpt::math::TPose2D& pose,
+                                                   double lookahead) const override;
     /** The last cycle's decision (nullopt before the first planned cycle). */
     const std::optional<speed::TSpeedDecision>& lastDecision() const { return m_last; }
     /** The T [s] the last decision used. */

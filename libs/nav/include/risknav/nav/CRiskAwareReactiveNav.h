@@ -47,6 +47,14 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
          * to it, so that MRPT's own error at an unreachable target shows. */
         double unstick_time = 5;
         double unstick_heading_deg = 15;  ///< [deg] see unstick_time
+        /** [m] Beyond the papers and MRPT: while a limiter plans a way
+         * itself (CAdaptiveSpeedLimiter, on its own map of an unknown world),
+         * MRPT's engine steers to the point this far ahead on that way
+         * (speed::lookaheadPoint) instead of straight at the waypoint,
+         * which a purely reactive engine cannot reach round a wall; the
+         * waypoint is still what is reached, timed and logged. Used while
+         * the waypoint is farther than this. 0 = off. */
+        double guide_lookahead = 0;
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                 const std::string& section) override;
@@ -103,6 +111,12 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
         double allowedDistance = 0;
     };
     std::optional<TCurrentTarget> currentTarget() const;
+    /** Where MRPT's engine is aimed from `pose` on the way to `target`: the
+     * first limiter's guide point (CSpeedLimiter::guidePoint) while
+     * guide_lookahead > 0 and the target is farther than that; else
+     * nullopt (straight at the target). */
+    std::optional<mrpt::math::TPoint2D> guidePoint(
+        const mrpt::math::TPose2D& pose, const mrpt::math::TPoint2D& target) const;
 
   protected:
     /** What the limiters see this cycle: the robot, the believed pose, the
@@ -114,6 +128,9 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     /** MRPT's command, then the smallest limit of the limiters applied to it. */
     double generate_vel_cmd(const mrpt::nav::TCandidateMovementPTG& in_movement,
                             mrpt::kinematics::CVehicleVelCmd::Ptr& new_vel_cmd) override;
+    /** MRPT's step, aimed at the guide point (guide_lookahead) when a
+     * limiter gives one; the waypoint is put back after it. */
+    void performNavigationStep() override;
     /** MRPT's record, plus the limiter that won this cycle. */
     void loggingGetWSObstaclesAndShape(mrpt::nav::CLogFileRecord& out_log) override;
 
@@ -123,6 +140,9 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
         const mrpt::nav::TWaypointStatusSequence& st) const;
     std::vector<common::CSpeedLimiter::Ptr> m_limiters;
     TLimitRecord m_last;
+    /** While the step aims at a guide point: the waypoint MRPT's target
+     * stands for (what the limiters are told). */
+    std::optional<mrpt::math::TPoint2D> m_realTarget;
     const mrpt::config::CConfigFileBase* m_engine = nullptr;
     bool m_turning = false;
     bool m_unsticking = false;
