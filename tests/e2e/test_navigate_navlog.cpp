@@ -38,6 +38,8 @@ struct TRecord {
     bool hasCmd = false;  // false: NOP (the last command continues)
     double cmdV = 0;      // cmd_vel element 0, the forward speed
     double t = std::numeric_limits<double>::quiet_NaN();  // tim_start_iteration [s]
+    bool hasGuide = false;   // the "guide" message and guide_x / guide_y values
+    double targetDist = -1;  // |WS_targets_relative[0]| [m], -1: none
 };
 
 struct TNavlog {
@@ -80,6 +82,10 @@ TNavlog readNavlog(const std::string& file) {
         const auto ts = r->timestamps.find("tim_start_iteration");
         if (ts != r->timestamps.end())
             t.t = mrpt::Clock::toDouble(ts->second);
+        t.hasGuide = r->additional_debug_msgs.count("guide") &&
+                     r->values.count("guide_x") && r->values.count("guide_y");
+        if (!r->WS_targets_relative.empty())
+            t.targetDist = r->WS_targets_relative[0].norm();
         n.records.push_back(t);
     }
     return n;
@@ -237,4 +243,29 @@ TEST_F(NavigateNavlog, MrptNavlogViewerLoadsAndShowsIt) {
             colours[p[0] * 256 + p[1] * 16 + p[2]]++;
         }
     EXPECT_GE(colours.size(), 20u);
+}
+
+TEST(NavigateNavlogGuide, MrptsRecordShowsTheGuidePointAsItsTarget) {
+    // M1 (guide_lookahead = 1.5): while MRPT is aimed at the adaptive
+    // limiter's way, its record's target is the guide point, about 1.5 m
+    // off (the first destination is 4 m away), and the record says so.
+    const std::string dir =
+        (fs::temp_directory_path() / ("risknav-e2e-guide-" + std::to_string(::getpid())))
+            .string();
+    fs::remove_all(dir);
+    const auto r = run(binPath("risknav-navigate") + " -q -o '" + dir +
+                       "' --set Navigate.navlog=true --set Navigate.duration_max=6 '" +
+                       sourcePath("datasets/office/navigate_m1.ini") + "'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto log = readNavlog(dir + "/navigation.reactivenavlog");
+    EXPECT_EQ(log.error, "");
+    size_t guided = 0, near = 0;
+    for (const auto& t : log.records)
+        if (t.hasGuide) {
+            guided++;
+            near += t.targetDist > 0 && t.targetDist < 1.7;
+        }
+    EXPECT_GT(guided, log.records.size() / 2) << log.records.size();
+    EXPECT_EQ(near, guided);
+    fs::remove_all(dir);
 }

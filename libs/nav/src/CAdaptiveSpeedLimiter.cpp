@@ -180,6 +180,7 @@ void CAdaptiveSpeedLimiter::resetState() const {
     m_dtRange2.clear();
     m_previousTarget.reset();
     m_last.reset();
+    m_lastGoal.reset();
 }
 
 speed::CAdaptiveSpeedPipeline::TParams CAdaptiveSpeedLimiter::params(double radius,
@@ -252,6 +253,7 @@ TSpeedLimit CAdaptiveSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const 
     m_pipeline->update(in.pose, in.scan, in.scan2);
     if (!in.target) {
         m_last.reset();
+        m_lastGoal.reset();
         return {in.desiredSpeed, ""};
     }
     // sections 3-5: the fastest safe speed on the way to the target
@@ -262,6 +264,7 @@ TSpeedLimit CAdaptiveSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const 
     else
         m_previousTarget.reset();
     m_last = d;
+    m_lastGoal = *in.target;
     double v = d.speed;
     char why[160];
     const bool creep = m_pipeline->heldLongEnough(d.speed <= 0);
@@ -301,10 +304,27 @@ std::optional<mrpt::math::TPoint2D> CAdaptiveSpeedLimiter::guidePoint(
     if (!m_last || !m_pipeline || m_last->reason == speed::TSpeedReason::Unreachable ||
         m_last->path.points.size() < 2)
         return std::nullopt;
+    const auto& field = m_pipeline->field();
+    if (m_lastGoal) {
+        // the straight line to the goal is open on the map (known free with
+        // the robot's radius to spare, up to where the map ends): no guide,
+        // MRPT goes straight (it is tuned for that; led along a path that
+        // hugs one side of a narrow passage it froze at the entrance)
+        const double dx = m_lastGoal->x - pose.x, dy = m_lastGoal->y - pose.y;
+        const double len = std::hypot(dx, dy), res = field.map.resolution;
+        bool open = true;
+        for (int k = 1, n = int(std::ceil(len / (0.5 * res))); open && k <= n; k++) {
+            const double x = pose.x + dx * k / n, y = pose.y + dy * k / n;
+            if (!field.map.inside(field.map.x2idx(x), field.map.y2idx(y)))
+                break;
+            open = field.clearanceAt(x, y) >= m_radius;
+        }
+        if (open)
+            return std::nullopt;
+    }
     const auto& path = m_last->path;
-    return path.points[speed::lookaheadPoint(path, m_pipeline->field(), {pose.x, pose.y},
-                                             lookahead)
-                           .ahead];
+    return path
+        .points[speed::lookaheadPoint(path, field, {pose.x, pose.y}, lookahead).ahead];
 }
 
 }  // namespace risknav::nav

@@ -236,19 +236,13 @@ void CRiskAwareReactiveNav::navigationStep() {
         };
         if (m_robot.getCurrentPoseAndSpeeds(pose, vel, ts, odo, frame) &&
             !reachedByMrpt(pose)) {
-            // turned to where MRPT is aimed: the guide point when a limiter
-            // gives one (guide_lookahead), else the waypoint
-            const mrpt::math::TPoint2D aim = guidePoint(pose, *target).value_or(*target);
-            const double bearing = mrpt::math::wrapToPi(
-                std::atan2(aim.y - pose.y, aim.x - pose.x) - pose.phi);
-            const double deg = std::abs(bearing) * 180 / M_PI;
             // stuck: neither 5 cm nor 5 deg of motion for unstick_time (a
             // robot MRPT dithers by +-5 deg is not caught: turned to a
             // target behind a corner, MRPT's way round it was lost); a clock
             // gone back, or a new run, starts the watch again
             const double now = mrpt::Clock::toDouble(mrpt::Clock::now());
             if (m_stillPose && now < m_stillSince)
-                m_unstuck.reset();
+                m_unstuck.reset(), m_guidePausedAt.reset();
             if (!m_stillPose || now < m_stillSince ||
                 std::hypot(pose.x - m_stillPose->x, pose.y - m_stillPose->y) > 0.05 ||
                 std::abs(mrpt::math::wrapToPi(pose.phi - m_stillPose->phi)) >
@@ -259,6 +253,24 @@ void CRiskAwareReactiveNav::navigationStep() {
             const double stillFor = now - m_stillSince;
             const bool stuck =
                 riskOptions.unstick_time > 0 && stillFor >= riskOptions.unstick_time;
+            // A robot stuck while MRPT is aimed at a guide point (e.g. frozen
+            // at a slant in the entrance of a passage the way hugs) is aimed
+            // straight at the waypoint again until it has moved 0.5 m or
+            // has a new target (office seed 8: 45 s frozen between the desks).
+            if (m_guidePausedAt &&
+                (std::hypot(pose.x - m_guidePausedAt->first.x,
+                            pose.y - m_guidePausedAt->first.y) > 0.5 ||
+                 std::hypot(m_guidePausedAt->second.x - target->x,
+                            m_guidePausedAt->second.y - target->y) > 1e-6))
+                m_guidePausedAt.reset();
+            if (stuck && !m_guidePausedAt && guidePoint(pose, *target))
+                m_guidePausedAt = {mrpt::math::TPoint2D(pose.x, pose.y), *target};
+            // turned to where MRPT is aimed: the guide point when a limiter
+            // gives one (guide_lookahead), else the waypoint
+            const mrpt::math::TPoint2D aim = guidePoint(pose, *target).value_or(*target);
+            const double bearing = mrpt::math::wrapToPi(
+                std::atan2(aim.y - pose.y, aim.x - pose.x) - pose.phi);
+            const double deg = std::abs(bearing) * 180 / M_PI;
             // At most kMaxUnstickTurns per target, counted again once the
             // robot got 0.5 m nearer to it than at the nearest turn: at a target
             // behind a wall, turning to it for ever would hide MRPT's own
@@ -316,7 +328,8 @@ void CRiskAwareReactiveNav::navigationStep() {
 std::optional<mrpt::math::TPoint2D> CRiskAwareReactiveNav::guidePoint(
     const mrpt::math::TPose2D& pose, const mrpt::math::TPoint2D& target) const {
     const double L = riskOptions.guide_lookahead;
-    if (!(L > 0) || std::hypot(target.x - pose.x, target.y - pose.y) <= L)
+    if (!(L > 0) || m_guidePausedAt ||
+        std::hypot(target.x - pose.x, target.y - pose.y) <= L)
         return std::nullopt;
     for (const auto& l : m_limiters)
         if (auto g = l->guidePoint(pose, L))
@@ -577,6 +590,16 @@ void CRiskAwareReactiveNav::loggingGetWSObstaclesAndShape(
     out.values["speed_limit"] = m_last.limit;
     out.additional_debug_msgs["speed_limiter"] =
         m_last.limiter.empty() ? "none" : m_last.limiter + ": " + m_last.reason;
+    if (m_realTarget && m_navigationParams) {
+        // MRPT's own record has the guide point as its target
+        const auto& g = m_navigationParams->target.target_coords;
+        out.values["guide_x"] = g.x;
+        out.values["guide_y"] = g.y;
+        out.additional_debug_msgs["guide"] =
+            "aimed at (" + numberText(g.x) + ", " + numberText(g.y) +
+            ") on the limiter's way to the waypoint (" + numberText(m_realTarget->x) +
+            ", " + numberText(m_realTarget->y) + ")";
+    }
 }
 
 }  // namespace risknav::nav

@@ -121,7 +121,9 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
     void reset();
     /** The look-ahead point (speed::lookaheadPoint) on the last decision's
      * path, from `pose`; nullopt before the first decision, when it found
-     * no way (unreachable) or its path has fewer than 2 points. */
+     * no way (unreachable), its path has fewer than 2 points, or the straight
+     * line to the goal is open on its map (known free cells with the robot's
+     * radius to spare, as far as the map reaches). */
     std::optional<mrpt::math::TPoint2D> guidePoint(const mrpt::math::TPose2D& pose,
                                                    double lookahead) const override;
     /** The last cycle's decision (nullopt before the first planned cycle). */
@@ -149,6 +151,7 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
     mutable std::deque<double> m_dtLaser, m_dtRange2;
     mutable std::optional<mrpt::math::TPoint2D> m_previousTarget;
     mutable std::optional<speed::TSpeedDecision> m_last;
+    mutable std::optional<mrpt::math::TPoint2D> m_lastGoal;  ///< its input target
 };
 
 }  // namespace risknav::nav

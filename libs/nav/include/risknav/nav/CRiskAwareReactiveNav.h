@@ -114,7 +114,8 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     /** Where MRPT's engine is aimed from `pose` on the way to `target`: the
      * first limiter's guide point (CSpeedLimiter::guidePoint) while
      * guide_lookahead > 0 and the target is farther than that; else
-     * nullopt (straight at the target). */
+     * nullopt (straight at the target). Paused for a robot stuck while
+     * guided, until it has moved 0.5 m or has a new target. */
     std::optional<mrpt::math::TPoint2D> guidePoint(
         const mrpt::math::TPose2D& pose, const mrpt::math::TPoint2D& target) const;
 
@@ -143,6 +144,9 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     /** While the step aims at a guide point: the waypoint MRPT's target
      * stands for (what the limiters are told). */
     std::optional<mrpt::math::TPoint2D> m_realTarget;
+    /** Guide points paused (a robot stuck while guided): where, and the
+     * target then. */
+    std::optional<std::pair<mrpt::math::TPoint2D, mrpt::math::TPoint2D>> m_guidePausedAt;
     const mrpt::config::CConfigFileBase* m_engine = nullptr;
     bool m_turning = false;
     bool m_unsticking = false;
