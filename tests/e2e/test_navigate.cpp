@@ -293,6 +293,31 @@ INSTANTIATE_TEST_SUITE_P(
              "[CReactiveNavigationSystem]\nPTG0_num_paths = 100000000\n"
              "[CRiskAwareReactiveNav]",
              "[CReactiveNavigationSystem] PTG0_num_paths = '100000000'"},
+        // the tester's crashes (segfaults, a bare assert) and truncated integers
+        TBad{"start_heading_huge", "start +=.*", "start = 3 3 1e308",
+             "[Navigate] start = '3 3 1e308': the heading must be in [-3600, 3600] deg"},
+        TBad{
+            "mrpt_speedfilter_tau_nan", "\\[CRiskAwareReactiveNav\\]",
+            "[CAbstractPTGBasedReactive]\nspeedfilter_tau = nan\n[CRiskAwareReactiveNav]",
+            "[CAbstractPTGBasedReactive] speedfilter_tau = 'nan': must be in [0, 10] s"},
+        TBad{"mrpt_cte_a0v_nan", "\\[CRiskAwareReactiveNav\\]",
+             "[CReactiveNavigationSystem]\nPTG1_cte_a0v_deg = "
+             "nan\n[CRiskAwareReactiveNav]",
+             "[CReactiveNavigationSystem] PTG1_cte_a0v_deg = 'nan'"},
+        TBad{"mrpt_ref_distance_tiny", "\\[CRiskAwareReactiveNav\\]",
+             "[CReactiveNavigationSystem]\nPTG1_refDistance = 1e-300\n"
+             "[CRiskAwareReactiveNav]",
+             "[CReactiveNavigationSystem] PTG1_refDistance = '1e-300': must be in [0.1, "
+             "100] m"},
+        TBad{
+            "mrpt_look_ahead_negative", "\\[CRiskAwareReactiveNav\\]",
+            "[CWaypointsNavigator]\nmultitarget_look_ahead = -1\n[CRiskAwareReactiveNav]",
+            "[CWaypointsNavigator] multitarget_look_ahead = '-1'"},
+        TBad{"mrpt_ptg_count_fraction", "PTG_COUNT +=[^\\n]*", "PTG_COUNT = 2.7",
+             "[CReactiveNavigationSystem] PTG_COUNT = '2.7': not an integer"},
+        TBad{"guide_lookahead_negative", "speed_limiters = CStoppingDistanceLimiter",
+             "speed_limiters = CStoppingDistanceLimiter\nguide_lookahead = -1",
+             "[CRiskAwareReactiveNav] guide_lookahead = '-1'"},
         TBad{"unstick_time_negative", "speed_limiters = CStoppingDistanceLimiter",
              "speed_limiters = CStoppingDistanceLimiter\nunstick_time = -5",
              "[CRiskAwareReactiveNav] unstick_time = '-5'"},

@@ -17,7 +17,9 @@
 #include <mrpt/math/wrap2pi.h>
 
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -87,6 +89,59 @@ class CReadRecordingConfig : public mrpt::config::CConfigFileMemory {
     mutable std::set<std::string> m_read;
 };
 
+// The same for values MRPT crashes or asserts on while it loads them (so
+// checked in the text, before): exit 2 naming the key.
+void checkEngineText(const mrpt::config::CConfigFileBase& c,
+                     const mrpt::config::CConfigFileBase& layered) {
+    auto check = [&](const std::string& sec, const std::string& key, double v,
+                     const TRange& r) {
+        if (!r.contains(v))
+            throwBadKey(c, sec, key, layered.read_string(sec, key, numberText(v)),
+                        r.describe());
+    };
+    // MRPT reads its integer keys with a truncating parser ('2.7', '2abc',
+    // '1e308' all give a number): the text must be an integer in range
+    auto strictInt = [&](const std::string& sec, const std::string& key,
+                         const TRange& r) {
+        if (!layered.keyExists(sec, key))
+            return;
+        std::string t = layered.read_string(sec, key, "");
+        const auto b = t.find_first_not_of(" \t"), e = t.find_last_not_of(" \t");
+        t = b == std::string::npos ? "" : t.substr(b, e - b + 1);
+        char* end = nullptr;
+        errno = 0;
+        const long v = t.empty() ? 0 : std::strtol(t.c_str(), &end, 10);
+        if (t.empty() || *end != '\0' || errno == ERANGE)
+            throwBadKey(c, sec, key, t, "not an integer");
+        if (!r.contains(double(v)))
+            throwBadKey(c, sec, key, t, r.describe());
+    };
+    strictInt("CReactiveNavigationSystem", "PTG_COUNT", TRange::closed(1, 32, "PTGs"));
+    strictInt("CWaypointsNavigator", "multitarget_look_ahead",
+              TRange::closed(0, 100, "waypoints"));
+    strictInt("CAbstractNavigator", "hysteresis_check_target_is_blocked",
+              TRange::closed(1, 1000, "cycles"));
+    strictInt("CHolonomicFullEval", "PHASE_COUNT", TRange::closed(1, 10, "phases"));
+    strictInt("CPointCloudFilterByDistance", "previous_keyframes",
+              TRange::closed(1, 100, "keyframes"));
+    // a speed filter's time constant: NaN or < 0 crashed MRPT
+    check("CAbstractPTGBasedReactive", "speedfilter_tau",
+          layered.read_double("CAbstractPTGBasedReactive", "speedfilter_tau", 0),
+          TRange::closed(0, 10, "s"));
+    const std::string sec = "CReactiveNavigationSystem";
+    const int n = layered.read_int(sec, "PTG_COUNT", 0);
+    for (int i = 0; i < n; i++) {
+        const std::string k = "PTG" + std::to_string(i) + "_";
+        strictInt(sec, k + "num_paths", TRange::closed(2, 2000, "paths"));
+        // CPTG_DiffDrive_alpha's exp(-(alpha / cte)^2): NaN crashed MRPT, 0
+        // failed its asserts every cycle
+        for (const char* cte : {"cte_a0v_deg", "cte_a0w_deg"})
+            if (layered.keyExists(sec, k + cte))
+                check(sec, k + cte, layered.read_double(sec, k + cte, 1),
+                      TRange{0, 180, true, false, "deg"});
+    }
+}
+
 // Values MRPT 2.5.8 takes without a check and then fails on at every step
 // (robotMax_V_mps <= 0 or NaN: an assert each cycle, the run "completes"),
 // throws on as a bare assert or bad_alloc in initialize() (a PTG's
@@ -102,7 +157,7 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
                         r.describe());
     };
     const TRange speed{0, 100, true, false, "m/s"}, turn{0, 3600, true, false, "deg/s"},
-        reach{0, 100, true, false, "m"};
+        reach = TRange::closed(0.1, 100, "m");
     const std::string abs = "CAbstractPTGBasedReactive";
     const auto& p = nav.getCurrentRobotSpeedLimits();
     check(abs, "robotMax_V_mps", p.robotMax_V_mps, speed);
@@ -391,10 +446,12 @@ void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& 
     };
     if (m_engine) {
         const CLayeredConfig layered(c, *m_engine);
+        checkEngineText(c, layered);
         mrpt::nav::CReactiveNavigationSystem::loadConfigFile(layered);
         checkEngineValues(c, layered, *this);
         keepA0w(layered);
     } else {
+        checkEngineText(c, c);
         mrpt::nav::CReactiveNavigationSystem::loadConfigFile(c);
         checkEngineValues(c, c, *this);
         keepA0w(c);

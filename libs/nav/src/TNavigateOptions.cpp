@@ -23,6 +23,11 @@ void TNavigateOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
         if (st.size() != 3)
             throwBadKey(c, s, "start", readString(c, s, "start", ""),
                         "expected x [m] y [m] heading [deg]");
+        // the heading in degrees as typed (in radians it could overflow, and
+        // MRPT's obstacle filter crashed on an inf heading)
+        if (!(std::abs(st[2]) <= 3600))
+            throwBadKey(c, s, "start", readString(c, s, "start", ""),
+                        "the heading must be in [-3600, 3600] deg");
         start = mrpt::math::TPose2D(st[0], st[1], st[2] * M_PI / 180.0);
     } else
         throw CBadInputError(configWhere(c, s, "start") + "[" + s +
