@@ -315,6 +315,13 @@ INSTANTIATE_TEST_SUITE_P(
             "[CWaypointsNavigator] multitarget_look_ahead = '-1'"},
         TBad{"mrpt_ptg_count_fraction", "PTG_COUNT +=[^\\n]*", "PTG_COUNT = 2.7",
              "[CReactiveNavigationSystem] PTG_COUNT = '2.7': not an integer"},
+        TBad{"spawned_on_clutter", "start +=.*", "start = 8.0 4.5 90",
+             "the robot is spawned in collision with [Clutter"},
+        TBad{"adaptive_fuses_a_missing_sensor",
+             "speed_limiters = CStoppingDistanceLimiter",
+             "speed_limiters = CAdaptiveSpeedLimiter\n[CAdaptiveSpeedLimiter]\n",
+             "[CAdaptiveSpeedLimiter] use_range2 = 'true': the world has no second range "
+             "sensor"},
         TBad{"guide_lookahead_negative", "speed_limiters = CStoppingDistanceLimiter",
              "speed_limiters = CStoppingDistanceLimiter\nguide_lookahead = -1",
              "[CRiskAwareReactiveNav] guide_lookahead = '-1'"},

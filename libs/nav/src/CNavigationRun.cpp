@@ -4,6 +4,7 @@
 #include <risknav/common/CSpeedLimiter.h>
 #include <risknav/common/config_read.h>
 #include <risknav/common/stopping.h>
+#include <risknav/nav/CAdaptiveSpeedLimiter.h>
 #include <risknav/nav/CAfraidSpeedLimiter.h>
 #include <risknav/nav/CNavigationRun.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
@@ -107,6 +108,15 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
                 (m_engine ? m_engine->path() + " (engine_config) + " : "") + c.path() +
                 ": MRPT's reactive engine refused the config: " + firstLine(e.what()));
         }
+        // a second sensor the adaptive limiter is to fuse must exist
+        for (const auto& l : probe.limiters())
+            if (const auto* a = dynamic_cast<const CAdaptiveSpeedLimiter*>(l.get());
+                a && a->options.use_range2 && !world.range2.options.enabled)
+                throwBadKey(c, "CAdaptiveSpeedLimiter", "use_range2",
+                            c.read_string("CAdaptiveSpeedLimiter", "use_range2", "true"),
+                            "the world has no second range sensor ([RangeSensor2] "
+                            "enabled is false): every cell would stay undecided and the "
+                            "robot creep; set use_range2 = false or enable it");
         // A learned afraid map is for one map: its grid must be the world's.
         for (const auto& l : probe.limiters())
             if (const auto* a = dynamic_cast<const CAfraidSpeedLimiter*>(l.get())) {
@@ -313,6 +323,17 @@ void CNavigationRun::checkAgainstMap(const CIniConfig& c) const {
                       pointText(s.x, s.y).c_str(), cl, world.robot.radius);
         throwBadKey(c, kSec, "start", startText, b);
     }
+    // the clutter the map does not hold (people move; they are not checked)
+    for (const auto& k : world.agents.clutter)
+        if (std::hypot(k.x - s.x, k.y - s.y) < k.radius + world.robot.radius) {
+            char b[240];
+            std::snprintf(b, sizeof(b),
+                          "the robot is spawned in collision with [%s] at %s (%.2f m "
+                          "between the centres < %.2f m + robot radius %.2f m)",
+                          k.section.c_str(), pointText(k.x, k.y).c_str(),
+                          std::hypot(k.x - s.x, k.y - s.y), k.radius, world.robot.radius);
+            throwBadKey(c, kSec, "start", startText, b);
+        }
     for (const auto& w : waypoints.waypoints)
         if (!onMap(w.target.x, w.target.y))
             throwBadKey(
