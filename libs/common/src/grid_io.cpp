@@ -14,13 +14,17 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace fs = std::filesystem;
 using mrpt::maps::COccupancyGridMap2D;
@@ -101,8 +105,63 @@ struct TRosParams {
     bool negate = false;
 };
 
+// The largest grid risknav reads (cells): 25 M, e.g. 250 m x 250 m at 5 cm.
+constexpr uint64_t kMaxGridCells = 25'000'000;
+
+/** The pixel size of a PNG, BMP or binary/ASCII PGM from its header, without
+ * decoding it (0 x 0: not one of those, left to the decoder). */
+std::pair<uint64_t, uint64_t> imageHeaderSize(const std::string& file) {
+    std::ifstream f(file, std::ios::binary);
+    unsigned char h[64] = {};
+    f.read(reinterpret_cast<char*>(h), sizeof(h));
+    const auto n = size_t(f.gcount());
+    auto be32 = [&](size_t o) {
+        return uint64_t(h[o]) << 24 | uint64_t(h[o + 1]) << 16 | uint64_t(h[o + 2]) << 8 |
+               uint64_t(h[o + 3]);
+    };
+    auto le32 = [&](size_t o) {
+        return uint64_t(uint32_t(h[o] | h[o + 1] << 8 | h[o + 2] << 16 | h[o + 3] << 24));
+    };
+    if (n >= 24 && h[0] == 0x89 && h[1] == 'P' && h[2] == 'N' && h[3] == 'G')
+        return {be32(16), be32(20)};
+    if (n >= 26 && h[0] == 'B' && h[1] == 'M') {
+        const int64_t w = int32_t(le32(18)), hh = int32_t(le32(22));
+        return {uint64_t(std::abs(w)), uint64_t(std::abs(hh))};
+    }
+    if (n >= 2 && h[0] == 'P' && (h[1] == '2' || h[1] == '5')) {
+        // "P5 <w> <h> ...", comments (#...) between the fields
+        std::string t(reinterpret_cast<char*>(h) + 2, n - 2);
+        std::vector<uint64_t> v;
+        size_t i = 0;
+        while (v.size() < 2 && i < t.size()) {
+            if (t[i] == '#') {
+                while (i < t.size() && t[i] != '\n')
+                    i++;
+            } else if (std::isdigit(static_cast<unsigned char>(t[i]))) {
+                uint64_t x = 0;
+                while (i < t.size() && std::isdigit(static_cast<unsigned char>(t[i])) &&
+                       x < (uint64_t(1) << 40))
+                    x = x * 10 + uint64_t(t[i++] - '0');
+                v.push_back(x);
+                continue;
+            }
+            i++;
+        }
+        if (v.size() == 2)
+            return {v[0], v[1]};
+    }
+    return {0, 0};
+}
+
 COccupancyGridMap2D fromImage(const std::string& file, double res, double ox, double oy,
                               TPixelModel model, const TRosParams& ros = {}) {
+    // before decoding: a small file can hold a huge image (a 439 KB PNG of
+    // 20000 x 20000 px took 4.4 GB)
+    if (const auto [w, h] = imageHeaderSize(file); w * h > kMaxGridCells)
+        throw CBadInputError(file + ": the map image is " + std::to_string(w) + " x " +
+                             std::to_string(h) + " px, more than " +
+                             std::to_string(kMaxGridCells / 1000000) +
+                             " M cells (one cell per pixel)");
     cv::Mat img;
     try {
         const CStderrSilenced quiet;  // libpng prints its own lines on a bad file
@@ -223,9 +282,6 @@ COccupancyGridMap2D fromRosYaml(const std::string& file) {
                      mode == "scale" ? TPixelModel::RosScale : TPixelModel::RosTrinary,
                      rp);
 }
-
-// The largest grid risknav reads (cells): 25 M, e.g. 250 m x 250 m at 5 cm.
-constexpr uint64_t kMaxGridCells = 25'000'000;
 
 // A .gridmap is MRPT's serialized COccupancyGridMap2D. Its header (class name,
 // version 6: bits per cell, size_x, size_y, bounds, resolution) is checked

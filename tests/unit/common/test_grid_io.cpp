@@ -110,6 +110,34 @@ TEST(GridIO, BadFilesAreBadInput) {
     EXPECT_THROW(loadOccupancyGrid(s), CBadInputError);
 }
 
+TEST(GridIO, AnImageOfMoreThan25MPixelsIsRefusedBeforeDecoding) {
+    // a header that says 20000 x 20000 (a tester's 439 KB PNG of that size
+    // took 4.4 GB): refused from the header, whatever follows
+    const std::string d = freshDir("big");
+    std::string png = "\x89PNG\r\n\x1a\n";
+    png += std::string("\0\0\0\x0dIHDR", 8);
+    png += std::string("\0\0\x4e\x20\0\0\x4e\x20", 8);  // 20000, 20000
+    png += std::string("\x08\0\0\0\0\0\0\0\0", 9);
+    writeFile(d + "/big.png", png);
+    writeFile(d + "/big.pgm", "P5\n# a comment\n6000 5000\n255\n");
+    writeFile(d + "/ok.pgm", "P5\n4 3\n255\n" + std::string(12, '\xff'));
+    TMapSourceOptions s;
+    for (const auto& [f, size] : std::vector<std::pair<std::string, std::string>>{
+             {"big.png", "20000 x 20000 px"}, {"big.pgm", "6000 x 5000 px"}}) {
+        s.map_file = d + "/" + f;
+        try {
+            loadOccupancyGrid(s);
+            FAIL() << f;
+        } catch (const CBadInputError& e) {
+            EXPECT_NE(std::string(e.what()).find(size + ", more than 25 M cells"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+    s.map_file = d + "/ok.pgm";
+    EXPECT_EQ(loadOccupancyGrid(s).getSizeX(), 4u);
+}
+
 // MRPT's own sample map (package mrpt-common): a grid built from its keyframes.
 TEST(GridIO, MrptSimplemapDataset) {
     TMapSourceOptions s;
