@@ -247,8 +247,9 @@ TEST_F(NavigateNavlog, MrptNavlogViewerLoadsAndShowsIt) {
 
 TEST(NavigateNavlogGuide, MrptsRecordShowsTheGuidePointAsItsTarget) {
     // M1 (guide_lookahead = 1.5): while MRPT is aimed at the adaptive
-    // limiter's way, its record's target is the guide point, about 1.5 m
-    // off (the first destination is 4 m away), and the record says so.
+    // limiter's way (out of the start room, the straight line to the first
+    // destination not yet known free), its record's target is the guide
+    // point, about 1.5 m off (the destination is 4 m away), and says so.
     const std::string dir =
         (fs::temp_directory_path() / ("risknav-e2e-guide-" + std::to_string(::getpid())))
             .string();
@@ -265,7 +266,8 @@ TEST(NavigateNavlogGuide, MrptsRecordShowsTheGuidePointAsItsTarget) {
             guided++;
             near += t.targetDist > 0 && t.targetDist < 1.7;
         }
-    EXPECT_GT(guided, log.records.size() / 2) << log.records.size();
+    // (not every cycle: none while the straight line to the goal is open)
+    EXPECT_GE(guided, 5u) << log.records.size();
     EXPECT_EQ(near, guided);
     fs::remove_all(dir);
 }

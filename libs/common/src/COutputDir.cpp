@@ -86,9 +86,14 @@ COutputDir::COutputDir(const std::string& dir, const std::string& app)
         throw CBadInputError(dir +
                              ": the output folder is in use by another risknav run");
     }
-    for (const auto& e : fs::directory_iterator(dir, ec))
-        if (e.is_regular_file(ec) && staleTemporary(e.path()))
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+        if (e.is_symlink(ec) || !staleTemporary(e.path()))
+            continue;
+        if (e.is_regular_file(ec))
             fs::remove(e.path(), ec);
+        else if (e.is_directory(ec))  // e.g. risknav-navigate's navlog scratch folder
+            fs::remove_all(e.path(), ec);
+    }
 }
 
 COutputDir::~COutputDir() {

@@ -18,10 +18,12 @@ namespace risknav::nav {
 namespace {
 // MRPT writes its navlog into a folder of its own; this one is inside the
 // output folder (same file system, so the file is renamed into its staged
-// name) and removed whatever happens.
+// name) and removed whatever happens; named as a temporary, so that the
+// next run into the folder removes it after a killed run.
 struct TScratchDir {
     explicit TScratchDir(const std::string& parent)
-        : path((fs::path(parent) / (".navlog-" + std::to_string(::getpid()))).string()) {
+        : path((fs::path(parent) / (".tmp-" + std::to_string(::getpid()) + "-navlog"))
+                   .string()) {
         fs::remove_all(path);
     }
     ~TScratchDir() {

@@ -102,7 +102,14 @@ TEST(COutputDir, RemovesTemporariesOfDeadRunsOnly) {
     writeFile(d + "/.tmp-1-summary.json", "init is alive");
     writeFile(d + "/.tmp-x-notes.txt", "not ours");
     writeFile(d + "/summary.json", "earlier result");
+    // a killed risknav-navigate's navlog scratch folder, and a live one's
+    std::filesystem::create_directories(d + "/.tmp-999999998-navlog");
+    std::filesystem::create_directories(d + "/.tmp-1-navlog");
+    writeFile(d + "/.tmp-999999998-navlog/log_001.reactivenavlog", "dead run");
+    writeFile(d + "/.tmp-1-navlog/log_001.reactivenavlog", "alive");
     COutputDir out(d);
+    EXPECT_FALSE(std::filesystem::exists(d + "/.tmp-999999998-navlog"));
+    EXPECT_TRUE(std::filesystem::exists(d + "/.tmp-1-navlog/log_001.reactivenavlog"));
     EXPECT_FALSE(std::filesystem::exists(d + "/.tmp-999999999-summary.json"));
     EXPECT_TRUE(std::filesystem::exists(d + "/.tmp-1-summary.json"));
     EXPECT_TRUE(std::filesystem::exists(d + "/.tmp-x-notes.txt"));
