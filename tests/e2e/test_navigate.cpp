@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -427,6 +428,30 @@ TEST(NavigateE2E, ViewpointPlanIsDrivenAsMrptWaypointsWithViewpointEvents) {
         mustReach += !wp.allow_skip;
     EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
     EXPECT_EQ(viewpoints, mustReach);
+}
+
+TEST(NavigateE2E, RunsOfOtherPtgsKeepTheirOwnPtgCacheFiles) {
+    // MRPT names its PTG grid files by index only: a run of other PTGs
+    // overwrote them in a shared ptg_cache_dir, and a run in parallel read a
+    // half-written one (12-24 GB, killed). Now one subfolder per set of PTGs.
+    const std::string cache = freshDir("ptg");
+    const std::string base =
+        "--set Navigate.duration_max=1 --set Navigate.ptg_cache_dir=" + cache + " ";
+    const std::string cfg = sourcePath("datasets/office/navigate.ini");
+    navRun(cfg, freshDir("a"), base);
+    std::map<std::string, std::string> first;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(cache))
+        if (e.is_regular_file() && e.path().filename() != ".lock")
+            first[e.path().string()] = readFile(e.path().string());
+    ASSERT_EQ(first.size(), 2u);  // the office's two PTGs, in one subfolder
+    navRun(cfg, freshDir("b"),
+           base + "--set CReactiveNavigationSystem.PTG1_num_paths=61");
+    size_t files = 0;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(cache))
+        files += e.is_regular_file() && e.path().filename() != ".lock";
+    EXPECT_EQ(files, 4u);  // the other run's two in a second subfolder
+    for (const auto& [f, content] : first)
+        EXPECT_EQ(readFile(f), content) << f;
 }
 
 TEST(NavigateE2E, AdaptiveLimiterReachesTheOfficeDestinationsThroughTheEngine) {

@@ -17,7 +17,10 @@
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/system/filesystem.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -420,11 +423,41 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     const_cast<mrpt::system::CTimeLogger&>(nav.getDelaysTimeLogger()).disable();
     nav.setEngineConfig(m_engine.get());
     nav.loadConfigFile(c);
-    nav.params_abstract_ptg_navigator.ptg_cache_files_directory = ptgCacheDir();
+    if (setup.maxSpeed)
+        nav.changeCurrentRobotSpeedLimits().robotMax_V_mps = *setup.maxSpeed;
+    // The world's robot is a disc: MRPT gets the 24-gon around it grown by
+    // shape_margin (vertices at (R + margin) / cos(pi / 24)), so that MRPT's
+    // collision checks cover the disc the safety monitor measures.
+    mrpt::math::CPolygon shape;
+    const double rv = (world.robot.radius + options.shape_margin) / std::cos(M_PI / 24);
+    for (int i = 0; i < 24; i++)
+        shape.AddVertex(rv * std::cos(i * M_PI / 12), rv * std::sin(i * M_PI / 12));
+    // MRPT names its PTG grid files by PTG index only (ReacNavGrid_000...):
+    // runs of other PTGs or shapes sharing one folder rebuilt and overwrote
+    // each other's files, and one run read another's half-written file (an
+    // allocation of 12-24 GB, killed; found when CI's parallel tests started
+    // with no cache). So one subfolder per set of PTGs and shape.
+    // (the PTGs' keys, [CReactiveNavigationSystem], as the engine loaded them)
+    std::string engineText;
+    std::vector<std::string> keys;
+    m_navigatorConfig.getAllKeys("CReactiveNavigationSystem", keys);
+    std::sort(keys.begin(), keys.end());
+    for (const auto& k : keys)
+        engineText += k + "=" +
+                      m_navigatorConfig.read_string("CReactiveNavigationSystem", k, "") +
+                      "\n";
+    engineText += "shape=" + numberText(rv) + "\n";
+    uint64_t h = 1469598103934665603ull;  // FNV-1a: the same name in every build
+    for (const unsigned char ch : engineText)
+        h = (h ^ ch) * 1099511628211ull;
+    char hex[17];
+    std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(h));
+    const std::string cacheDir = (fs::path(ptgCacheDir()) / hex).string();
+    nav.params_abstract_ptg_navigator.ptg_cache_files_directory = cacheDir;
     {
         // MRPT writes its PTG grids there: a file, or a folder that cannot
         // be written, is the key's error (not a filesystem exception)
-        const std::string dir = ptgCacheDir();
+        const std::string dir = cacheDir;
         std::error_code ec;
         fs::create_directories(dir, ec);
         bool ok = !ec && fs::is_directory(dir, ec);
@@ -435,20 +468,27 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
             fs::remove(probe, ec);
         }
         if (!ok)
-            throwBadKey(c, "Navigate", "ptg_cache_dir", dir,
+            throwBadKey(c, "Navigate", "ptg_cache_dir", ptgCacheDir(),
                         "cannot create or write this directory (MRPT's PTG cache)");
     }
-    if (setup.maxSpeed)
-        nav.changeCurrentRobotSpeedLimits().robotMax_V_mps = *setup.maxSpeed;
-    // The world's robot is a disc: MRPT gets the 24-gon around it grown by
-    // shape_margin (vertices at (R + margin) / cos(pi / 24)), so that MRPT's
-    // collision checks cover the disc the safety monitor measures.
-    mrpt::math::CPolygon shape;
-    const double rv = (world.robot.radius + options.shape_margin) / std::cos(M_PI / 24);
-    for (int i = 0; i < 24; i++)
-        shape.AddVertex(rv * std::cos(i * M_PI / 12), rv * std::sin(i * M_PI / 12));
     nav.changeRobotShape(shape);
-    nav.initialize();
+    {
+        // one run at a time builds or reads a subfolder's grids (MRPT writes
+        // them in place, not atomically)
+        const int fd = ::open((fs::path(cacheDir) / ".lock").c_str(),
+                              O_CREAT | O_RDWR | O_CLOEXEC, 0644);
+        if (fd >= 0)
+            ::flock(fd, LOCK_EX);
+        try {
+            nav.initialize();
+        } catch (...) {
+            if (fd >= 0)
+                ::close(fd);
+            throw;
+        }
+        if (fd >= 0)
+            ::close(fd);
+    }
     if (navlog) {
         nav.setLogFileDirectory(setup.navlogDir);
         nav.enableLogFile(true);
