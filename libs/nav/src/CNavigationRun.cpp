@@ -68,6 +68,46 @@ struct TSimClock {
     ~TSimClock() { mrpt::Clock::setActiveClock(mrpt::Clock::Realtime); }
     void set(double t) { mrpt::Clock::setSimulatedTime(mrpt::Clock::fromDouble(t)); }
 };
+// MRPT names its PTG grid files by PTG index only (ReacNavGrid_000...):
+// runs of other PTGs or shapes sharing one folder rebuilt and overwrote each
+// other's files, and one run read another's half-written file (an
+// allocation of 12-24 GB, killed; found when CI's parallel tests started
+// with no cache). So one subfolder per set of PTGs (the engine's
+// [CReactiveNavigationSystem] keys as it loaded them) and robot shape (the
+// polygon's vertex radius `rv`), named by their FNV-1a hash (the same name
+// in every build).
+std::string ptgSetName(const mrpt::config::CConfigFileBase& engine, double rv) {
+    std::vector<std::string> keys;
+    engine.getAllKeys("CReactiveNavigationSystem", keys);
+    std::sort(keys.begin(), keys.end());
+    std::string text;
+    for (const auto& k : keys)
+        text += k + "=" + engine.read_string("CReactiveNavigationSystem", k, "") + "\n";
+    text += "shape=" + numberText(rv) + "\n";
+    uint64_t h = 1469598103934665603ull;
+    for (const unsigned char ch : text)
+        h = (h ^ ch) * 1099511628211ull;
+    char hex[17];
+    std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(h));
+    return hex;
+}
+
+/** An exclusive flock on a file (created if need be) for its lifetime; no
+ * lock when the file cannot be opened (the work then runs unguarded). */
+struct TFileLock {
+    explicit TFileLock(const std::string& path)
+        : fd(::open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644)) {
+        if (fd >= 0)
+            ::flock(fd, LOCK_EX);
+    }
+    ~TFileLock() {
+        if (fd >= 0)
+            ::close(fd);
+    }
+    TFileLock(const TFileLock&) = delete;
+    TFileLock& operator=(const TFileLock&) = delete;
+    int fd;
+};
 }  // namespace
 
 void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> seed,
@@ -327,16 +367,17 @@ void CNavigationRun::checkAgainstMap(const CIniConfig& c) const {
         throwBadKey(c, kSec, "start", startText, b);
     }
     // the clutter the map does not hold (people move; they are not checked)
-    for (const auto& k : world.agents.clutter)
-        if (std::hypot(k.x - s.x, k.y - s.y) < k.radius + world.robot.radius) {
-            char b[240];
-            std::snprintf(b, sizeof(b),
-                          "the robot is spawned in collision with [%s] at %s (%.2f m "
-                          "between the centres < %.2f m + robot radius %.2f m)",
-                          k.section.c_str(), pointText(k.x, k.y).c_str(),
-                          std::hypot(k.x - s.x, k.y - s.y), k.radius, world.robot.radius);
-            throwBadKey(c, kSec, "start", startText, b);
-        }
+    double d = 0;
+    if (const auto* k =
+            world.agents.clutterOverlapping(s.x, s.y, world.robot.radius, &d)) {
+        char b[240];
+        std::snprintf(b, sizeof(b),
+                      "the robot is spawned in collision with [%s] at %s (%.2f m "
+                      "between the centres < %.2f m + robot radius %.2f m)",
+                      k->section.c_str(), pointText(k->x, k->y).c_str(), d, k->radius,
+                      world.robot.radius);
+        throwBadKey(c, kSec, "start", startText, b);
+    }
     for (const auto& w : waypoints.waypoints)
         if (!onMap(w.target.x, w.target.y))
             throwBadKey(
@@ -432,27 +473,8 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     const double rv = (world.robot.radius + options.shape_margin) / std::cos(M_PI / 24);
     for (int i = 0; i < 24; i++)
         shape.AddVertex(rv * std::cos(i * M_PI / 12), rv * std::sin(i * M_PI / 12));
-    // MRPT names its PTG grid files by PTG index only (ReacNavGrid_000...):
-    // runs of other PTGs or shapes sharing one folder rebuilt and overwrote
-    // each other's files, and one run read another's half-written file (an
-    // allocation of 12-24 GB, killed; found when CI's parallel tests started
-    // with no cache). So one subfolder per set of PTGs and shape.
-    // (the PTGs' keys, [CReactiveNavigationSystem], as the engine loaded them)
-    std::string engineText;
-    std::vector<std::string> keys;
-    m_navigatorConfig.getAllKeys("CReactiveNavigationSystem", keys);
-    std::sort(keys.begin(), keys.end());
-    for (const auto& k : keys)
-        engineText += k + "=" +
-                      m_navigatorConfig.read_string("CReactiveNavigationSystem", k, "") +
-                      "\n";
-    engineText += "shape=" + numberText(rv) + "\n";
-    uint64_t h = 1469598103934665603ull;  // FNV-1a: the same name in every build
-    for (const unsigned char ch : engineText)
-        h = (h ^ ch) * 1099511628211ull;
-    char hex[17];
-    std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(h));
-    const std::string cacheDir = (fs::path(ptgCacheDir()) / hex).string();
+    const std::string cacheDir =
+        (fs::path(ptgCacheDir()) / ptgSetName(m_navigatorConfig, rv)).string();
     nav.params_abstract_ptg_navigator.ptg_cache_files_directory = cacheDir;
     {
         // MRPT writes its PTG grids there: a file, or a folder that cannot
@@ -475,19 +497,8 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     {
         // one run at a time builds or reads a subfolder's grids (MRPT writes
         // them in place, not atomically)
-        const int fd = ::open((fs::path(cacheDir) / ".lock").c_str(),
-                              O_CREAT | O_RDWR | O_CLOEXEC, 0644);
-        if (fd >= 0)
-            ::flock(fd, LOCK_EX);
-        try {
-            nav.initialize();
-        } catch (...) {
-            if (fd >= 0)
-                ::close(fd);
-            throw;
-        }
-        if (fd >= 0)
-            ::close(fd);
+        const TFileLock lock((fs::path(cacheDir) / ".lock").string());
+        nav.initialize();
     }
     if (navlog) {
         nav.setLogFileDirectory(setup.navlogDir);

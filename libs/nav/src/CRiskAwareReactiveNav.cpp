@@ -89,16 +89,23 @@ class CReadRecordingConfig : public mrpt::config::CConfigFileMemory {
     mutable std::set<std::string> m_read;
 };
 
-// The same for values MRPT crashes or asserts on while it loads them (so
-// checked in the text, before): exit 2 naming the key.
+// An engine value out of its range: exit 2 naming the key, with the text as
+// written (MRPT wraps num_paths to 16 bits).
+void checkEngineValue(const mrpt::config::CConfigFileBase& c,
+                      const mrpt::config::CConfigFileBase& layered,
+                      const std::string& sec, const std::string& key, double v,
+                      const TRange& r) {
+    if (!r.contains(v))
+        throwBadKey(c, sec, key, layered.read_string(sec, key, numberText(v)),
+                    r.describe());
+}
+
+// Values MRPT crashes or asserts on while it loads them, checked in the
+// text before it does: exit 2 naming the key.
 void checkEngineText(const mrpt::config::CConfigFileBase& c,
                      const mrpt::config::CConfigFileBase& layered) {
     auto check = [&](const std::string& sec, const std::string& key, double v,
-                     const TRange& r) {
-        if (!r.contains(v))
-            throwBadKey(c, sec, key, layered.read_string(sec, key, numberText(v)),
-                        r.describe());
-    };
+                     const TRange& r) { checkEngineValue(c, layered, sec, key, v, r); };
     // MRPT reads its integer keys with a truncating parser ('2.7', '2abc',
     // '1e308' all give a number): the text must be an integer in range
     auto strictInt = [&](const std::string& sec, const std::string& key,
@@ -151,11 +158,7 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
                        const mrpt::config::CConfigFileBase& layered,
                        const mrpt::nav::CReactiveNavigationSystem& nav) {
     auto check = [&](const std::string& sec, const std::string& key, double v,
-                     const TRange& r) {
-        if (!r.contains(v))  // the text as written (MRPT wraps num_paths to 16 bits)
-            throwBadKey(c, sec, key, layered.read_string(sec, key, numberText(v)),
-                        r.describe());
-    };
+                     const TRange& r) { checkEngineValue(c, layered, sec, key, v, r); };
     const TRange speed{0, 100, true, false, "m/s"}, turn{0, 3600, true, false, "deg/s"},
         reach = TRange::closed(0.1, 100, "m");
     const std::string abs = "CAbstractPTGBasedReactive";

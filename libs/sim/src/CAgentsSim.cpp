@@ -371,6 +371,20 @@ void CAgentsSim::step(double t, double dt, const mrpt::math::TPose2D& robot,
     m_active.swap(keep);
 }
 
+const CAgentsSim::TClutter* CAgentsSim::clutterOverlapping(double x, double y,
+                                                           double radius,
+                                                           double* centreDistance) const {
+    for (const auto& k : clutter) {
+        const double d = std::hypot(k.x - x, k.y - y);
+        if (d < k.radius + radius) {
+            if (centreDistance)
+                *centreDistance = d;
+            return &k;
+        }
+    }
+    return nullptr;
+}
+
 std::vector<TDisc> CAgentsSim::discs() const {
     std::vector<TDisc> d;
     d.reserve(m_active.size() + clutter.size());

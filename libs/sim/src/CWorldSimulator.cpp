@@ -127,16 +127,15 @@ void CWorldSimulator::checkAgainstMap(const CIniConfig& c) const {
         throwBadKey(c, "Route", "waypoints", wpText, b);
     }
     // the clutter the map does not hold
-    for (const auto& k : world.agents.clutter)
-        if (std::hypot(k.x - wps[0].x, k.y - wps[0].y) < k.radius + R) {
-            char b[200];
-            std::snprintf(b, sizeof(b),
-                          "start %s is inside [%s] (%.2f m from its centre < %.2f m + "
-                          "robot radius %.2f m)",
-                          where(wps[0]).c_str(), k.section.c_str(),
-                          std::hypot(k.x - wps[0].x, k.y - wps[0].y), k.radius, R);
-            throwBadKey(c, "Route", "waypoints", wpText, b);
-        }
+    double d = 0;
+    if (const auto* k = world.agents.clutterOverlapping(wps[0].x, wps[0].y, R, &d)) {
+        char b[200];
+        std::snprintf(b, sizeof(b),
+                      "start %s is inside [%s] (%.2f m from its centre < %.2f m + "
+                      "robot radius %.2f m)",
+                      where(wps[0]).c_str(), k->section.c_str(), d, k->radius, R);
+        throwBadKey(c, "Route", "waypoints", wpText, b);
+    }
     std::vector<TPoint2D> pass = wps;
     if (route.options.mode == "loop")
         pass.push_back(wps.front());

@@ -90,6 +90,10 @@ class CAgentsSim {
               std::vector<TAgentEvent>& events);
     /** Discs of the active people and of the clutter; ids are stable per agent. */
     std::vector<TDisc> discs() const;
+    /** The first clutter disc a disc of `radius` at (x, y) overlaps, with
+     * the distance between the centres; nullptr: none (a start check). */
+    const TClutter* clutterOverlapping(double x, double y, double radius,
+                                       double* centreDistance = nullptr) const;
     /** Name ("DoorPedestrian2#3") of the person with this disc id. */
     const std::string& agentName(int id) const { return m_names.at(size_t(id)); }
 
