@@ -314,6 +314,39 @@ INSTANTIATE_TEST_SUITE_P(
             "mrpt_look_ahead_negative", "\\[CRiskAwareReactiveNav\\]",
             "[CWaypointsNavigator]\nmultitarget_look_ahead = -1\n[CRiskAwareReactiveNav]",
             "[CWaypointsNavigator] multitarget_look_ahead = '-1'"},
+        // MRPT asserted on these, or failed to compile them, in every cycle of
+        // a run that then exited 0 with its errors counted
+        TBad{"mrpt_secure_distance_end_zero", "\\[CRiskAwareReactiveNav\\]",
+             "[CAbstractPTGBasedReactive]\nsecure_distance_end = "
+             "0\n[CRiskAwareReactiveNav]",
+             "[CAbstractPTGBasedReactive] secure_distance_end = '0': must be more than "
+             "secure_distance_start = 0.05"},
+        TBad{"mrpt_secure_distance_start_nan", "\\[CRiskAwareReactiveNav\\]",
+             "[CAbstractPTGBasedReactive]\nsecure_distance_start = nan\n"
+             "[CRiskAwareReactiveNav]",
+             "[CAbstractPTGBasedReactive] secure_distance_start = 'nan': must be in [0, "
+             "1]"},
+        TBad{"mrpt_score_formula_syntax", "\\[CRiskAwareReactiveNav\\]",
+             "[CMultiObjectiveMotionOptimizerBase]\nscore2_formula = (1 + \n"
+             "[CRiskAwareReactiveNav]",
+             "[CMultiObjectiveMotionOptimizerBase] score2_formula = '(1 +': does not "
+             "compile in MRPT's expression parser: "},
+        TBad{"mrpt_scalar_formula_unknown_score", "\\[CRiskAwareReactiveNav\\]",
+             "[CMultiObjMotionOpt_Scalarization]\nscalar_score_formula = "
+             "colision_free_distance\n[CRiskAwareReactiveNav]",
+             "[CMultiObjMotionOpt_Scalarization] scalar_score_formula = "
+             "'colision_free_distance': does not compile in MRPT's expression parser: "
+             "ERR201 - Undefined symbol: 'colision_free_distance'"},
+        TBad{"mrpt_assert_unknown_variable", "\\[CRiskAwareReactiveNav\\]",
+             "[CMultiObjectiveMotionOptimizerBase]\nmovement_assert1 = speed > 0\n"
+             "[CRiskAwareReactiveNav]",
+             "[CMultiObjectiveMotionOptimizerBase] movement_assert1 = 'speed > 0': does "
+             "not compile"},
+        // the run's work is bounded before it starts (1e8 world steps here)
+        TBad{
+            "run_too_long", "duration_max +=.*", "duration_max = 1e5\nsim_dt = 0.001",
+            "[Navigate] duration_max = '1e5': is 1e+08 world steps of sim_dt = 0.001 "
+            "s, at most 2e+06"},
         TBad{"mrpt_ptg_count_fraction", "PTG_COUNT +=[^\\n]*", "PTG_COUNT = 2.7",
              "[CReactiveNavigationSystem] PTG_COUNT = '2.7': not an integer"},
         TBad{"spawned_on_clutter", "start +=.*", "start = 8.0 4.5 90",
@@ -511,7 +544,17 @@ TEST(NavigateE2E, BadWaypointFileIsAClearError) {
               "6.6\n"
               "wp000_alowed_distance = 1\n",
               "wp000_alowed_distance"},
-             {"[Other]\nx = 1\n", "no [Waypoints] section"}}) {
+             {"[Other]\nx = 1\n", "no [Waypoints] section"},
+             // MRPT's other keys: applied, or refused with the reason
+             {"[Waypoints]\nwaypoint_count = 1\nwp000_target_x = 5\nwp000_target_y = "
+              "6.6\nwp000_speed_ratio = 0\n",
+              "[Waypoints] wp000_speed_ratio = '0': must be in (0, 1]"},
+             {"[Waypoints]\nwaypoint_count = 1\nwp000_target_x = 5\nwp000_target_y = "
+              "6.6\nwp000_target_frame_id = odom\n",
+              "wp000_target_frame_id = 'odom': only 'map'"},
+             {"[Waypoints]\nwaypoint_count = 1\nwp000_target_x = 5\nwp000_target_y = "
+              "6.6\nwp000_target_heading = 1.57\n",
+              "wp000_target_heading: not supported"}}) {
         writeFile(w + "/wp.ini", content);
         writeEarlierOutput(out, earlier);
         const auto r =

@@ -7,6 +7,7 @@
 #include <risknav/sim/CSimRobotInterface.h>
 
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/expr/CRuntimeCompiledExpression.h>
 #include <mrpt/kinematics/CVehicleVelCmd_DiffDriven.h>
 #include <mrpt/maps/CPointCloudFilterByDistance.h>
 #include <mrpt/nav/reactive/CLogFileRecord.h>
@@ -20,6 +21,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -100,6 +102,94 @@ void checkEngineValue(const mrpt::config::CConfigFileBase& c,
                     r.describe());
 }
 
+// The variables MRPT 2.5.8 gives its score and assert formulas: the
+// properties CAbstractPTGBasedReactive::calc_move_candidate_scores() sets on
+// each candidate movement (and, for asserts, the scores' names).
+const char* const kMrptCandidateVars[] = {"WS_target_x",
+                                          "WS_target_y",
+                                          "clearance",
+                                          "clearance_50p",
+                                          "clearance_path",
+                                          "clearance_path_50p",
+                                          "collision_free_distance",
+                                          "dist_eucl_final",
+                                          "dist_eucl_min",
+                                          "eta",
+                                          "holo_stage_eval",
+                                          "hysteresis",
+                                          "is_PTG_cont",
+                                          "is_slowdown",
+                                          "move_cur_d",
+                                          "move_k",
+                                          "num_paths",
+                                          "original_col_free_dist",
+                                          "ptg_idx",
+                                          "ptg_priority",
+                                          "ref_dist",
+                                          "robpose_phi",
+                                          "robpose_x",
+                                          "robpose_y",
+                                          "target_d_norm",
+                                          "target_dir",
+                                          "target_k"};
+
+// MRPT compiles its formulas in the first navigation step and, on an error,
+// stops the robot with it on every cycle of the run: they are compiled here
+// first, with MRPT's own compiler and the variables it would give them, and a
+// formula that does not compile is a bad key (exit 2), as MRPT's loop reads
+// them (CMultiObjectiveMotionOptimizerBase::TParamsBase).
+void checkEngineFormulas(const mrpt::config::CConfigFileBase& c,
+                         const mrpt::config::CConfigFileBase& layered) {
+    std::map<std::string, double> vars;
+    for (const char* v : kMrptCandidateVars)
+        vars[v] = 0;
+    auto compiles = [&](const std::string& sec, const std::string& key,
+                        const std::string& formula,
+                        const std::map<std::string, double>& with) {
+        mrpt::expr::CRuntimeCompiledExpression e;
+        try {
+            e.compile(formula, with, key);
+        } catch (const std::exception& ex) {
+            // MRPT's message holds a stack trace: only exprtk's own words
+            const std::string w = ex.what();
+            const auto a = w.find("Error: `"), b = w.find('`', a + 8);
+            throwBadKey(c, sec, key, formula,
+                        "does not compile in MRPT's expression parser: " +
+                            (a != std::string::npos && b != std::string::npos
+                                 ? w.substr(a + 8, b - a - 8)
+                                 : std::string("syntax error")));
+        }
+    };
+    const std::string base = "CMultiObjectiveMotionOptimizerBase";
+    std::map<std::string, double> scores;
+    for (int i = 1; i <= 1000; i++) {
+        const std::string nk = "score" + std::to_string(i) + "_name",
+                          fk = "score" + std::to_string(i) + "_formula";
+        const std::string name = layered.read_string(base, nk, ""),
+                          formula = layered.read_string(base, fk, "");
+        if (name.empty() || formula.empty())
+            break;  // MRPT's loader reports a half-given pair itself
+        if (vars.count(name))
+            throwBadKey(c, base, nk, name,
+                        "is one of MRPT's candidate variables; pick another name");
+        compiles(base, fk, formula, vars);
+        scores[name] = 0;
+    }
+    auto withScores = vars;
+    withScores.insert(scores.begin(), scores.end());
+    for (int i = 1; i <= 1000; i++) {
+        const std::string k = "movement_assert" + std::to_string(i);
+        const std::string f = layered.read_string(base, k, "");
+        if (f.empty())
+            break;
+        compiles(base, k, f, withScores);
+    }
+    const std::string sc = "CMultiObjMotionOpt_Scalarization";
+    if (layered.keyExists(sc, "scalar_score_formula"))
+        compiles(sc, "scalar_score_formula",
+                 layered.read_string(sc, "scalar_score_formula", ""), scores);
+}
+
 // Values MRPT crashes or asserts on while it loads them, checked in the
 // text before it does: exit 2 naming the key.
 void checkEngineText(const mrpt::config::CConfigFileBase& c,
@@ -123,6 +213,7 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
         if (!r.contains(double(v)))
             throwBadKey(c, sec, key, t, r.describe());
     };
+    checkEngineFormulas(c, layered);
     strictInt("CReactiveNavigationSystem", "PTG_COUNT", TRange::closed(1, 32, "PTGs"));
     strictInt("CWaypointsNavigator", "multitarget_look_ahead",
               TRange::closed(0, 100, "waypoints"));
@@ -165,6 +256,25 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
     const auto& p = nav.getCurrentRobotSpeedLimits();
     check(abs, "robotMax_V_mps", p.robotMax_V_mps, speed);
     check(abs, "robotMax_W_degps", p.robotMax_W_radps * 180 / M_PI, turn);
+    // MRPT asserts end > start on every cycle (each an emergency stop) and
+    // takes NaN or values outside [0, 1] (normalized TP-space distances) without a word
+    const auto& ap = nav.params_abstract_ptg_navigator;
+    const TRange unit = TRange::closed(0, 1, "(normalized distance)");
+    check(abs, "secure_distance_start", ap.secure_distance_start, unit);
+    check(abs, "secure_distance_end", ap.secure_distance_end, unit);
+    if (!(ap.secure_distance_end > ap.secure_distance_start))
+        throwBadKey(c, abs, "secure_distance_end",
+                    layered.read_string(abs, "secure_distance_end",
+                                        numberText(ap.secure_distance_end)),
+                    "must be more than secure_distance_start = " +
+                        numberText(ap.secure_distance_start));
+    check(abs, "min_normalized_free_space_for_ptg_continuation",
+          ap.min_normalized_free_space_for_ptg_continuation, unit);
+    check(abs, "ref_distance", ap.ref_distance, reach);
+    check(abs, "max_distance_predicted_actual_path",
+          ap.max_distance_predicted_actual_path, TRange::closed(0, 100, "m"));
+    check(abs, "max_dist_for_timebased_path_prediction",
+          ap.max_dist_for_timebased_path_prediction, TRange::closed(0, 100, "m"));
     const std::string sec = "CReactiveNavigationSystem";
     for (size_t i = 0; i < nav.getPTG_count(); i++) {
         const auto* ptg = nav.getPTG(i);

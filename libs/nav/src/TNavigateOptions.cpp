@@ -129,6 +129,18 @@ void TNavigateOptions::validate() const {
     checkRule(std::abs(ratio - std::round(ratio)) <= 1e-6, s, "nav_period",
               numberText(nav_period), "must be a whole multiple of sim_dt");
     checkKey(s, "duration_max", duration_max, TRange::closed(1, 1e5, "s"));
+    // The run's work, bounded before it starts (1e5 s at the default 0.05 s
+    // and 0.2 s; sim_dt 0.001 over 1e5 s would be 1e8 world steps, hours)
+    checkRule(duration_max / sim_dt <= 2e6 * (1 + 1e-9), s, "duration_max",
+              numberText(duration_max),
+              "is " + numberText(std::round(duration_max / sim_dt)) +
+                  " world steps of sim_dt = " + numberText(sim_dt) +
+                  " s, at most 2e+06 (lower duration_max or raise sim_dt)");
+    checkRule(duration_max / nav_period <= 5e5 * (1 + 1e-9), s, "duration_max",
+              numberText(duration_max),
+              "is " + numberText(std::round(duration_max / nav_period)) +
+                  " navigation cycles of nav_period = " + numberText(nav_period) +
+                  " s, at most 5e+05 (lower duration_max or raise nav_period)");
     checkKey(s, "stall_timeout", stall_timeout, TRange::closed(0, 1e5, "s"));
     checkKey(s, "stall_distance", stall_distance, TRange::closed(0.001, 10, "m"));
     checkKey(s, "start_time", start_time, TRange::closed(0, 4e9, "s"));

@@ -49,9 +49,25 @@ void readWaypointFile(const std::string& path, double tol,
         const double d = std::max(tol, readDouble(*f, W, k + "allowed_distance", tol,
                                                   TRange::closed(0.001, 100, "m")));
         const bool skip = readBool(*f, W, k + "allow_skip", true);
-        readDouble(*f, W, k + "speed_ratio", 1, TRange::closed(0, 1));
-        readString(*f, W, k + "target_frame_id", "map");
-        seq.waypoints.emplace_back(x, y, d, skip);
+        // MRPT's speed at the approach (TargetInfo::targetDesiredRelSpeed);
+        // 0 would never arrive
+        const double ratio =
+            readDouble(*f, W, k + "speed_ratio", 1, TRange{0, 1, true, false, ""});
+        // the robot's pose is in "map" (CSimRobotInterface): a waypoint in
+        // another frame would need a transform MRPT's navigator cannot get here
+        const std::string frame = readString(*f, W, k + "target_frame_id", "map");
+        if (frame != "map")
+            throw CBadInputError(path + ": [Waypoints] " + k + "target_frame_id = '" +
+                                 frame +
+                                 "': only 'map' (the frame the robot's pose is in)");
+        // MRPT aligns to a waypoint's heading with its robot interface's
+        // getAlignCmd(), which for MRPT's simulated diff-drive robot is a
+        // holonomic command the robot refuses: MRPT would wait for ever
+        if (f->hasKey(W, k + "target_heading"))
+            throw CBadInputError(path + ": [Waypoints] " + k +
+                                 "target_heading: not supported (MRPT's in-place "
+                                 "alignment needs a holonomic robot); remove the key");
+        seq.waypoints.emplace_back(x, y, d, skip, std::nullopt, ratio);
         const std::string vk = "waypoint_" + std::to_string(i);
         if (f->sectionExists("Viewpoints") && f->hasKey("Viewpoints", vk))
             tags[size_t(i)] = {"viewpoint", readString(*f, "Viewpoints", vk, "")};

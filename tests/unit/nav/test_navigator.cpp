@@ -5,6 +5,7 @@
 #include <risknav/nav/CAdaptiveSpeedLimiter.h>
 #include <risknav/nav/CAfraidSpeedLimiter.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
+#include <risknav/nav/waypoint_file.h>
 #include <risknav/sim/CSimRobotInterface.h>
 #include <risknav/sim/CSimWorld.h>
 #include <risknav/sim/CStoppingDistanceLimiter.h>
@@ -261,4 +262,22 @@ TEST(AfraidLimiter, BadFilesAndKeysAreClearErrors) {
             EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
         }
     }
+}
+
+TEST(WaypointFile, MrptsSpeedRatioIsAppliedAsItsApproachSpeed) {
+    // wpNNN_speed_ratio reaches MRPT's TWaypoint (its targetDesiredRelSpeed
+    // at the approach); absent, MRPT's default 1
+    const std::string d = test::freshDir("wpfile");
+    test::writeFile(d + "/wp.ini",
+                    "[Waypoints]\nwaypoint_count = 2\nwp000_target_x = 5\n"
+                    "wp000_target_y = 6.6\nwp000_speed_ratio = 0.4\n"
+                    "wp000_target_frame_id = map\nwp001_target_x = 9\n"
+                    "wp001_target_y = 6.6\n");
+    mrpt::nav::TWaypointSequence seq;
+    std::map<size_t, nav::TWaypointTag> tags;
+    nav::readWaypointFile(d + "/wp.ini", 0.3, seq, tags);
+    ASSERT_EQ(seq.waypoints.size(), 2u);
+    EXPECT_DOUBLE_EQ(seq.waypoints[0].speed_ratio, 0.4);
+    EXPECT_EQ(seq.waypoints[0].target_frame_id, "map");
+    EXPECT_DOUBLE_EQ(seq.waypoints[1].speed_ratio, 1.0);
 }
