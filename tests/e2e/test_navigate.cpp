@@ -343,10 +343,9 @@ INSTANTIATE_TEST_SUITE_P(
              "[CMultiObjectiveMotionOptimizerBase] movement_assert1 = 'speed > 0': does "
              "not compile"},
         // the run's work is bounded before it starts (1e8 world steps here)
-        TBad{
-            "run_too_long", "duration_max +=.*", "duration_max = 1e5\nsim_dt = 0.001",
-            "[Navigate] duration_max = '1e5': is 1e+08 world steps of sim_dt = 0.001 "
-            "s, at most 2e+06"},
+        TBad{"run_too_long", "duration_max +=.*", "duration_max = 1e5\nsim_dt = 0.001",
+             "[Navigate] duration_max = '1e5': is 1e+08 world steps of sim_dt = 0.001 "
+             "s, at most 2e+06"},
         TBad{"mrpt_ptg_count_fraction", "PTG_COUNT +=[^\\n]*", "PTG_COUNT = 2.7",
              "[CReactiveNavigationSystem] PTG_COUNT = '2.7': not an integer"},
         TBad{"spawned_on_clutter", "start +=.*", "start = 8.0 4.5 90",
@@ -596,13 +595,56 @@ TEST(NavigateE2E, TheAdaptiveLimitersWayLeadsMrptRoundTheRoomsWalls) {
                     .count("[CRiskAwareReactiveNav]guide_lookahead"));
 }
 
+namespace {
+/** navigate_m1.ini in the hall (validation/explore_hall.ini's world, start,
+ * destinations and boxes) or with the rooms trap's second destination (room E,
+ * right behind the dead-end room D), as scripts/validate_navigate.py builds them. */
+std::string hallM1Config(const std::string& dir) {
+    std::string cfg = readFile(sourcePath("datasets/office/navigate_m1.ini"));
+    cfg = cfg.substr(0, cfg.find("[Clutter1]"));
+    cfg = std::regex_replace(cfg, std::regex("(^|\\n)start +=[^\\n]*"),
+                             "$1start = 1.5 1.5 0");
+    cfg = std::regex_replace(cfg, std::regex("(^|\\n)goals +=[^\\n]*"),
+                             "$1goals = 8.425 3.2  8.425 8.0  14.5 10.5  1.5 10.5");
+    cfg = std::regex_replace(
+        cfg, std::regex("(^|\\n)map_file +=[^\\n]*"),
+        "$1map_file = " + sourcePath("datasets/validation/explore_hall.png"));
+    cfg +=
+        "\n[Clutter1]\nx = 4.0\ny = 7.8\nradius = 0.3\n"
+        "[Clutter2]\nx = 11.5\ny = 3.2\nradius = 0.25\n";
+    writeFile(dir + "/n.ini", cfg);
+    return dir + "/n.ini";
+}
+}  // namespace
+
+TEST(NavigateE2E, TheM1ConfigHoldsItsWayAndLetsDetoursFinish) {
+    // navigate_m1.ini's target_switch_cost = 5: hall seed 3 at 3 turned in
+    // place back and forth at the table's gap as the guide swung between its
+    // sides, until MRPT's alarm; its alarm at 60 s: rooms-trap seed 2 backing
+    // out of the dead-end room took MRPT's 30 s and ended there.
+    const json hall = navRun(hallM1Config(freshDir("w")), freshDir("out"), "--seed 3");
+    EXPECT_EQ(hall["status"], "goal_reached") << hall["navigation_error"];
+    EXPECT_EQ(hall["waypoints_reached"], 4);
+    EXPECT_EQ(hall["collisions"], 0);
+    const json trap = navRun(roomsM1Config(freshDir("w")), freshDir("out"),
+                             "--seed 2 --set Navigate.goals='9.0 2.0  13.0 10.0  16.0 "
+                             "2.5  3.0 4.0'");
+    EXPECT_EQ(trap["status"], "goal_reached") << trap["navigation_error"];
+    EXPECT_EQ(trap["waypoints_reached"], 4);
+    EXPECT_EQ(trap["collisions"], 0);
+}
+
 TEST(NavigateE2E, UnstickTurnsToOneTargetAreCappedSoMrptsErrorShows) {
     // The same without the guide: the robot gets stuck at a wall with its
     // second destination behind it. Turning it to that target for ever hid
-    // MRPT's verdict and ran to the end; after 3 turns MRPT is left to give it.
+    // MRPT's verdict and ran to the end; after 3 turns MRPT is left to give it
+    // (with its shipped 30 s alarm: at the config's 60 s our stall check,
+    // 30 s on one spot, ends the run first).
     const std::string out = freshDir("out");
-    const json s = navRun(roomsM1Config(freshDir("w")), out,
-                          "--seed 5 --set CRiskAwareReactiveNav.guide_lookahead=0");
+    const json s =
+        navRun(roomsM1Config(freshDir("w")), out,
+               "--seed 5 --set CRiskAwareReactiveNav.guide_lookahead=0 --set "
+               "CAbstractNavigator.alarm_seems_not_approaching_target_timeout=30");
     EXPECT_EQ(s["status"], "navigation_error") << s["navigation_error"];
     EXPECT_EQ(s["waypoints_reached"], 1);
     const auto lines = readLines(out + "/cycles.csv");
