@@ -127,7 +127,8 @@ def m1_world_config(explore_ini, path):
 def m1worlds(a, seeds, head):
     """M1 through the engine on worlds its config was not tuned on."""
     os.makedirs(a.out, exist_ok=True)
-    for w in ("t_junction", "u_corridor", "rooms", "hall", "rooms_trap"):
+    for w in ("t_junction", "u_corridor", "rooms", "hall", "rooms_trap", "office_floor",
+              "warehouse", "two_wings"):
         cfg = os.path.join(a.out, f"navigate_m1_{w}.ini")
         m1_world_config(f"datasets/validation/explore_{w}.ini", cfg)
         print(f"\n### M1 on validation/{w} (risknav-explore's destinations)\n")
