@@ -571,8 +571,29 @@ INSTANTIATE_TEST_SUITE_P(
              "must be a file name ending in .afraid"},
         TBad{"bad_speeds", "--set AfraidLearn.v_safe=1.0", "[AfraidLearn] v_safe"},
         TBad{"unknown_key", "--set AfraidDetector.betta=0.3",
-             "unknown key [AfraidDetector] betta"}),
+             "unknown key [AfraidDetector] betta"},
+        // MRPT's own loaders of these sections took -1 particles as 4e9 (a
+        // hang), 'abc' as 0 particles (a silent divergence), KLD_delta 0 to an
+        // assert mid-run (exit 1), and refused a [PF_options] given in part
+        TBad{"kld_min_negative", "--set KLD_options.KLD_minSampleSize=-1",
+             "[KLD_options] KLD_minSampleSize = '-1': must be in [1, 1e+06]"},
+        TBad{"kld_max_text", "--set KLD_options.KLD_maxSampleSize=abc",
+             "[KLD_options] KLD_maxSampleSize = 'abc': not an integer"},
+        TBad{"kld_delta_zero", "--set KLD_options.KLD_delta=0",
+             "[KLD_options] KLD_delta = '0': must be in (0, 1)"},
+        TBad{"kld_max_below_min", "--set KLD_options.KLD_maxSampleSize=100",
+             "must be at least KLD_minSampleSize = 150"},
+        TBad{"pf_algorithm_unknown", "--set PF_options.PF_algorithm=pfFoo",
+             "[PF_options] PF_algorithm = 'pfFoo': must be one of: pfStandardProposal"},
+        TBad{"pf_beta_nan", "--set PF_options.BETA=nan", "[PF_options] BETA = 'nan'"}),
     [](const ::testing::TestParamInfo<TBad>& i) { return i.param.name; });
+
+TEST(AfraidLearnE2E, APartPfOptionsSectionTakesTheOtherDefaults) {
+    // MRPT's loader demanded every key of a [PF_options] given in part (exit 1)
+    const auto s = learn(freshDir("out"), "--set PF_options.BETA=0.5");
+    EXPECT_EQ(s["status"], "ok");
+    EXPECT_EQ(s["zones"].size(), 3u);
+}
 
 TEST(AfraidLearnE2E, EveryKeyInTheDocumentedConfigIsKnown) {
     // (the optional afraid_in is exercised by the resume test)

@@ -108,6 +108,15 @@ INSTANTIATE_TEST_SUITE_P(
               "whole multiple of sim_dt"},
         TCase{"laser_decimation", "", "", "--set Laser.frame_decimation=2",
               "[Laser] frame_decimation must be 1"},
+        // the run's work bounded before it starts (a tester's run wrote 1.6 GB in
+        // 3 minutes on its way to 1e6 s with the robot stopped by clutter)
+        TCase{"run_too_long", "", "",
+              "--set Simulation.sim_dt=0.01 --set Simulation.duration_max=1e6",
+              "[Simulation] duration_max = '1e6': is 1e+08 steps of sim_dt = 0.01 s, at "
+              "most 2e+07"},
+        TCase{"output_too_big", "", "",
+              "--set Simulation.duration_max=1e6 --set Laser.beams=1081",
+              "frames of 1081 ranges, at most 5e+08 ranges in all"},
         TCase{"bad_option", "", "", "--frobnicate", "unknown option '--frobnicate'"},
         TCase{"bad_seed", "", "", "--seed -1",
               "--seed '-1': must be a non-negative integer"}),

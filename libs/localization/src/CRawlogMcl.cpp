@@ -74,12 +74,80 @@ CRawlogMcl::CRawlogMcl() {
     kldOptions.KLD_minSamplesPerBin = 0;
 }
 
+namespace {
+// An MRPT enum key as MRPT's read_enum takes it: the name or its number.
+int readEnum(const mrpt::config::CConfigFileBase& c, const std::string& s,
+             const std::string& k, int def, const std::vector<std::string>& names) {
+    std::string t = readString(c, s, k, "");
+    const auto b = t.find_first_not_of(" \t"), e = t.find_last_not_of(" \t");
+    t = b == std::string::npos ? "" : t.substr(b, e - b + 1);
+    if (t.empty())
+        return def;
+    for (size_t i = 0; i < names.size(); i++)
+        if (t == names[i] || t == std::to_string(i))
+            return int(i);
+    std::string all;
+    for (size_t i = 0; i < names.size(); i++)
+        all += (i ? ", " : "") + names[i] + " (" + std::to_string(i) + ")";
+    throwBadKey(c, s, k, t, "must be one of: " + all);
+}
+}  // namespace
+
 void CRawlogMcl::loadFromConfigFile(const mrpt::config::CConfigFileBase& c) {
     loadOptions(options, c, "Localization");
-    if (c.sectionExists("PF_options"))
-        pfOptions.loadFromConfigFile(c, "PF_options");
-    if (c.sectionExists("KLD_options"))
-        kldOptions.loadFromConfigFile(c, "KLD_options");
+    // MRPT's own loaders of these sections take "5abc" as 5, -1 particles as
+    // 4e9 (a hang), KLD_delta 0 to an assert mid-run, and demand every key
+    // of a [PF_options] given in part: MRPT's keys, read strictly, each
+    // optional with pf-localization's default, each in its range.
+    const std::string pf = "PF_options", kld = "KLD_options";
+    using PF = mrpt::bayes::CParticleFilter;
+    auto& o = pfOptions;
+    o.PF_algorithm = PF::TParticleFilterAlgorithm(
+        readEnum(c, pf, "PF_algorithm", int(o.PF_algorithm),
+                 {"pfStandardProposal", "pfAuxiliaryPFStandard", "pfOptimalProposal",
+                  "pfAuxiliaryPFOptimal"}));
+    o.resamplingMethod = PF::TParticleResamplingAlgorithm(
+        readEnum(c, pf, "resamplingMethod", int(o.resamplingMethod),
+                 {"prMultinomial", "prResidual", "prStratified", "prSystematic"}));
+    o.adaptiveSampleSize = readBool(c, pf, "adaptiveSampleSize", o.adaptiveSampleSize);
+    o.BETA = readDouble(c, pf, "BETA", o.BETA, TRange::closed(0, 1));
+    o.sampleSize = unsigned(readInt(c, pf, "sampleSize", int(o.sampleSize),
+                                    TRange::closed(1, 1000000, "particles")));
+    o.powFactor =
+        readDouble(c, pf, "powFactor", o.powFactor, TRange{0, 1, true, false, ""});
+    o.max_loglikelihood_dyn_range =
+        readDouble(c, pf, "max_loglikelihood_dyn_range", o.max_loglikelihood_dyn_range,
+                   TRange{0, 1e6, true, false, ""});
+    o.pfAuxFilterOptimal_MaximumSearchSamples = unsigned(readInt(
+        c, pf, "pfAuxFilterOptimal_MaximumSearchSamples",
+        int(o.pfAuxFilterOptimal_MaximumSearchSamples), TRange::closed(1, 100000)));
+    o.pfAuxFilterStandard_FirstStageWeightsMonteCarlo =
+        readBool(c, pf, "pfAuxFilterStandard_FirstStageWeightsMonteCarlo",
+                 o.pfAuxFilterStandard_FirstStageWeightsMonteCarlo);
+    o.pfAuxFilterOptimal_MLE =
+        readBool(c, pf, "pfAuxFilterOptimal_MLE", o.pfAuxFilterOptimal_MLE);
+    auto& k = kldOptions;
+    k.KLD_minSampleSize =
+        unsigned(readInt(c, kld, "KLD_minSampleSize", int(k.KLD_minSampleSize),
+                         TRange::closed(1, 1000000, "particles")));
+    k.KLD_maxSampleSize =
+        unsigned(readInt(c, kld, "KLD_maxSampleSize", int(k.KLD_maxSampleSize),
+                         TRange::closed(1, 1000000, "particles")));
+    if (k.KLD_maxSampleSize < k.KLD_minSampleSize)
+        throwBadKey(c, kld, "KLD_maxSampleSize",
+                    readString(c, kld, "KLD_maxSampleSize", ""),
+                    "must be at least KLD_minSampleSize = " +
+                        std::to_string(k.KLD_minSampleSize));
+    k.KLD_binSize_XY = readDouble(c, kld, "KLD_binSize_XY", k.KLD_binSize_XY,
+                                  TRange::closed(0.001, 100, "m"));
+    k.KLD_binSize_PHI = readDegrees(c, kld, "KLD_binSize_PHI", k.KLD_binSize_PHI,
+                                    TRange{0, 180, true, false, "deg"});
+    k.KLD_delta =
+        readDouble(c, kld, "KLD_delta", k.KLD_delta, TRange{0, 1, true, true, ""});
+    k.KLD_epsilon =
+        readDouble(c, kld, "KLD_epsilon", k.KLD_epsilon, TRange{0, 1, true, true, ""});
+    k.KLD_minSamplesPerBin = readDouble(c, kld, "KLD_minSamplesPerBin",
+                                        k.KLD_minSamplesPerBin, TRange::closed(0, 1e6));
 }
 
 void CRawlogMcl::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {

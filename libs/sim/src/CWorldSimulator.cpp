@@ -91,6 +91,30 @@ void CWorldSimulator::loadFromConfigFile(const CIniConfig& c,
     loadOptions(stopRule.options, c, "StoppingRule");
     world.loadFromConfigFile(c);
     c.throwOnUnreadKeys();
+    // The run's work and output, bounded before it starts: a robot that never
+    // finishes its route runs to duration_max (sim_dt 0.01 s, 100 Hz frames of
+    // 1081 beams over 1e6 s wrote 1.6 GB in 3 minutes, on its way to 400 GB)
+    const auto& sim = simulation;
+    const double steps = sim.duration_max / sim.sim_dt,
+                 frames = sim.duration_max * sim.frame_rate_hz;
+    const auto& l = world.laser.options;
+    const auto& r2 = world.range2.options;
+    const double rays =
+        double(l.beams) +
+        (r2.enabled ? double(r2.beams) / std::max(1, r2.frame_decimation) : 0.0);
+    const std::string dm =
+        readString(c, "Simulation", "duration_max", numberText(sim.duration_max));
+    if (steps > 2e7 * (1 + 1e-9))
+        throwBadKey(c, "Simulation", "duration_max", dm,
+                    "is " + numberText(std::round(steps)) +
+                        " steps of sim_dt = " + numberText(sim.sim_dt) +
+                        " s, at most 2e+07 (lower duration_max or raise sim_dt)");
+    if (frames * rays > 5e8 * (1 + 1e-9))
+        throwBadKey(c, "Simulation", "duration_max", dm,
+                    "is " + numberText(std::round(frames)) + " frames of " +
+                        numberText(std::round(rays)) +
+                        " ranges, at most 5e+08 ranges in all (~2 GB of rawlog; lower "
+                        "duration_max or frame_rate_hz)");
     checkAgainstMap(c);
 }
 
