@@ -455,6 +455,24 @@ TEST(ViewpointPlanE2E, WorkTheInputCannotJustifyIsRefused) {
     }
 }
 
+TEST(ViewpointPlanE2E, WorkOfTheSettingsTogetherIsBoundedToo) {
+    // Each within its own range, together they ran 369 s on the 8 x 6 m
+    // pillars world (a tester's): paths x samples, and paths x corner nodes^2.
+    const TEarlierOutput earlier = {{"summary.json", "{}\n"}};
+    for (const auto& [sets, expect] : std::vector<std::pair<std::string, std::string>>{
+             {"--set ViewpointPlan.k_paths=100 --set ViewpointPlan.sample_step=0.001",
+              "[ViewpointPlan] k_paths = '100': 9 S x 100 paths x 10000 samples"},
+             {"--set ViewpointPlan.k_paths=100 --set ViewpointPlan.corner_segments=360",
+              "corner nodes = "}}) {
+        const std::string out = freshDir("out");
+        writeEarlierOutput(out, earlier);
+        const auto r =
+            run(binPath("risknav-viewpoint-plan") + " -q -o '" + out + "' " + sets +
+                " '" + sourcePath("datasets/landmarks-pillars/r2.ini") + "'");
+        expectBadInput(r, expect, out, earlier);
+    }
+}
+
 TEST(ViewpointPlanE2E, ByteOrderMarkAndCrLfAreAccepted) {
     const std::string w = freshDir("w");
     std::string world = readFile(sourcePath("datasets/landmarks-two-routes/world.txt"));

@@ -66,6 +66,33 @@ void CViewpointPlanner::loadFromConfigFile(const CIniConfig& c) {
             c, "ViewpointPlan", "sample_step", numberText(options.sample_step),
             "the world's diagonal (" + numberText(diagonal) +
                 " m) would take more than 500000 samples per path; use a larger step");
+    // The three together (each alone within its bound above): a tester's 360
+    // corner segments, 100 paths and 1 mm samples on an 8 x 6 m world ran 369 s.
+    // Sample evaluations (paths x samples along each, at most the diagonal's
+    // worth a path as a rough measure) and Yen's searches on the corner graph
+    // (paths x nodes^2) over the sweep, each bounded.
+    {
+        const double nS = double(options.safety_margins.size()),
+                     k = double(options.k_paths), nodes = double(cornerNodeCount());
+        const double samples = nS * k * diagonal / options.sample_step;
+        if (samples > 2e6)
+            throwBadKey(c, "ViewpointPlan", "k_paths", std::to_string(options.k_paths),
+                        std::to_string(options.safety_margins.size()) + " S x " +
+                            std::to_string(options.k_paths) + " paths x " +
+                            numberText(std::round(diagonal / options.sample_step)) +
+                            " samples (the diagonal at sample_step) = " +
+                            numberText(std::round(samples)) +
+                            ", at most 2e+06: fewer paths or S, or a larger sample_step");
+        const double graph = nS * k * nodes * nodes;
+        if (graph > 5e8)
+            throwBadKey(c, "ViewpointPlan", "k_paths", std::to_string(options.k_paths),
+                        std::to_string(options.safety_margins.size()) + " S x " +
+                            std::to_string(options.k_paths) + " paths x " +
+                            numberText(nodes) +
+                            "^2 corner nodes = " + numberText(std::round(graph)) +
+                            ", at most 5e+08: fewer paths or S, or fewer "
+                            "corner_segments");
+    }
     // The robot itself must fit at start and goal: a user error, not a result.
     for (const bool isStart : {true, false}) {
         const TPoint2D p = isStart ? TPoint2D{options.start_x, options.start_y}
