@@ -321,10 +321,10 @@ INSTANTIATE_TEST_SUITE_P(
              "0\n[CRiskAwareReactiveNav]",
              "[CAbstractPTGBasedReactive] secure_distance_end = '0': must be more than "
              "secure_distance_start = 0.05"},
-        TBad{"mrpt_secure_distance_start_nan", "\\[CRiskAwareReactiveNav\\]",
-             "[CAbstractPTGBasedReactive]\nsecure_distance_start = nan\n"
+        TBad{"mrpt_secure_distance_start_negative", "\\[CRiskAwareReactiveNav\\]",
+             "[CAbstractPTGBasedReactive]\nsecure_distance_start = -1\n"
              "[CRiskAwareReactiveNav]",
-             "[CAbstractPTGBasedReactive] secure_distance_start = 'nan': must be in [0, "
+             "[CAbstractPTGBasedReactive] secure_distance_start = '-1': must be in [0, "
              "1]"},
         TBad{"mrpt_score_formula_syntax", "\\[CRiskAwareReactiveNav\\]",
              "[CMultiObjectiveMotionOptimizerBase]\nscore2_formula = (1 + \n"
@@ -342,6 +342,30 @@ INSTANTIATE_TEST_SUITE_P(
              "[CRiskAwareReactiveNav]",
              "[CMultiObjectiveMotionOptimizerBase] movement_assert1 = 'speed > 0': does "
              "not compile"},
+        // MRPT's read_double / read_bool took these as 0, 5, NaN or false
+        TBad{"mrpt_float_text", "\\[CRiskAwareReactiveNav\\]",
+             "[CHolonomicFullEval]\nTOO_CLOSE_OBSTACLE = abc\n[CRiskAwareReactiveNav]",
+             "[CHolonomicFullEval] TOO_CLOSE_OBSTACLE = 'abc': not a number"},
+        TBad{"mrpt_float_trailing_text", "\\[CRiskAwareReactiveNav\\]",
+             "[CPointCloudFilterByDistance]\nmin_dist = 5abc\n[CRiskAwareReactiveNav]",
+             "[CPointCloudFilterByDistance] min_dist = '5abc': not a number"},
+        TBad{"mrpt_float_nan", "\\[CRiskAwareReactiveNav\\]",
+             "[CHolonomicFullEval]\nclearance_threshold_ratio = nan\n"
+             "[CRiskAwareReactiveNav]",
+             "[CHolonomicFullEval] clearance_threshold_ratio = 'nan': not a number"},
+        TBad{"mrpt_float_huge", "\\[CRiskAwareReactiveNav\\]",
+             "[CHolonomicFullEval]\nTOO_CLOSE_OBSTACLE = 1e308\n[CRiskAwareReactiveNav]",
+             "TOO_CLOSE_OBSTACLE = '1e308': must be within +-1e9"},
+        TBad{"mrpt_bool_word", "\\[CRiskAwareReactiveNav\\]",
+             "[CAbstractPTGBasedReactive]\nuse_delays_model = abc\n"
+             "[CRiskAwareReactiveNav]",
+             "[CAbstractPTGBasedReactive] use_delays_model = 'abc': must be true or "
+             "false"},
+        TBad{
+            "mrpt_ratio_negative", "\\[CRiskAwareReactiveNav\\]",
+            "[CPointCloudFilterByDistance]\nmax_deletion_ratio = -1\n"
+            "[CRiskAwareReactiveNav]",
+            "[CPointCloudFilterByDistance] max_deletion_ratio = '-1': must be in [0, 1]"},
         // the run's work is bounded before it starts (1e8 world steps here)
         TBad{"run_too_long", "duration_max +=.*", "duration_max = 1e5\nsim_dt = 0.001",
              "[Navigate] duration_max = '1e5': is 1e+08 world steps of sim_dt = 0.001 "

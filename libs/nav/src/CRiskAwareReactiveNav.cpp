@@ -273,6 +273,13 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
     check(abs, "ref_distance", ap.ref_distance, reach);
     check(abs, "max_distance_predicted_actual_path",
           ap.max_distance_predicted_actual_path, TRange::closed(0, 100, "m"));
+    // MRPT's documented ratios in [0, 1] (by then known to be numbers)
+    for (const auto& [rs, rk] : {std::pair<const char*, const char*>{
+                                     "CPointCloudFilterByDistance", "max_deletion_ratio"},
+                                 {"CHolonomicFullEval", "clearance_threshold_ratio"},
+                                 {"CHolonomicFullEval", "gap_width_ratio_threshold"}})
+        if (layered.keyExists(rs, rk))
+            check(rs, rk, layered.read_double(rs, rk, 0), TRange::closed(0, 1));
     check(abs, "max_dist_for_timebased_path_prediction",
           ap.max_dist_for_timebased_path_prediction, TRange::closed(0, 100, "m"));
     const std::string sec = "CReactiveNavigationSystem";
@@ -292,6 +299,54 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
                             numberText(ref) + " m (MRPT's collision grid)");
         check(sec, k + "v_max_mps", ptg->getMaxLinVel(), speed);
         check(sec, k + "w_max_dps", ptg->getMaxAngVel() * 180 / M_PI, turn);
+    }
+}
+
+// Every engine key the config gives, checked against the type MRPT holds it
+// in: MRPT reads "abc" and "5abc" as 0 and 5 and any word as false, takes NaN
+// and 1e308 (TOO_CLOSE_OBSTACLE = abc ran "completed" with 0; = 1e308 failed
+// the run). The type is that of the value MRPT's own saveConfigFile() writes
+// for the key (a number, or true / false); lists and words are left to MRPT.
+void checkEngineTypes(const mrpt::config::CConfigFileBase& c,
+                      const mrpt::config::CConfigFileBase& layered,
+                      const mrpt::nav::CReactiveNavigationSystem& nav) {
+    mrpt::config::CConfigFileMemory raw;
+    nav.mrpt::nav::CReactiveNavigationSystem::saveConfigFile(raw);
+    const mrpt::config::CConfigFileMemory saved = reparsed(raw);
+    auto trimmed = [](std::string t) {
+        const auto b = t.find_first_not_of(" \t"), e = t.find_last_not_of(" \t");
+        return b == std::string::npos ? std::string() : t.substr(b, e - b + 1);
+    };
+    auto lower = [](std::string t) {
+        for (auto& ch : t)
+            ch = char(std::tolower(static_cast<unsigned char>(ch)));
+        return t;
+    };
+    std::vector<std::string> sections;
+    saved.getAllSections(sections);
+    for (const auto& sec : sections) {
+        std::vector<std::string> keys;
+        saved.getAllKeys(sec, keys);
+        for (const auto& key : keys) {
+            if (!layered.keyExists(sec, key))
+                continue;
+            const std::string held = lower(trimmed(saved.read_string(sec, key, "")));
+            const std::string text = trimmed(layered.read_string(sec, key, ""));
+            double v = 0;
+            if (held == "true" || held == "false") {
+                const std::string l = lower(text);
+                if (!(l == "true" || l == "false" || l == "1" || l == "0" || l == "yes" ||
+                      l == "no"))
+                    throwBadKey(c, sec, key, text, "must be true or false");
+            } else if (char* end = nullptr;
+                       !held.empty() && (std::strtod(held.c_str(), &end), *end == '\0')) {
+                // (strtod: MRPT writes what it holds, "nan" and "inf" too)
+                if (!parseNumber(text, v))
+                    throwBadKey(c, sec, key, text, "not a number");
+                if (!(std::abs(v) <= 1e9))
+                    throwBadKey(c, sec, key, text, "must be within +-1e9");
+            }
+        }
     }
 }
 
@@ -561,11 +616,13 @@ void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& 
         const CLayeredConfig layered(c, *m_engine);
         checkEngineText(c, layered);
         mrpt::nav::CReactiveNavigationSystem::loadConfigFile(layered);
+        checkEngineTypes(c, layered, *this);
         checkEngineValues(c, layered, *this);
         keepA0w(layered);
     } else {
         checkEngineText(c, c);
         mrpt::nav::CReactiveNavigationSystem::loadConfigFile(c);
+        checkEngineTypes(c, c, *this);
         checkEngineValues(c, c, *this);
         keepA0w(c);
     }
