@@ -367,6 +367,9 @@ INSTANTIATE_TEST_SUITE_P(
             "[CRiskAwareReactiveNav]",
             "[CPointCloudFilterByDistance] max_deletion_ratio = '-1': must be in [0, 1]"},
         // the run's work is bounded before it starts (1e8 world steps here)
+        TBad{"risk_route_without_risk_config", "nav_period +=.*",
+             "nav_period = 0.2\nrisk_route = worst",
+             "[Navigate] risk_route = 'worst': only with risk_config"},
         TBad{"run_too_long", "duration_max +=.*", "duration_max = 1e5\nsim_dt = 0.001",
              "[Navigate] duration_max = '1e5': is 1e+08 world steps of sim_dt = 0.001 "
              "s, at most 2e+06"},

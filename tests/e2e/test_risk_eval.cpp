@@ -520,6 +520,14 @@ INSTANTIATE_TEST_SUITE_P(
              "--set RiskEval.gvg_routes=50",
              "[RiskEval] gvg_routes = '50': 62 [RouteN] sections + gvg_routes = 112 "
              "candidate routes; at most 100"},
+        // a tester's: the straight line in silence, two routes driven by one
+        // name, a route from the start to itself
+        TBad{"route_without_waypoints", "", "",
+             "--set Route1.waypoints=", "[Route1] waypoints = '': required: x y pairs"},
+        TBad{"routes_share_a_name", "", "", "--set Route2.name=A",
+             "[Route2] name = 'A': another route has this name"},
+        TBad{"goal_is_the_start", "", "", "--set 'RiskEval.goal=2 7'",
+             "[RiskEval] goal = '(2.00, 7.00)': the goal must differ from the start"},
         TBad{"too_much_sampling", "", "",
              "--set Odometry.propagation=sampled --set Odometry.samples=100000",
              "[Odometry] propagation = 'sampled': the 16 rows need"}),

@@ -112,6 +112,9 @@ void TNavigateOptions::validate() const {
               "give exactly one of goals, route_file, risk_config");
     checkRule(!risk_route.empty(), s, "risk_route", risk_route,
               "best, worst or a route name");
+    // (like start_sigma below: a setting that would be ignored is an error)
+    checkRule(risk_route == "best" || !risk_config.empty(), s, "risk_route", risk_route,
+              "only with risk_config (the risk evaluator's routes)");
     checkKey(s, "goal_tolerance", goal_tolerance, TRange::closed(0.05, 10, "m"));
     checkKey(s, "laps", laps, TRange::closed(1, 1000, "laps"));
     checkKey(s, "start_sigma", std::vector<double>{start_sigma[0], start_sigma[1]},

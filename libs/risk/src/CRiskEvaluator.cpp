@@ -77,6 +77,8 @@ void CRiskEvaluator::TOptions::validate() const {
          {std::make_pair("start", start), std::make_pair("goal", goal)})
         checkRule(std::isfinite(p.x) && std::isfinite(p.y), section, key, fmtPoint(p),
                   "required, as x y [m]");
+    checkRule(std::hypot(goal.x - start.x, goal.y - start.y) > 1e-6, section, "goal",
+              fmtPoint(goal), "the goal must differ from the start");
     checkKey(section, "u_threshold", u_threshold,
              TRange::nonNegative("(u = 1/D_max^2 is dimensionless)"));
     checkKey(section, "max_sensing_subset", max_sensing_subset, TRange::closed(0, 6));
@@ -136,8 +138,13 @@ void CRiskEvaluator::validate() const {
     robot.validate();
     odometry.validate();
     propagation.validate();
-    for (const auto& r : configRoutes)
+    std::set<std::string> routeNames;
+    for (const auto& r : configRoutes) {
         r.validate();
+        // (risknav-navigate's risk_route picks a route by its name)
+        checkRule(routeNames.insert(r.name).second, r.section, "name", r.name,
+                  "another route has this name");
+    }
     std::set<std::string> names;
     for (const auto& p : sensingPoints) {
         p.validate();

@@ -22,6 +22,9 @@ void TRouteOptions::validate() const {
     std::string text;
     for (double v : waypoints)
         text += (text.empty() ? "" : " ") + numberText(v);
+    // no waypoints was silently the straight line from start to goal
+    checkRule(!waypoints.empty(), section, "waypoints", text,
+              "required: x y pairs [m] (the straight line: the start and the goal)");
     checkRule(waypoints.size() % 2 == 0, section, "waypoints", text,
               "needs x y pairs [m]");
     checkKey(section, "waypoints", waypoints, TRange::any("m"));
