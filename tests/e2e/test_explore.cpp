@@ -144,6 +144,11 @@ TEST(ExploreE2E, BadInputIsExitTwoWithTheKey) {
         {"--set MapRange2.p_obs_given_obstacle=0.5001 --set "
          "MapRange2.p_obs_given_free=0.5",
          "[MapRange2] p_obs_given_obstacle = '0.5001': more than 1000 observations"},
+        // a tester's: a start inside a box (a collision in every mode, exit 0),
+        // a box off the map
+        {"--set Clutter1.x=2.5 --set Clutter1.y=3.2", "is inside [Clutter1]"},
+        {"--set Clutter1.x=-5000 --set Clutter1.y=-5000",
+         "[Clutter1] x, y: outside the map"},
     };
     writeFile(w + "/explore.ini", base);
     for (const auto& [set, expect] : cases) {

@@ -79,7 +79,7 @@ INSTANTIATE_TEST_SUITE_P(
         TCase{"zero_resolution", "", "", "--set World.map_resolution=0",
               "[World] map_resolution = '0': must be in [0.001, 10] m"},
         TCase{"negative_person_speed", "speed     = 0.8", "speed     = -0.8", "",
-              "[DoorPedestrian1] speed = '-0.8': must be in (0, inf) m/s"},
+              "[DoorPedestrian1] speed = '-0.8': must be in (0, 10] m/s"},
         TCase{"not_a_number", "", "", "--set Robot.radius=0.25cm",
               "[Robot] radius = '0.25cm': not a number"},
         TCase{"unknown_key", "\\[Robot\\]\n", "[Robot]\nmax_vel = 1.0\n", "",
@@ -117,6 +117,26 @@ INSTANTIATE_TEST_SUITE_P(
         TCase{"output_too_big", "", "",
               "--set Simulation.duration_max=1e6 --set Laser.beams=1081",
               "frames of 1081 ranges, at most 5e+08 ranges in all"},
+        // a tester's: people and clutter where the map has walls, a route of no
+        // length, a person at 1e308 m/s
+        TCase{"walker_in_a_wall", "", "", "--set 'CorridorWalker1.path=0.7 0.1 29.3 0.1'",
+              "[CorridorWalker1] path = '0.7 0.1 29.3 0.1': segment 1 runs through an "
+              "obstacle of the map at (0.70, 0.10)"},
+        TCase{"pedestrian_through_walls", "", "",
+              "--set 'DoorPedestrian1.path=11.6 9.9 11.6 0.1'",
+              "[DoorPedestrian1] path = '11.6 9.9 11.6 0.1': segment 1 runs through an "
+              "obstacle"},
+        TCase{"door_off_map", "", "", "--set 'DoorPedestrian1.door=100 100 101 100'",
+              "[DoorPedestrian1] door = '100 100 101 100': point (100.00, 100.00) is "
+              "outside the map"},
+        TCase{"clutter_in_a_wall", "", "", "--set Clutter1.x=0 --set Clutter1.y=4.5",
+              "[Clutter1] x, y: (0.00, 4.50) lies inside an obstacle of the map"},
+        TCase{"route_of_no_length", "", "", "--set 'Route.waypoints=2 4.5 2 4.5'",
+              "[Route] waypoints = '2 4.5 2 4.5': the route has no length"},
+        TCase{"person_speed_huge", "", "", "--set DoorPedestrian1.speed=1e308",
+              "[DoorPedestrian1] speed = '1e308': must be in (0, 10] m/s"},
+        TCase{"walker_speed_huge", "", "", "--set CorridorWalker1.speed_max=1e308",
+              "[CorridorWalker1] speed_max = '1e308': must be in (0, 10] m/s"},
         TCase{"bad_option", "", "", "--frobnicate", "unknown option '--frobnicate'"},
         TCase{"bad_seed", "", "", "--seed -1",
               "--seed '-1': must be a non-negative integer"}),

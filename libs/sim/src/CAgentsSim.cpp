@@ -98,12 +98,13 @@ void CAgentsSim::TDoorPedestrian::validate() const {
     checkKey(s, "door", std::vector<double>(door, door + 4),
              TRange::closed(-1e6, 1e6, "m"));
     checkPath(s, path);
-    checkKey(s, "speed", speed, TRange::positive("m/s"));
+    // people's paces (1e308 m/s teleported a person past the robot in one step)
+    checkKey(s, "speed", speed, TRange{0, 10, true, false, "m/s"});
     checkKey(s, "radius", radius, TRange::closed(0.05, 2, "m"));
-    checkKey(s, "patience", patience, TRange::positive("s"));
+    checkKey(s, "patience", patience, TRange{0, 1e5, true, false, "s"});
     checkRule(emergence == "poisson" || emergence == "schedule" || emergence == "trigger",
               s, "emergence", emergence, "must be one of: poisson, schedule, trigger");
-    checkKey(s, "rate_per_min", rate_per_min, TRange::positive("1/min"));
+    checkKey(s, "rate_per_min", rate_per_min, TRange{0, 600, true, false, "1/min"});
     checkKey(s, "schedule", schedule, TRange::nonNegative("s"));
     std::string sched;
     for (double x : schedule)
@@ -112,7 +113,7 @@ void CAgentsSim::TDoorPedestrian::validate() const {
               "times must be increasing");
     checkRule(emergence != "schedule" || !schedule.empty(), s, "schedule", sched,
               "required when emergence = schedule");
-    checkKey(s, "trigger_distance", trigger_distance, TRange::positive("m"));
+    checkKey(s, "trigger_distance", trigger_distance, TRange{0, 1000, true, false, "m"});
     checkKey(s, "trigger_probability", trigger_probability, TRange::closed(0, 1));
 }
 
@@ -142,14 +143,14 @@ void CAgentsSim::TWalker::saveToConfigFile(mrpt::config::CConfigFileBase& c,
 void CAgentsSim::TWalker::validate() const {
     const std::string& s = section;
     checkPath(s, path);
-    checkKey(s, "speed_min", speed_min, TRange::positive("m/s"));
-    checkKey(s, "speed_max", speed_max, TRange::positive("m/s"));
+    checkKey(s, "speed_min", speed_min, TRange{0, 10, true, false, "m/s"});
+    checkKey(s, "speed_max", speed_max, TRange{0, 10, true, false, "m/s"});
     checkRule(speed_max >= speed_min, s, "speed_max", numberText(speed_max),
               "must be >= speed_min");
     checkKey(s, "radius", radius, TRange::closed(0.05, 2, "m"));
-    checkKey(s, "period", period, TRange::positive("s"));
-    checkKey(s, "phase", phase, TRange::nonNegative("s"));
-    checkKey(s, "patience", patience, TRange::positive("s"));
+    checkKey(s, "period", period, TRange{0, 1e6, true, false, "s"});
+    checkKey(s, "phase", phase, TRange::closed(0, 1e6, "s"));
+    checkKey(s, "patience", patience, TRange{0, 1e5, true, false, "s"});
 }
 
 void CAgentsSim::TClutter::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,

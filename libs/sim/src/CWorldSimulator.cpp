@@ -183,20 +183,62 @@ void CWorldSimulator::checkAgainstMap(const CIniConfig& c) const {
             }
         }
     }
+    {
+        double length = 0;
+        for (size_t i = 1; i < pass.size(); i++)
+            length += std::hypot(pass[i].x - pass[i - 1].x, pass[i].y - pass[i - 1].y);
+        if (length < 1e-6)
+            throwBadKey(c, "Route", "waypoints", wpText,
+                        "the route has no length (every waypoint is the start)");
+    }
+    // People walk where the map is free: a lane inside or through a wall (a
+    // tester's: a walker at y = 0.1 in the outer wall, a pedestrian path
+    // across the corridor's walls) was taken in silence.
     auto checkPath = [&](const std::string& sec, const std::vector<TPoint2D>& p) {
+        const std::string text = readString(c, sec, "path", "");
         for (const auto& q : p)
             if (!onMap(q))
-                throwBadKey(c, sec, "path", readString(c, sec, "path", ""),
+                throwBadKey(c, sec, "path", text,
                             "point " + where(q) + " is outside the map");
+        for (size_t i = 1; i < p.size(); i++) {
+            const double L = std::hypot(p[i].x - p[i - 1].x, p[i].y - p[i - 1].y);
+            const int n = std::max(1, int(std::ceil(L / step)));
+            for (int k = 0; k <= n; k++) {
+                const TPoint2D q(p[i - 1].x + (p[i].x - p[i - 1].x) * k / n,
+                                 p[i - 1].y + (p[i].y - p[i - 1].y) * k / n);
+                // its centre on a map obstacle (the datasets' lanes pass end
+                // walls and corners 0.2 m off, less than a person's radius:
+                // people brush past walls, they do not walk through them)
+                if (world.clearance(q.x, q.y) <= 0) {
+                    char b[200];
+                    std::snprintf(b, sizeof(b),
+                                  "segment %zu runs through an obstacle of the map at %s",
+                                  i, where(q).c_str());
+                    throwBadKey(c, sec, "path", text, b);
+                }
+            }
+        }
     };
-    for (const auto& d : world.agents.doors)
+    for (const auto& d : world.agents.doors) {
         checkPath(d.section, d.path);
+        for (const TPoint2D q :
+             {TPoint2D(d.door[0], d.door[1]), TPoint2D(d.door[2], d.door[3])})
+            if (!onMap(q))
+                throwBadKey(c, d.section, "door", readString(c, d.section, "door", ""),
+                            "point " + where(q) + " is outside the map");
+    }
     for (const auto& w : world.agents.walkers)
         checkPath(w.section, w.path);
-    for (const auto& k : world.agents.clutter)
+    for (const auto& k : world.agents.clutter) {
         if (!onMap({k.x, k.y}))
             throw CBadInputError(c.path() + ": [" + k.section +
                                  "] x, y: outside the map");
+        if (world.clearance(k.x, k.y) <= 0)
+            throw CBadInputError(c.path() + ": [" + k.section +
+                                 "] x, y: " + where({k.x, k.y}) +
+                                 " lies inside an obstacle of the map (clutter is what "
+                                 "the map does not hold)");
+    }
 }
 
 namespace {

@@ -77,6 +77,24 @@ void CExplorer::loadFromConfigFile(const CIniConfig& c, std::optional<uint64_t> 
         }
     };
     check("start", explore.start[0], explore.start[1]);
+    // the clutter the map does not hold: on the map, and not on the robot
+    // (a tester's start inside a disc gave a collision in every mode, exit 0)
+    for (const auto& k : world.agents.clutter)
+        if (k.x < g.getXMin() || k.x > g.getXMax() || k.y < g.getYMin() ||
+            k.y > g.getYMax())
+            throw CBadInputError(c.path() + ": [" + k.section +
+                                 "] x, y: outside the map");
+    double d = 0;
+    if (const auto* k = world.agents.clutterOverlapping(
+            explore.start[0], explore.start[1], world.robot.radius, &d)) {
+        char b[200];
+        std::snprintf(b, sizeof(b),
+                      "(%.2f, %.2f) is inside [%s] (%.2f m from its centre < %.2f m + "
+                      "robot radius %.2f m)",
+                      explore.start[0], explore.start[1], k->section.c_str(), d,
+                      k->radius, world.robot.radius);
+        throwBadKey(c, "Explore", "start", readString(c, "Explore", "start", ""), b);
+    }
     for (size_t k = 0; k + 1 < explore.destinations.size(); k += 2)
         check("destinations", explore.destinations[k], explore.destinations[k + 1]);
     // N must exist for each model (validate() cannot know the free threshold)
