@@ -8,15 +8,52 @@
 #include <iostream>
 
 namespace risknav::common {
+namespace {
+// The text printable on one line: control bytes and bytes that are not
+// UTF-8 (a binary file quoted in a message) become '?'.
+std::string printable(const std::string& s) {
+    std::string out;
+    for (size_t i = 0; i < s.size();) {
+        const auto c = static_cast<unsigned char>(s[i]);
+        size_t n = c < 0x80           ? 1
+                   : (c >> 5) == 0x6  ? 2
+                   : (c >> 4) == 0xE  ? 3
+                   : (c >> 3) == 0x1E ? 4
+                                      : 0;
+        bool ok = n > 0 && i + n <= s.size();
+        for (size_t k = 1; ok && k < n; k++)
+            ok = (static_cast<unsigned char>(s[i + k]) >> 6) == 0x2;
+        if (!ok) {
+            out += '?';
+            i++;
+        } else if (n == 1 && (c < 0x20 || c == 0x7F)) {
+            out += c == '\t' ? ' ' : '?';
+            i++;
+        } else {
+            out.append(s, i, n);
+            i += n;
+        }
+    }
+    return out;
+}
+}  // namespace
+
 std::string firstLine(const std::string& s) {
-    // MRPT exceptions: "==== MRPT exception ====\nMessage:  <text>\nLocation: ..."
-    const auto msg = s.find("Message:");
-    if (s.rfind("==== MRPT exception", 0) == 0 && msg != std::string::npos)
-        return firstLine(s.substr(msg + 8));
+    // MRPT exceptions: "==== MRPT exception ====\nMessage:  <text>\nLocation: ...",
+    // also after a prefix of ours ("x.ini: cannot parse config file: ==== ...")
+    // or without "Message:" (its config parser: the text on the next line)
+    if (const auto mrpt = s.find("==== MRPT exception"); mrpt != std::string::npos) {
+        const auto nl = s.find('\n', mrpt);
+        std::string body = nl == std::string::npos ? "" : s.substr(nl + 1);
+        const auto b = body.find_first_not_of(" \t\r\n");
+        if (b != std::string::npos && body.compare(b, 8, "Message:") == 0)
+            body = body.substr(b + 8);
+        return firstLine(s.substr(0, mrpt) + firstLine(body));
+    }
     size_t b = s.find_first_not_of(" \t\r\n");
     if (b == std::string::npos)
         return "unknown error";
-    return s.substr(b, s.find('\n', b) - b);
+    return printable(s.substr(b, s.find('\n', b) - b));
 }
 
 std::string appUsage(const TAppInfo& info) {

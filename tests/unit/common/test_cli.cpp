@@ -92,4 +92,11 @@ TEST(RunApp, FirstLineOnly) {
     EXPECT_EQ(firstLine("==== MRPT exception ====\nMessage:  Undefined symbol "
                         "'x'\nLocation: a.cpp:1\n"),
               "Undefined symbol 'x'");
+    // after a prefix, and MRPT's config parser's form without "Message:"
+    EXPECT_EQ(firstLine("a.ini: cannot parse config file: ==== MRPT exception ====\n"
+                        "Line 2: Unknown variable `${U}`\nCall stack backtrace:\n"),
+              "a.ini: cannot parse config file: Line 2: Unknown variable `${U}`");
+    // a binary file quoted: control bytes and bytes that are not UTF-8 become '?'
+    EXPECT_EQ(firstLine(std::string("line 1: 'a\x01\x17\tb\xff\xc3\xa9'", 18)),
+              "line 1: 'a?? b?\xc3\xa9'");
 }
