@@ -2,7 +2,9 @@
 #include <risknav/common/CBadInputError.h>
 
 #include <mrpt/io/CFileGZInputStream.h>
+
 #include <mrpt/io/CFileGZOutputStream.h>
+#include <fstream>
 
 #include <unistd.h>
 
@@ -352,6 +354,9 @@ CAfraidGrid CAfraidGrid::load(const std::string& path) {
         }
         if (got == 0)
             break;
+        // MRPT passes zlib's -1 (a bad CRC) on as a huge count
+        if (got > want)
+            throw CBadInputError(path + ": corrupt .afraid file (gz stream)");
         bytes.append(buf.data(), got);
         if (limit == kHeaderBytes && bytes.size() >= kHeaderBytes) {
             CLeReader r(bytes, path);
@@ -361,7 +366,29 @@ CAfraidGrid CAfraidGrid::load(const std::string& path) {
             throw CBadInputError(path + ": corrupt .afraid file (longer than its " +
                                  "header allows)");
     }
-    return decode(bytes, path);
+    CAfraidGrid g = decode(bytes, path);
+    // zlib stops at the end of a gzip stream and says nothing of bytes after
+    // it: the stream's own trailer (its last 4 bytes, the data's size mod
+    // 2^32) must end the file (a file that is no gzip stream zlib reads as it
+    // is, and decode() judged it whole)
+    {
+        std::ifstream raw(path, std::ios::binary | std::ios::ate);
+        const auto size = raw.tellg();
+        unsigned char m[2] = {0, 0}, t[4] = {0, 0, 0, 0};
+        if (size >= 4) {
+            raw.seekg(0);
+            raw.read(reinterpret_cast<char*>(m), 2);
+            raw.seekg(size - std::streamoff(4));
+            raw.read(reinterpret_cast<char*>(t), 4);
+        }
+        const bool gzip = m[0] == 0x1f && m[1] == 0x8b;
+        const uint32_t isize = uint32_t(t[0]) | uint32_t(t[1]) << 8 |
+                               uint32_t(t[2]) << 16 | uint32_t(t[3]) << 24;
+        if (gzip && (!raw || isize != uint32_t(bytes.size())))
+            throw CBadInputError(path +
+                                 ": corrupt .afraid file (bytes after its gz stream)");
+    }
+    return g;
 }
 
 }  // namespace risknav::afraid

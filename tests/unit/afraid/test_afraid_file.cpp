@@ -189,6 +189,24 @@ TEST(AfraidFile, TruncatedIsRefused) {
                   "truncated .afraid file");
 }
 
+TEST(AfraidFile, BytesAfterTheGzStreamOrABadCrcAreRefused) {
+    // zlib reads a gzip stream to its end and ignores what follows; a bad
+    // CRC came out of MRPT's reader as a huge count ("basic_string::append")
+    const CAfraidGrid g = filledGrid();
+    const std::string d = risknav::test::freshDir("afraid-tail");
+    g.save(d + "/ok.afraid");
+    const std::string full = risknav::test::readFile(d + "/ok.afraid");
+    EXPECT_NO_THROW(CAfraidGrid::load(d + "/ok.afraid"));
+    risknav::test::writeFile(d + "/tail.afraid", full + std::string(5000, 'x'));
+    expectRefused([&] { CAfraidGrid::load(d + "/tail.afraid"); }, d + "/tail.afraid",
+                  "corrupt .afraid file (bytes after its gz stream)");
+    std::string crc = full;
+    crc[crc.size() - 6] = char(crc[crc.size() - 6] ^ 0x5a);  // in the CRC32 field
+    risknav::test::writeFile(d + "/crc.afraid", crc);
+    expectRefused([&] { CAfraidGrid::load(d + "/crc.afraid"); }, d + "/crc.afraid",
+                  "corrupt .afraid file (gz stream)");
+}
+
 TEST(AfraidFile, ForeignNewerAndCorruptAreRefused) {
     const std::string d = risknav::test::freshDir("afraid-file");
     risknav::test::writeFile(d + "/text.afraid", "not an afraid file");
