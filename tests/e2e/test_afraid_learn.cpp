@@ -588,6 +588,48 @@ INSTANTIATE_TEST_SUITE_P(
         TBad{"pf_beta_nan", "--set PF_options.BETA=nan", "[PF_options] BETA = 'nan'"}),
     [](const ::testing::TestParamInfo<TBad>& i) { return i.param.name; });
 
+TEST(AfraidLearnE2E, GroundTruthIsReadStrictly) {
+    // a tester's: a NaN line and a file of another run (every time 1e6 s
+    // later) were dropped in silence (mcl_error_samples 182 of 183, and 0)
+    const std::string w = freshDir("w");
+    ASSERT_EQ(run("rawlog-edit --cut --to-index 100 -i '" +
+                  sourcePath("datasets/corridor-doors/corridor.rawlog") + "' -o '" + w +
+                  "/short.rawlog'")
+                  .exitCode,
+              0);
+    const auto lines =
+        readLines(sourcePath("datasets/corridor-doors/corridor_groundtruth.txt"));
+    std::string nanLine, shifted;
+    for (size_t i = 0; i < lines.size(); i++) {
+        if (lines[i].empty() || lines[i][0] == '%')
+            continue;
+        std::istringstream ls(lines[i]);
+        double t = 0, x = 0, y = 0, phi = 0;
+        ls >> t >> x >> y >> phi;
+        char b[120];
+        std::snprintf(b, sizeof(b), "%.3f %.6f %.6f %.6f\n", t + 1e6, x, y, phi);
+        shifted += b;
+        nanLine += i == 4 ? "1600000000.8 nan 4.5 0\n" : lines[i] + "\n";
+    }
+    writeFile(w + "/nan.txt", nanLine);
+    writeFile(w + "/shifted.txt", shifted);
+    for (const auto& [file, expect] : std::vector<std::pair<std::string, std::string>>{
+             {"nan.txt",
+              "nan.txt:4: expected 't x y phi' (4 numbers), got "
+              "'1600000000.8 nan 4.5 0'"},
+             {"shifted.txt", "shifted.txt: no line's time matches a frame of"}}) {
+        const std::string out = freshDir("out");
+        const TEarlierOutput earlier = {{"summary.json", "{\"earlier\": true}\n"}};
+        writeEarlierOutput(out, earlier);
+        const auto r =
+            run(binPath(kLearn) + " -q -o '" + out + "' --set AfraidLearn.rawlogs='" + w +
+                "/short.rawlog' --set AfraidLearn.groundtruth_file='" + w + "/" + file +
+                "' --set Localization.particles=1000 '" +
+                sourcePath("datasets/corridor-doors/afraid.ini") + "'");
+        expectBadInput(r, expect, out, earlier);
+    }
+}
+
 TEST(AfraidLearnE2E, APartPfOptionsSectionTakesTheOtherDefaults) {
     // MRPT's loader demanded every key of a [PF_options] given in part (exit 1)
     const auto s = learn(freshDir("out"), "--set PF_options.BETA=0.5");

@@ -230,13 +230,33 @@ void CAfraidLearner::prepare() {
     for (const auto& file : options.groundtruth_files) {
         auto& gt = m_gt.emplace_back();
         std::ifstream f(file);
+        // strictly: a line that is not 4 numbers, or a time that does not
+        // increase, was dropped in silence (a NaN line; a file shifted 1e6 s)
+        size_t lineNo = 0;
         for (std::string line; std::getline(f, line);) {
-            if (line.empty() || line[0] == '%' || line[0] == '#')
+            lineNo++;
+            if (!line.empty() && line.back() == '\r')
+                line.pop_back();
+            const auto b = line.find_first_not_of(" \t");
+            if (b == std::string::npos || line[b] == '%' || line[b] == '#')
                 continue;
+            const std::string where = file + ":" + std::to_string(lineNo) + ": ";
             std::istringstream ls(line);
             std::array<double, 4> v{};
-            if (ls >> v[0] >> v[1] >> v[2] >> v[3])
-                gt.push_back(v);
+            size_t n = 0;
+            for (std::string tok; ls >> tok; n++)
+                if (n >= 4 || !parseNumber(tok, v[n]))
+                    throw CBadInputError(where +
+                                         "expected 't x y phi' (4 numbers), got '" +
+                                         line.substr(0, 80) + "'");
+            if (n != 4)
+                throw CBadInputError(where + "expected 't x y phi' (4 numbers), got '" +
+                                     line.substr(0, 80) + "'");
+            if (!gt.empty() && !(v[0] > gt.back()[0]))
+                throw CBadInputError(where + "the times must increase");
+            if (gt.size() >= 10000000)
+                throw CBadInputError(where + "more than 1e7 lines");
+            gt.push_back(v);
         }
         checkRule(!gt.empty(), options.section, "groundtruth_file", file,
                   "no 't x y phi' lines");
@@ -268,7 +288,12 @@ void CAfraidLearner::run(bool quiet) {
     const auto t0 = std::chrono::steady_clock::now();
     for (size_t i = 0; i < o.rawlogs.size() && m_error.empty(); i++) {
         m_processed.push_back(o.rawlogs[i]);
+        const size_t matchedBefore = m_errN;
         replay(o.rawlogs[i], m_gt.empty() ? nullptr : &m_gt[i], quiet);
+        if (!m_gt.empty() && m_errN == matchedBefore && m_error.empty() && m_sawScan)
+            throw CBadInputError(o.groundtruth_files[i] +
+                                 ": no line's time matches a frame of " + o.rawlogs[i] +
+                                 " (within 0.05 s): the ground truth of another run?");
     }
     m_replaySeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
