@@ -1,5 +1,6 @@
 #include <risknav/common/CCsvWriter.h>
 
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -28,13 +29,19 @@ void CCsvWriter::close() {
         throw std::runtime_error("cannot write " + m_path);
 }
 
+// No value (an unreachable cost, a blocked route's U) is an empty cell, as
+// summary.json's null: never "inf" or "nan" presented as a result.
 std::string CCsvWriter::num(double v, int significant) {
+    if (!std::isfinite(v))
+        return "";
     char buf[64];
     std::snprintf(buf, sizeof(buf), "%.*g", significant, v);
     return buf;
 }
 
 std::string CCsvWriter::fixed(double v, int decimals) {
+    if (!std::isfinite(v))
+        return "";
     char buf[64];
     std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
     return buf;

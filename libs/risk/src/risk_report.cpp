@@ -31,7 +31,7 @@ json finite(double v) {
 }
 
 std::string num(double v) {
-    return std::isfinite(v) ? CCsvWriter::num(v) : "inf";
+    return CCsvWriter::num(v);  // empty where infinite (no obstacle in reach, blocked)
 }
 
 void writeCovCsv(const TRiskResult& r, const std::string& path) {

@@ -121,15 +121,14 @@ void writeExploreOutputs(const CExplorer& ex, const std::vector<TModeResult>& ru
                     CCsvWriter::num(c.chosen),
                     CCsvWriter::num(c.commanded),
                     c.reason,
-                    std::isfinite(c.dUndecided) ? CCsvWriter::num(c.dUndecided, 6)
-                                                : "inf",
+                    CCsvWriter::num(c.dUndecided, 6),  // empty: none on the way
                     std::to_string(c.destination),
                     c.temporaryTarget ? "1" : "0",
                     c.marginBroken ? "1" : "0"};
                 for (size_t k = 0; k < o.speeds.size(); k++)
-                    row.push_back(k < c.costToGo.size() && std::isfinite(c.costToGo[k])
+                    row.push_back(k < c.costToGo.size()  // empty: no path
                                       ? CCsvWriter::num(c.costToGo[k], 6)
-                                      : "inf");
+                                      : "");
                 row.push_back(CCsvWriter::num(c.computeMs, 4));
                 csv.row(row);
             }

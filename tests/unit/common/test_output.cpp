@@ -6,6 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
+#include <cmath>
+
 #include <filesystem>
 
 #include "test_support.h"
@@ -70,6 +74,16 @@ TEST(CCsvWriter, HeaderQuotingAndNumbers) {
     csv.close();
     EXPECT_EQ(csv.rows(), 2u);
     EXPECT_EQ(readFile(f), "a,\"b,c\"\n1,\"say \"\"hi\"\"\"\n0.3,1600000000.250\n");
+}
+
+TEST(CCsvWriter, NoValueIsAnEmptyCellNeverInfOrNan) {
+    // (a tester found "inf" in explore's cycles.csv and risk-eval's table)
+    const double inf = std::numeric_limits<double>::infinity();
+    EXPECT_EQ(CCsvWriter::num(inf), "");
+    EXPECT_EQ(CCsvWriter::num(-inf), "");
+    EXPECT_EQ(CCsvWriter::num(std::nan("")), "");
+    EXPECT_EQ(CCsvWriter::fixed(inf, 3), "");
+    EXPECT_EQ(CCsvWriter::num(1e308), "1e+308");
 }
 
 TEST(CProgress, LineHasCountRateAndEta) {
