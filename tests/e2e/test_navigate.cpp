@@ -590,21 +590,28 @@ TEST(NavigateE2E, BadWaypointFileIsAClearError) {
 }
 
 namespace {
-/** navigate_m1.ini in validation/explore_rooms.png with explore_rooms.ini's
- * start, destinations and box (scripts/validate_navigate.py's m1worlds). */
-std::string roomsM1Config(const std::string& dir) {
+/** navigate_m1.ini with one of risknav-explore's validation worlds swapped in:
+ * its start, destinations, map and boxes (what scripts/validate_navigate.py's
+ * m1worlds does). */
+std::string m1WorldConfig(const std::string& dir, const std::string& start,
+                          const std::string& goals, const std::string& png,
+                          const std::string& clutter) {
     std::string cfg = readFile(sourcePath("datasets/office/navigate_m1.ini"));
     cfg = cfg.substr(0, cfg.find("[Clutter1]"));  // the office's boxes go
     cfg = std::regex_replace(cfg, std::regex("(^|\\n)start +=[^\\n]*"),
-                             "$1start = 2.0 2.5 0");
+                             "$1start = " + start);
     cfg = std::regex_replace(cfg, std::regex("(^|\\n)goals +=[^\\n]*"),
-                             "$1goals = 9.0 2.0  15.0 9.5  16.0 2.5  3.0 4.0");
-    cfg = std::regex_replace(
-        cfg, std::regex("(^|\\n)map_file +=[^\\n]*"),
-        "$1map_file = " + sourcePath("datasets/validation/explore_rooms.png"));
-    cfg += "\n[Clutter1]\nx = 14.0\ny = 3.5\nradius = 0.3\n";  // explore_rooms.ini's
-    writeFile(dir + "/n.ini", cfg);
+                             "$1goals = " + goals);
+    cfg = std::regex_replace(cfg, std::regex("(^|\\n)map_file +=[^\\n]*"),
+                             "$1map_file = " + sourcePath("datasets/validation/" + png));
+    writeFile(dir + "/n.ini", cfg + "\n" + clutter);
     return dir + "/n.ini";
+}
+/** The rooms world (explore_rooms.ini's start, destinations and box). */
+std::string roomsM1Config(const std::string& dir) {
+    return m1WorldConfig(dir, "2.0 2.5 0", "9.0 2.0  15.0 9.5  16.0 2.5  3.0 4.0",
+                         "explore_rooms.png",
+                         "[Clutter1]\nx = 14.0\ny = 3.5\nradius = 0.3\n");
 }
 }  // namespace
 
@@ -623,24 +630,12 @@ TEST(NavigateE2E, TheAdaptiveLimitersWayLeadsMrptRoundTheRoomsWalls) {
 }
 
 namespace {
-/** navigate_m1.ini in the hall (validation/explore_hall.ini's world, start,
- * destinations and boxes) or with the rooms trap's second destination (room E,
- * right behind the dead-end room D), as scripts/validate_navigate.py builds them. */
+/** The hall (explore_hall.ini's start, destinations and boxes). */
 std::string hallM1Config(const std::string& dir) {
-    std::string cfg = readFile(sourcePath("datasets/office/navigate_m1.ini"));
-    cfg = cfg.substr(0, cfg.find("[Clutter1]"));
-    cfg = std::regex_replace(cfg, std::regex("(^|\\n)start +=[^\\n]*"),
-                             "$1start = 1.5 1.5 0");
-    cfg = std::regex_replace(cfg, std::regex("(^|\\n)goals +=[^\\n]*"),
-                             "$1goals = 8.425 3.2  8.425 8.0  14.5 10.5  1.5 10.5");
-    cfg = std::regex_replace(
-        cfg, std::regex("(^|\\n)map_file +=[^\\n]*"),
-        "$1map_file = " + sourcePath("datasets/validation/explore_hall.png"));
-    cfg +=
-        "\n[Clutter1]\nx = 4.0\ny = 7.8\nradius = 0.3\n"
-        "[Clutter2]\nx = 11.5\ny = 3.2\nradius = 0.25\n";
-    writeFile(dir + "/n.ini", cfg);
-    return dir + "/n.ini";
+    return m1WorldConfig(dir, "1.5 1.5 0", "8.425 3.2  8.425 8.0  14.5 10.5  1.5 10.5",
+                         "explore_hall.png",
+                         "[Clutter1]\nx = 4.0\ny = 7.8\nradius = 0.3\n"
+                         "[Clutter2]\nx = 11.5\ny = 3.2\nradius = 0.25\n");
 }
 }  // namespace
 

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 
 using namespace risknav::common;
@@ -163,26 +164,31 @@ void CWorldSimulator::checkAgainstMap(const CIniConfig& c) const {
     std::vector<TPoint2D> pass = wps;
     if (route.options.mode == "loop")
         pass.push_back(wps.front());
+    // The first of a segment's half-cell samples where `bad` holds.
     const double step = 0.5 * world.grid().getResolution();
-    for (size_t i = 1; i < pass.size(); i++) {
-        const double L = std::hypot(pass[i].x - pass[i - 1].x, pass[i].y - pass[i - 1].y);
-        const int n = std::max(1, int(std::ceil(L / step)));
+    auto firstSample = [&](const TPoint2D& a, const TPoint2D& b,
+                           const auto& bad) -> std::optional<TPoint2D> {
+        const int n =
+            std::max(1, int(std::ceil(std::hypot(b.x - a.x, b.y - a.y) / step)));
         for (int k = 0; k <= n; k++) {
-            const TPoint2D q(pass[i - 1].x + (pass[i].x - pass[i - 1].x) * k / n,
-                             pass[i - 1].y + (pass[i].y - pass[i - 1].y) * k / n);
-            const double cl = world.clearance(q.x, q.y);
-            if (cl < R) {
-                char b[220];
-                std::snprintf(b, sizeof(b),
-                              "segment %zu %s -> %s runs through an obstacle at %s "
-                              "(clearance %.2f m < "
-                              "robot radius %.2f m)",
-                              i, where(pass[i - 1]).c_str(), where(pass[i]).c_str(),
-                              where(q).c_str(), cl, R);
-                throwBadKey(c, "Route", "waypoints", wpText, b);
-            }
+            const TPoint2D q(a.x + (b.x - a.x) * k / n, a.y + (b.y - a.y) * k / n);
+            if (bad(q))
+                return q;
         }
-    }
+        return std::nullopt;
+    };
+    for (size_t i = 1; i < pass.size(); i++)
+        if (const auto q = firstSample(pass[i - 1], pass[i], [&](const TPoint2D& p) {
+                return world.clearance(p.x, p.y) < R;
+            })) {
+            char b[220];
+            std::snprintf(b, sizeof(b),
+                          "segment %zu %s -> %s runs through an obstacle at %s "
+                          "(clearance %.2f m < robot radius %.2f m)",
+                          i, where(pass[i - 1]).c_str(), where(pass[i]).c_str(),
+                          where(*q).c_str(), world.clearance(q->x, q->y), R);
+            throwBadKey(c, "Route", "waypoints", wpText, b);
+        }
     {
         double length = 0;
         for (size_t i = 1; i < pass.size(); i++)
@@ -200,24 +206,16 @@ void CWorldSimulator::checkAgainstMap(const CIniConfig& c) const {
             if (!onMap(q))
                 throwBadKey(c, sec, "path", text,
                             "point " + where(q) + " is outside the map");
-        for (size_t i = 1; i < p.size(); i++) {
-            const double L = std::hypot(p[i].x - p[i - 1].x, p[i].y - p[i - 1].y);
-            const int n = std::max(1, int(std::ceil(L / step)));
-            for (int k = 0; k <= n; k++) {
-                const TPoint2D q(p[i - 1].x + (p[i].x - p[i - 1].x) * k / n,
-                                 p[i - 1].y + (p[i].y - p[i - 1].y) * k / n);
-                // its centre on a map obstacle (the datasets' lanes pass end
-                // walls and corners 0.2 m off, less than a person's radius:
-                // people brush past walls, they do not walk through them)
-                if (world.clearance(q.x, q.y) <= 0) {
-                    char b[200];
-                    std::snprintf(b, sizeof(b),
-                                  "segment %zu runs through an obstacle of the map at %s",
-                                  i, where(q).c_str());
-                    throwBadKey(c, sec, "path", text, b);
-                }
-            }
-        }
+        // its centre on a map obstacle (the datasets' lanes pass end walls and
+        // corners 0.2 m off, less than a person's radius: people brush past
+        // walls, they do not walk through them)
+        for (size_t i = 1; i < p.size(); i++)
+            if (const auto q = firstSample(p[i - 1], p[i], [&](const TPoint2D& r) {
+                    return world.clearance(r.x, r.y) <= 0;
+                }))
+                throwBadKey(c, sec, "path", text,
+                            "segment " + std::to_string(i) +
+                                " runs through an obstacle of the map at " + where(*q));
     };
     for (const auto& d : world.agents.doors) {
         checkPath(d.section, d.path);
