@@ -1,6 +1,7 @@
 #include <risknav/common/CAppRunner.h>
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/CIniConfig.h>
+#include <risknav/common/config_read.h>
 
 #include <algorithm>
 #include <cctype>
@@ -53,15 +54,6 @@ CIniConfig::~CIniConfig() {
     discardSavingChanges();
 }
 
-namespace {
-std::string trimmed(const std::string& s) {
-    const auto b = s.find_first_not_of(" \t\r");
-    if (b == std::string::npos)
-        return {};
-    return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
-}
-}  // namespace
-
 void CIniConfig::checkLines(const std::string& path) {
     // MRPT (SimpleIni) keeps the last of two equal keys and drops a line
     // without '=': both would silently change what a run uses.
@@ -73,7 +65,7 @@ void CIniConfig::checkLines(const std::string& path) {
     for (std::string raw; std::getline(f, raw);) {
         n++;
         const bool wasContinued = continued;
-        std::string line = trimmed(raw);
+        std::string line = trim(raw);
         continued = !line.empty() && line.back() == '\\';
         if (wasContinued || line.empty() || line[0] == ';' || line[0] == '#' ||
             line[0] == '@' || line.rfind("//", 0) == 0)
@@ -84,14 +76,14 @@ void CIniConfig::checkLines(const std::string& path) {
             if (close == std::string::npos)
                 throw CBadInputError(where + "'" + line +
                                      "': a section needs a closing ']'");
-            section = trimmed(line.substr(1, close - 1));
+            section = trim(line.substr(1, close - 1));
             continue;
         }
         const auto eq = line.find('=');
         if (eq == std::string::npos)
             throw CBadInputError(where + "'" + line + "' in [" + section +
                                  "]: expected KEY = VALUE");
-        const std::string key = trimmed(line.substr(0, eq));
+        const std::string key = trim(line.substr(0, eq));
         const auto [it, fresh] =
             seen.emplace(std::make_pair(lower(section), lower(key)), n);
         if (!fresh)

@@ -16,7 +16,6 @@ namespace fs = std::filesystem;
 using mrpt::config::CConfigFileBase;
 
 namespace risknav::common {
-namespace {
 std::string trim(const std::string& s) {
     const auto b = s.find_first_not_of(" \t\r\n");
     if (b == std::string::npos)
@@ -24,6 +23,8 @@ std::string trim(const std::string& s) {
     const auto e = s.find_last_not_of(" \t\r\n");
     return s.substr(b, e - b + 1);
 }
+
+namespace {
 
 std::string fmt(double v) {
     if (std::isinf(v))

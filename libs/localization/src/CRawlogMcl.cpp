@@ -78,9 +78,7 @@ namespace {
 // An MRPT enum key as MRPT's read_enum takes it: the name or its number.
 int readEnum(const mrpt::config::CConfigFileBase& c, const std::string& s,
              const std::string& k, int def, const std::vector<std::string>& names) {
-    std::string t = readString(c, s, k, "");
-    const auto b = t.find_first_not_of(" \t"), e = t.find_last_not_of(" \t");
-    t = b == std::string::npos ? "" : t.substr(b, e - b + 1);
+    const std::string t = trim(readString(c, s, k, ""));
     if (t.empty())
         return def;
     for (size_t i = 0; i < names.size(); i++)

@@ -56,6 +56,12 @@ class CNullRobot : public mrpt::nav::CRobot2NavInterface {
     }
 };
 
+std::string lowerCase(std::string s) {
+    for (auto& ch : s)
+        ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    return s;
+}
+
 // MRPT's savers pad key names with spaces (a memory config then does not
 // find them): their text read back, keys trimmed.
 mrpt::config::CConfigFileMemory reparsed(const mrpt::config::CConfigFileMemory& m) {
@@ -70,24 +76,19 @@ class CReadRecordingConfig : public mrpt::config::CConfigFileMemory {
   public:
     using mrpt::config::CConfigFileMemory::CConfigFileMemory;
     bool wasRead(const std::string& section, const std::string& key) const {
-        return m_read.count(lower(section + "\n" + key)) > 0;
+        return m_read.count(lowerCase(section + "\n" + key)) > 0;
     }
 
   protected:
     std::string readString(const std::string& section, const std::string& name,
                            const std::string& def,
                            bool failIfNotFound = false) const override {
-        m_read.insert(lower(section + "\n" + name));  // MRPT ignores case
+        m_read.insert(lowerCase(section + "\n" + name));  // MRPT ignores case
         return mrpt::config::CConfigFileMemory::readString(section, name, def,
                                                            failIfNotFound);
     }
 
   private:
-    static std::string lower(std::string s) {
-        for (auto& ch : s)
-            ch = char(std::tolower(static_cast<unsigned char>(ch)));
-        return s;
-    }
     mutable std::set<std::string> m_read;
 };
 
@@ -202,9 +203,7 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
                          const TRange& r) {
         if (!layered.keyExists(sec, key))
             return;
-        std::string t = layered.read_string(sec, key, "");
-        const auto b = t.find_first_not_of(" \t"), e = t.find_last_not_of(" \t");
-        t = b == std::string::npos ? "" : t.substr(b, e - b + 1);
+        const std::string t = trim(layered.read_string(sec, key, ""));
         char* end = nullptr;
         errno = 0;
         const long v = t.empty() ? 0 : std::strtol(t.c_str(), &end, 10);
@@ -313,15 +312,6 @@ void checkEngineTypes(const mrpt::config::CConfigFileBase& c,
     mrpt::config::CConfigFileMemory raw;
     nav.mrpt::nav::CReactiveNavigationSystem::saveConfigFile(raw);
     const mrpt::config::CConfigFileMemory saved = reparsed(raw);
-    auto trimmed = [](std::string t) {
-        const auto b = t.find_first_not_of(" \t"), e = t.find_last_not_of(" \t");
-        return b == std::string::npos ? std::string() : t.substr(b, e - b + 1);
-    };
-    auto lower = [](std::string t) {
-        for (auto& ch : t)
-            ch = char(std::tolower(static_cast<unsigned char>(ch)));
-        return t;
-    };
     std::vector<std::string> sections;
     saved.getAllSections(sections);
     for (const auto& sec : sections) {
@@ -330,11 +320,11 @@ void checkEngineTypes(const mrpt::config::CConfigFileBase& c,
         for (const auto& key : keys) {
             if (!layered.keyExists(sec, key))
                 continue;
-            const std::string held = lower(trimmed(saved.read_string(sec, key, "")));
-            const std::string text = trimmed(layered.read_string(sec, key, ""));
+            const std::string held = lowerCase(trim(saved.read_string(sec, key, "")));
+            const std::string text = trim(layered.read_string(sec, key, ""));
             double v = 0;
             if (held == "true" || held == "false") {
-                const std::string l = lower(text);
+                const std::string l = lowerCase(text);
                 if (!(l == "true" || l == "false" || l == "1" || l == "0" || l == "yes" ||
                       l == "no"))
                     throwBadKey(c, sec, key, text, "must be true or false");

@@ -42,6 +42,9 @@ struct TRange {
  * (configs, text map formats). */
 bool parseNumber(const std::string& txt, double& out);
 
+/** The text without leading and trailing spaces, tabs, CR and LF. */
+std::string trim(const std::string& s);
+
 /** @name Strict typed reads.
  * MRPT's read_double() accepts "0.5 ; comment" as a crash (stod) and "5abc" as 5;
  * these reads accept exactly one number (or the documented list) and throw
