@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer targets of tests/fuzz (issue 9) for a bounded time each:
-#   scripts/fuzz.sh [SECONDS] [TARGET...]     (default 60 s, all six targets)
+#   scripts/fuzz.sh [SECONDS] [TARGET...]     (default 60 s, all seven targets)
 # Installs clang if missing, builds into build-fuzz (clang, ASan+UBSan,
 # -DRISKNAV_BUILD_FUZZERS=ON; the normal build/ is not touched), seeds the
 # corpora from config/ and datasets/, runs each target in libFuzzer's fork
@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET=${1:-60}
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_config fuzz_rawlog fuzz_map fuzz_afraid fuzz_world fuzz_waypoints)
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_config fuzz_rawlog fuzz_map fuzz_afraid fuzz_world fuzz_waypoints fuzz_ground_truth)
 BUILD_DIR=${BUILD_DIR:-build-fuzz}
 W=$BUILD_DIR/fuzz
 
@@ -32,7 +32,7 @@ BIN=$BUILD_DIR/bin
 # ---- seed corpora (rebuilt every run; the fuzzers add what they find) ----
 S=$W/seeds
 rm -rf "$S"
-mkdir -p "$S"/{fuzz_config,fuzz_rawlog,fuzz_map,fuzz_afraid,fuzz_world,fuzz_waypoints} "$W"/logs "$W"/helper
+mkdir -p "$S"/{fuzz_config,fuzz_rawlog,fuzz_map,fuzz_afraid,fuzz_world,fuzz_waypoints,fuzz_ground_truth} "$W"/logs "$W"/helper
 for f in config/*.ini datasets/*/*.ini; do
     cp "$f" "$S/fuzz_config/$(echo "$f" | tr / _)"
 done
@@ -68,6 +68,14 @@ for f in out/*/waypoints.ini; do
     [ -f "$f" ] && cp "$f" "$S/fuzz_waypoints/$(echo "$f" | tr / _)"
 done
 
+# ground truth (risknav-afraid-learn groundtruth_file): "t x y phi" lines as
+# risknav-simulate writes them, with a comment, a blank line and CRLF.
+printf '%% t x y phi\n0 1.5 2.25 0\n0.2 1.6 2.25 -0.01\n\n# pause\n0.4 1.7e0 2.3 3.14159\r\n' \
+    >"$S/fuzz_ground_truth/small.txt"
+for f in datasets/*/*groundtruth*.txt; do
+    [ -f "$f" ] && head -c 16000 "$f" >"$S/fuzz_ground_truth/$(echo "$f" | tr / _)"
+done
+
 max_len() {
     case $1 in
         fuzz_config) echo 16384 ;;
@@ -76,6 +84,7 @@ max_len() {
         fuzz_afraid) echo 32768 ;;
         fuzz_world) echo 16384 ;;
         fuzz_waypoints) echo 16384 ;;
+        fuzz_ground_truth) echo 16384 ;;
     esac
 }
 

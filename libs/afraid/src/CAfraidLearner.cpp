@@ -1,5 +1,6 @@
 #include <risknav/afraid/CAfraidLearner.h>
 #include <risknav/afraid/afraid_level.h>
+#include <risknav/afraid/ground_truth.h>
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/CProgress.h>
 #include <risknav/common/config_read.h>
@@ -228,36 +229,7 @@ void CAfraidLearner::prepare() {
     }
     m_gt.clear();
     for (const auto& file : options.groundtruth_files) {
-        auto& gt = m_gt.emplace_back();
-        std::ifstream f(file);
-        // strictly: a line that is not 4 numbers, or a time that does not
-        // increase, was dropped in silence (a NaN line; a file shifted 1e6 s)
-        size_t lineNo = 0;
-        for (std::string line; std::getline(f, line);) {
-            lineNo++;
-            if (!line.empty() && line.back() == '\r')
-                line.pop_back();
-            const auto b = line.find_first_not_of(" \t");
-            if (b == std::string::npos || line[b] == '%' || line[b] == '#')
-                continue;
-            const std::string where = file + ":" + std::to_string(lineNo) + ": ";
-            std::istringstream ls(line);
-            std::array<double, 4> v{};
-            size_t n = 0;
-            for (std::string tok; ls >> tok; n++)
-                if (n >= 4 || !parseNumber(tok, v[n]))
-                    throw CBadInputError(where +
-                                         "expected 't x y phi' (4 numbers), got '" +
-                                         line.substr(0, 80) + "'");
-            if (n != 4)
-                throw CBadInputError(where + "expected 't x y phi' (4 numbers), got '" +
-                                     line.substr(0, 80) + "'");
-            if (!gt.empty() && !(v[0] > gt.back()[0]))
-                throw CBadInputError(where + "the times must increase");
-            if (gt.size() >= 10000000)
-                throw CBadInputError(where + "more than 1e7 lines");
-            gt.push_back(v);
-        }
+        const auto& gt = m_gt.emplace_back(readGroundTruth(file));
         checkRule(!gt.empty(), options.section, "groundtruth_file", file,
                   "no 't x y phi' lines");
     }

@@ -1,6 +1,7 @@
 #include <risknav/afraid/CAfraidGrid.h>
 #include <risknav/afraid/CAfraidLearner.h>
 #include <risknav/afraid/afraid_zones.h>
+#include <risknav/afraid/ground_truth.h>
 #include <risknav/afraid/kernel_regression.h>
 #include <risknav/common/CBadInputError.h>
 
@@ -203,4 +204,41 @@ TEST(CAfraidLearnerOptions, SetFromCodeAreValidatedAndRoundTrip) {
     EXPECT_EQ(r.seed, 12345678901ULL);
     EXPECT_EQ(r.match_distance, o.match_distance);
     EXPECT_NO_THROW(r.validate());
+}
+
+// readGroundTruth: risknav-simulate's "t x y phi" lines, strictly.
+TEST(GroundTruthReader, ReadsSimulatorLinesAndNamesTheFirstBadLine) {
+    const std::string dir = risknav::test::freshDir("unit_ground_truth");
+    const std::string ok = dir + "/ok.txt";
+    risknav::test::writeFile(ok,
+                             "% t x y phi\n1600000000.0 2 4.5 0\n\n# pause\n1600000000.2 "
+                             "2.0249 4.5 -1e-2\r\n");
+    const auto gt = readGroundTruth(ok);
+    ASSERT_EQ(gt.size(), 2u);
+    EXPECT_DOUBLE_EQ(gt[1][0], 1600000000.2);
+    EXPECT_DOUBLE_EQ(gt[1][1], 2.0249);
+    EXPECT_DOUBLE_EQ(gt[1][3], -0.01);
+    risknav::test::writeFile(dir + "/empty.txt", "% only a comment\n");
+    EXPECT_TRUE(readGroundTruth(dir + "/empty.txt").empty());
+    EXPECT_TRUE(readGroundTruth(dir + "/missing.txt").empty());
+    // each bad line: file:line and what
+    const std::vector<std::pair<std::string, std::string>> bad = {
+        {"0 1 2 3\n1 1 2 nan\n", "bad.txt:2: expected 't x y phi' (4 numbers)"},
+        {"0 1 2 3\n1 1 2 inf\n", "bad.txt:2: expected"},
+        {"0 1 2\n", "bad.txt:1: expected 't x y phi' (4 numbers), got '0 1 2'"},
+        {"0 1 2 3 4\n", "bad.txt:1: expected"},
+        {"0 1 2 0x10\n", "bad.txt:1: expected"},
+        {"% c\n5 1 2 3\n5 1 2 3\n", "bad.txt:3: the times must increase"},
+        {"5 1 2 3\n4 1 2 3\n", "bad.txt:2: the times must increase"},
+    };
+    for (const auto& [text, expect] : bad) {
+        risknav::test::writeFile(dir + "/bad.txt", text);
+        try {
+            (void)readGroundTruth(dir + "/bad.txt");
+            ADD_FAILURE() << "accepted: " << text;
+        } catch (const risknav::common::CBadInputError& e) {
+            EXPECT_NE(std::string(e.what()).find(expect), std::string::npos)
+                << e.what() << " for " << text;
+        }
+    }
 }
