@@ -77,8 +77,9 @@ TEST(ViewpointPlanE2E, R1TakesTheShortRouteR2TheLongOne) {
     int r1ShortFeasible = 0, prev = 1 << 30;
     for (const auto& sp : r2["sweep"])
         for (const auto& p : sp["paths"])
-            if (p["route"] == 1)
+            if (p["route"] == 1) {
                 EXPECT_FALSE(p["feasible"].get<bool>()) << "R2, S " << sp["S"];
+            }
     for (const auto& sp : r1["sweep"])
         for (const auto& p : sp["paths"])
             if (p["route"] == 1 && p["feasible"].get<bool>()) {

@@ -98,8 +98,9 @@ TEST(KShortestPaths, DirectedEdgesMatchExhaustiveEnumeration) {
             EXPECT_EQ(yen[i].edges, ref[i].edges) << "graph " << g << " path " << i;
             for (size_t k = 0; k < yen[i].edges.size(); k++) {
                 const auto& e = edges[yen[i].edges[k]];
-                if (e.directed)
+                if (e.directed) {
                     EXPECT_EQ(e.a, yen[i].nodes[k]) << "against the edge's direction";
+                }
             }
         }
     }
