@@ -1,6 +1,5 @@
 #include <risknav/afraid/CAfraidLearner.h>
 #include <risknav/afraid/afraid_level.h>
-#include <risknav/afraid/ground_truth.h>
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/CProgress.h>
 #include <risknav/common/config_read.h>
@@ -16,9 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <functional>
-#include <sstream>
 
 using namespace risknav::common;
 namespace fs = std::filesystem;
@@ -279,7 +276,7 @@ void CAfraidLearner::run(bool quiet) {
 }
 
 void CAfraidLearner::replay(const std::string& path,
-                            const std::vector<std::array<double, 4>>* gt, bool quiet) {
+                            const std::vector<TGroundTruthPose>* gt, bool quiet) {
     // Count the frames first (cheap: no filtering) for the progress line.
     size_t total = 0;
     try {
@@ -392,7 +389,7 @@ void CAfraidLearner::replay(const std::string& path,
             const double tt = mrpt::Clock::toDouble(t);
             const auto it = std::lower_bound(
                 gt->begin(), gt->end(), tt,
-                [](const std::array<double, 4>& g, double v) { return g[0] < v; });
+                [](const TGroundTruthPose& g, double v) { return g[0] < v; });
             for (auto g : {it, it == gt->begin() ? it : it - 1})
                 if (g != gt->end() && std::abs((*g)[0] - tt) < 0.05) {
                     const double err =

@@ -2,6 +2,7 @@
 #include <risknav/afraid/CAfraidDetector.h>
 #include <risknav/afraid/CAfraidGrid.h>
 #include <risknav/afraid/afraid_zones.h>
+#include <risknav/afraid/ground_truth.h>
 #include <risknav/afraid/kernel_regression.h>
 #include <risknav/common/CIniConfig.h>
 #include <risknav/common/CValidatedOptions.h>
@@ -154,7 +155,7 @@ class CAfraidLearner {
     double levelAt(double x, double y) const;
 
   private:
-    void replay(const std::string& path, const std::vector<std::array<double, 4>>* gt,
+    void replay(const std::string& path, const std::vector<TGroundTruthPose>* gt,
                 bool quiet);
     /** Fraction of the scan's points within match_distance of a map obstacle
      * (by the obstacle rule) at the estimated pose. */
@@ -168,7 +169,7 @@ class CAfraidLearner {
     std::vector<TAfraidZone> m_zones;
     std::vector<mrpt::math::TPoint2D> m_traj;
     std::vector<TTrajectoryPoint> m_est;
-    std::vector<std::vector<std::array<double, 4>>> m_gt;  // per rawlog: t x y phi
+    std::vector<std::vector<TGroundTruthPose>> m_gt;  // per rawlog
     std::vector<std::string> m_processed;
     std::string m_error;
     size_t m_frames = 0, m_localized = 0, m_errN = 0;
