@@ -61,7 +61,8 @@ void BM_ControlCycle(benchmark::State& st) {
         range2.integrateScan(s.pose, *s.scans.range2, s.ex.range2Model);
         auto fused = mapping::fuseGrids(laser, range2, 0.7, 0.2);
         speed::markFootprintFree(fused, s.pose, radius);
-        const auto field = speed::computePlanningField(fused, radius);
+        const auto field =
+            speed::computePlanningField(fused, radius, ctrl.wayOnBand(0.05));
         memory.update(fused);
         bool ready = false;
         speed::TTargetHints hints;
@@ -95,24 +96,30 @@ void BM_SensorUpdatesOnly(benchmark::State& st) {
 }
 BENCHMARK(BM_SensorUpdatesOnly)->Arg(200)->Arg(400)->Unit(benchmark::kMillisecond);
 
-/** The planning field alone (clearance, frontier, open frontier, map edge). */
+/** The planning field alone (clearance, frontier, open frontier, map edge):
+ * /0 the distance to the ways on everywhere, /1 only as far as the
+ * controller's band (as CAdaptiveSpeedPipeline computes it). */
 void BM_PlanningFieldOnly(benchmark::State& st) {
     auto& s = scene(200);
     const auto fused = mapping::fuseGrids(s.laser, s.range2, 0.7, 0.2);
+    const speed::CAdaptiveSpeedController ctrl(s.ex.speed, 0.25,
+                                               s.ex.necessaryObservations());
+    const double reach =
+        st.range(0) ? ctrl.wayOnBand(0.05) : std::numeric_limits<double>::infinity();
     for (auto _ : st)
         benchmark::DoNotOptimize(
-            speed::computePlanningField(fused, 0.25).clearance.data());
+            speed::computePlanningField(fused, 0.25, reach).clearance.data());
 }
-BENCHMARK(BM_PlanningFieldOnly)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanningFieldOnly)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 /** The decision alone (target choice + four A* plans), straight-line rule. */
 void BM_DecideOnly(benchmark::State& st) {
     auto& s = scene(200);
     auto fused = mapping::fuseGrids(s.laser, s.range2, 0.7, 0.2);
     speed::markFootprintFree(fused, s.pose, 0.25);
-    const auto field = speed::computePlanningField(fused, 0.25);
     const speed::CAdaptiveSpeedController ctrl(s.ex.speed, 0.25,
                                                s.ex.necessaryObservations());
+    const auto field = speed::computePlanningField(fused, 0.25, ctrl.wayOnBand(0.05));
     for (auto _ : st)
         benchmark::DoNotOptimize(ctrl.decide(field, s.pose, {15.5, 7.0}).speed);
 }

@@ -42,7 +42,8 @@ std::vector<TRow> readCsv(const std::string& path) {
     return rows;
 }
 
-/** The office run, once for the tests that read it. */
+/** The office run, once a process: tests/CMakeLists.txt runs the three tests
+ * that read it as one CTest test (ExploreE2E.OfficeRun). */
 const std::string& officeRun() {
     static const std::string d = [] {
         const std::string out = freshDir("office");

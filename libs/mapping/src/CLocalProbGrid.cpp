@@ -119,10 +119,11 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
         if (std::fabs(rel) > M_PI - 2 * slack * step)
             return exactRayOf(dx, dy);
         const double x = (sign * rel + 0.5 * aperture) / step;
-        const double off = x - std::floor(x);  // 0.5: a boundary
+        const double fl = std::floor(x), off = x - fl;  // 0.5: a boundary
         if (std::fabs(off - 0.5) < slack)
             return exactRayOf(dx, dy);
-        return rayFromIndex(x);
+        // std::round(x) without its libm call: off is not near 0.5 here
+        return validRay(long(fl) + (off > 0.5 ? 1 : 0));
     };
     // cheap tests first (the cost is one atan2 per cell): out of reach by the
     // squared distance; behind a sensor of <= 180 deg by the sign of the

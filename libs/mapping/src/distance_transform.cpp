@@ -97,4 +97,82 @@ void squaredDistanceTransform(const std::vector<uint8_t>& source, int w, int h,
         }
     }
 }
+
+namespace {
+/** boundedSquaredDistanceTransform()'s row pass: per row, best(i) = min over
+ * |d| <= reach of d^2 + col(i + d)^2, with the squares padded by `reach`
+ * cells each side: the ring (0, a source one column out; farther pad cells
+ * are never nearer than it) or none (kFar). T = int16_t for reach <= 127
+ * (kFar + reach^2 < 2^15: eight lanes a vector, and SSE2 has their min),
+ * else int32_t. */
+template <typename T>
+void boundedRows(const std::vector<int32_t>& col, int w, int h, bool borderIsSource,
+                 int reach, std::vector<int32_t>& out) {
+    const T kFar = T(sizeof(T) == 2 ? 1 << 14 : 1 << 28);
+    const int32_t reach2 = reach * reach;
+    std::vector<T> sq(size_t(w) + 2 * size_t(reach)), best(static_cast<size_t>(w));
+    const T pad = borderIsSource ? T(0) : kFar;
+    std::fill(sq.begin(), sq.begin() + reach, pad);
+    std::fill(sq.end() - reach, sq.end(), pad);
+    for (int j = 0; j < h; j++) {
+        const int32_t* c = &col[size_t(j) * w];
+        T* q = sq.data() + reach;
+        for (int i = 0; i < w; i++)
+            q[i] = c[i] <= reach ? T(c[i] * c[i]) : kFar;
+        T* b = best.data();
+        std::copy_n(q, w, b);
+        for (int d = 1; d <= reach; d++) {
+            const T d2 = T(d * d);
+            const T* left = q - d;
+            const T* right = q + d;
+            for (int i = 0; i < w; i++)
+                b[i] = std::min(b[i], T(std::min(left[i], right[i]) + d2));
+        }
+        int32_t* o = &out[size_t(j) * w];
+        for (int i = 0; i < w; i++)
+            o[i] = b[i] <= reach2 ? int32_t(b[i]) : kNoSource;
+    }
+}
+}  // namespace
+
+void boundedSquaredDistanceTransform(const std::vector<uint8_t>& source, int w, int h,
+                                     bool borderIsSource, int reach,
+                                     std::vector<int32_t>& out) {
+    if (w < 0 || h < 0 || source.size() != size_t(w) * size_t(h))
+        throw std::invalid_argument("distance transform: source is not w x h");
+    if (reach < 0 || reach > 4096)
+        throw std::invalid_argument("bounded distance transform: reach must be 0..4096");
+    out.assign(source.size(), kNoSource);
+    if (source.empty())
+        return;
+    // Column distances as in squaredDistanceTransform(), capped at reach + 1
+    // ("none within reach"); the rows' pass then takes their squares.
+    const int32_t cap = reach + 1;
+    const int32_t edge = borderIsSource ? 1 : cap;
+    std::vector<int32_t> col(source.size());
+    for (int i = 0; i < w; i++)
+        col[size_t(i)] = source[size_t(i)] ? 0 : std::min(edge, cap);
+    for (int j = 1; j < h; j++) {
+        const uint8_t* s = &source[size_t(j) * w];
+        const int32_t* up = &col[size_t(j - 1) * w];
+        int32_t* c = &col[size_t(j) * w];
+        for (int i = 0; i < w; i++)
+            c[i] = s[i] ? 0 : std::min(up[i] + 1, cap);
+    }
+    {
+        int32_t* c = &col[size_t(h - 1) * w];
+        for (int i = 0; i < w; i++)
+            c[i] = std::min(c[i], edge);
+    }
+    for (int j = h - 2; j >= 0; j--) {
+        const int32_t* down = &col[size_t(j + 1) * w];
+        int32_t* c = &col[size_t(j) * w];
+        for (int i = 0; i < w; i++)
+            c[i] = std::min(c[i], down[i] + 1);
+    }
+    if (reach <= 127)
+        boundedRows<int16_t>(col, w, h, borderIsSource, reach, out);
+    else
+        boundedRows<int32_t>(col, w, h, borderIsSource, reach, out);
+}
 }  // namespace risknav::mapping

@@ -58,7 +58,10 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
     bool goalReached = false;
     double bestCost = inf, nearestDist = inf, bestStraight = inf;
     mrpt::math::TPoint2D nearest, straightTarget;
-    const double band = inflation + 2 * res;
+    const double band = wayOnBand(res);
+    if (!(field.wayOnReach >= band))
+        throw std::invalid_argument(
+            "speed controller: the planning field's wayOnDist ends before the band");
     // Early ends (a speed-up; the result is the full search's): the goal
     // popped with its margin is the answer; and where neither the goal nor
     // the point nearest it can be the answer, no cell popped after the best

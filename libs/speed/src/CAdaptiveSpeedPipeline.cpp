@@ -63,7 +63,8 @@ void CAdaptiveSpeedPipeline::update(const TPose2D& ego,
     // there), though no sensor sees under it (the laser is mounted ahead
     // of the centre); otherwise the robot would start in "unknown" space.
     markFootprintFree(m_fused, ego, m_p.robotRadius);
-    m_field = computePlanningField(m_fused, m_p.robotRadius);
+    m_field = computePlanningField(m_fused, m_p.robotRadius,
+                                   m_ctrl.wayOnBand(m_p.localMapResolution));
     if (m_memory)
         m_memory->update(m_fused);
 }

@@ -11,23 +11,27 @@ namespace risknav::speed {
 using mapping::TFusedCell;
 
 namespace {
-/** Distance [m] from every cell to the nearest cell where `source` is set,
- * measured to that cell's near edge (centre distance - half a cell: a robot
- * disc at a cell centre with radius below this does not touch it);
- * `borderIsSource`: the ring outside the grid counts as a source. The
- * centre distance is the float square root of the exact squared one (what
- * OpenCV's precise transform, used here before, gives). */
-std::vector<float> distanceTo(const std::vector<uint8_t>& source, int n, double res,
-                              bool borderIsSource) {
-    std::vector<int32_t> d2;
-    mapping::squaredDistanceTransform(source, n, n, borderIsSource, d2);
-    // one source anywhere gives every cell a distance: none, or all
-    if (d2.empty() || d2[0] == mapping::kNoSource)
-        return std::vector<float>(d2.size(), std::numeric_limits<float>::infinity());
-    std::vector<float> out(d2.size());
-    for (size_t k = 0; k < d2.size(); k++)
-        out[k] = float(std::max(0.0, (double(std::sqrt(float(d2[k]))) - 0.5) * res));
-    return out;
+/** The distance [m] a squared centre distance `d2` [cells^2] measures: to
+ * the source cell's near edge (centre distance - half a cell: a robot disc
+ * at a cell centre with radius below this does not touch it), the float
+ * square root of the exact squared one (what OpenCV's precise transform,
+ * used here before, gave); +inf for kNoSource. */
+void toMetres(const std::vector<int32_t>& d2, double res, std::vector<float>& out) {
+    out.resize(d2.size());
+    // runs of one value (0 on the unknown, none far from the frontier) are
+    // most of a map: the last conversion is reused (a speed-up, same floats)
+    int32_t last = mapping::kNoSource;
+    float lastOut = std::numeric_limits<float>::infinity();
+    for (size_t k = 0; k < d2.size(); k++) {
+        if (d2[k] != last) {
+            last = d2[k];
+            lastOut =
+                last == mapping::kNoSource
+                    ? std::numeric_limits<float>::infinity()
+                    : float(std::max(0.0, (double(std::sqrt(float(last))) - 0.5) * res));
+        }
+        out[k] = lastOut;
+    }
 }
 }  // namespace
 
@@ -36,27 +40,47 @@ double TPlanningField::clearanceAt(double x, double y) const {
     return map.inside(i, j) ? clearance[map.index(i, j)] : 0.0;
 }
 
-TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map,
-                                    double minOpening) {
+TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map, double minOpening,
+                                    double wayOnReach) {
     TPlanningField f;
     f.map = map;
+    f.wayOnReach = wayOnReach;
     const int n = map.size;
     // wayOn: the frontier cells, then (below) only the open ones and the ring
     std::vector<uint8_t> blocked(map.cells.size()), wayOn(map.cells.size(), 0);
     for (size_t k = 0; k < map.cells.size(); k++)
         blocked[k] = map.cells[k] != TFusedCell::Free;
     const TFusedCell* cells = map.cells.data();
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++) {
-            const size_t k = map.index(i, j);
-            if (cells[k] != TFusedCell::Undecided)
-                continue;
-            auto freeAt = [&](size_t nk) { return cells[nk] == TFusedCell::Free; };
-            if ((i + 1 < n && freeAt(k + 1)) || (i > 0 && freeAt(k - 1)) ||
-                (j + 1 < n && freeAt(k + size_t(n))) || (j > 0 && freeAt(k - size_t(n))))
-                wayOn[k] = 1;
+    auto frontierAt = [&](int i, int j) {
+        const size_t k = map.index(i, j);
+        auto freeAt = [&](size_t nk) { return cells[nk] == TFusedCell::Free; };
+        return cells[k] == TFusedCell::Undecided &&
+               ((i + 1 < n && freeAt(k + 1)) || (i > 0 && freeAt(k - 1)) ||
+                (j + 1 < n && freeAt(k + size_t(n))) || (j > 0 && freeAt(k - size_t(n))));
+    };
+    // the inner cells without bounds checks or branches (a speed-up: the
+    // loop vectorizes; the same cells)
+    constexpr uint8_t kFree = uint8_t(TFusedCell::Free),
+                      kUnd = uint8_t(TFusedCell::Undecided);
+    const auto* raw = reinterpret_cast<const uint8_t*>(cells);
+    for (int j = 0; j < n; j++) {
+        uint8_t* w = &wayOn[size_t(j) * n];
+        if (j == 0 || j == n - 1 || n < 3) {
+            for (int i = 0; i < n; i++)
+                w[i] = frontierAt(i, j);
+            continue;
         }
-    f.clearance = distanceTo(blocked, n, map.resolution, true);
+        const uint8_t* r = raw + size_t(j) * n;
+        const uint8_t *up = r - n, *down = r + n;
+        w[0] = frontierAt(0, j);
+        w[n - 1] = frontierAt(n - 1, j);
+        for (int i = 1; i < n - 1; i++)
+            w[i] = uint8_t((r[i] == kUnd) & ((r[i + 1] == kFree) | (r[i - 1] == kFree) |
+                                             (up[i] == kFree) | (down[i] == kFree)));
+    }
+    std::vector<int32_t> d2;
+    mapping::squaredDistanceTransform(blocked, n, n, true, d2);
+    toMetres(d2, map.resolution, f.clearance);
     // The ways on, for the choice of a temporary destination: open frontier
     // cells, and the grid's outer ring, whose free cells lead on into what the
     // robot-centred grid no longer (or not yet) holds
@@ -115,19 +139,31 @@ TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map,
         }
         return false;
     };
-    for (int j = 0; j < n; j++)
+    for (int j = 0; j < n; j++) {
+        const bool edgeRow = j == 0 || j == n - 1;
         for (int i = 0; i < n; i++) {
             const size_t k = map.index(i, j);
-            const bool ring = (i == 0 || j == 0 || i == n - 1 || j == n - 1) &&
-                              map.cells[k] == TFusedCell::Free;
+            if (!wayOn[k] && !(edgeRow || i == 0 || i == n - 1))
+                continue;  // no way on, whatever its distance (most cells)
+            const bool ring =
+                (edgeRow || i == 0 || i == n - 1) && map.cells[k] == TFusedCell::Free;
             if (!wayOn[k] && !ring)
-                continue;  // no way on, whatever its distance
+                continue;
             if (reach >= 0 && nearObstacle(i, j))
                 wayOn[k] = 0;
             else if (ring)
                 wayOn[k] = 1;
         }
-    f.wayOnDist = distanceTo(wayOn, n, map.resolution, false);
+    }
+    // every cell whose measured distance is <= wayOnReach has a centre
+    // distance <= wayOnReach / res + 0.5 cells (one more for rounding)
+    const double reachCells = wayOnReach / map.resolution + 1.5;
+    if (reachCells < n)
+        mapping::boundedSquaredDistanceTransform(wayOn, n, n, false,
+                                                 int(std::ceil(reachCells)), d2);
+    else
+        mapping::squaredDistanceTransform(wayOn, n, n, false, d2);
+    toMetres(d2, map.resolution, f.wayOnDist);
     return f;
 }
 }  // namespace risknav::speed

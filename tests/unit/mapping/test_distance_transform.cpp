@@ -67,3 +67,35 @@ TEST(SquaredDistanceTransform, NoSourceAndOneSource) {
     EXPECT_EQ(d[size_t(3) * 7 + 3], 16);
     EXPECT_THROW(squaredDistanceTransform(src, 4, 4, false, d), std::invalid_argument);
 }
+
+TEST(BoundedSquaredDistanceTransform, IsTheFullTransformWithinReachAndNoneBeyond) {
+    std::mt19937 rng(11);
+    int cases = 0;
+    for (const auto& [w, h] : {std::pair{1, 1}, {1, 9}, {9, 1}, {17, 23}, {40, 40}})
+        for (const double density : {0.0, 0.002, 0.03, 0.3, 1.0})
+            for (const bool border : {false, true})
+                for (const int reach : {0, 1, 3, 9, 50, 127, 128}) {
+                    std::vector<uint8_t> src(size_t(w) * h);
+                    std::bernoulli_distribution on(density);
+                    for (auto& s : src)
+                        s = on(rng);
+                    auto expected = bruteForce(src, w, h, border);
+                    for (auto& v : expected)
+                        if (v > reach * reach)
+                            v = kNoSource;
+                    std::vector<int32_t> bounded;
+                    boundedSquaredDistanceTransform(src, w, h, border, reach, bounded);
+                    ASSERT_EQ(bounded, expected)
+                        << w << " x " << h << " density " << density << " border "
+                        << border << " reach " << reach;
+                    cases++;
+                }
+    EXPECT_EQ(cases, 350);
+    std::vector<int32_t> d;
+    EXPECT_THROW(
+        boundedSquaredDistanceTransform(std::vector<uint8_t>(16), 4, 4, false, -1, d),
+        std::invalid_argument);
+    EXPECT_THROW(
+        boundedSquaredDistanceTransform(std::vector<uint8_t>(15), 4, 4, false, 2, d),
+        std::invalid_argument);
+}

@@ -275,6 +275,8 @@ TEST(PlanningField, ClearanceAndWayOnDistanceEqualBruteForceOnRandomMaps) {
         }
         const double minOpening = trial % 3 == 0 ? 0.0 : 0.1 + 0.05 * (trial % 4);
         const auto f = computePlanningField(m, minOpening);
+        const double reach = 0.1 + 0.15 * (trial % 3);
+        const auto reached = computePlanningField(m, minOpening, reach);
         auto measured = [&](long d2) {
             return float(std::max(0.0, (double(std::sqrt(float(d2))) - 0.5) * 0.05));
         };
@@ -325,8 +327,27 @@ TEST(PlanningField, ClearanceAndWayOnDistanceEqualBruteForceOnRandomMaps) {
                 else
                     ASSERT_EQ(f.wayOnDist[k], measured(bestWay))
                         << trial << " " << i << " " << j;
+                // computed only as far as a reach: the same up to it, and
+                // beyond it nothing that would pass a test against it
+                const float r = reached.wayOnDist[k];
+                if (f.wayOnDist[k] <= reach)
+                    ASSERT_EQ(r, f.wayOnDist[k]) << trial << " " << i << " " << j;
+                else
+                    ASSERT_TRUE(r > reach) << trial << " " << i << " " << j;
             }
+        EXPECT_EQ(reached.clearance, f.clearance);
     }
+}
+
+TEST(PlanningField, TheControllerRefusesAFieldComputedForANarrowerBand) {
+    const CAdaptiveSpeedController ctrl(TSpeedControlOptions{}, 0.25, 5);
+    const double band = ctrl.wayOnBand(0.05);
+    EXPECT_DOUBLE_EQ(band, 0.25 + TSpeedControlOptions{}.margins.back() + 0.1);
+    const auto m = openMap(60);
+    EXPECT_NO_THROW(ctrl.decide(computePlanningField(m, 0.25, band), {0, 0, 0}, {1, 0}));
+    EXPECT_THROW(
+        ctrl.decide(computePlanningField(m, 0.25, band - 0.01), {0, 0, 0}, {1, 0}),
+        std::invalid_argument);
 }
 
 TEST(SpeedController, TheMemoryKeepsTheRobotOutOfAForgottenDeadEndRoom) {

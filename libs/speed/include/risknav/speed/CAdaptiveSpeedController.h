@@ -85,6 +85,11 @@ class CAdaptiveSpeedController {
                           const TTargetHints& hints = {}) const;
     const TSpeedControlOptions& options() const { return m_o; }
     int necessaryObservations() const { return m_N; }
+    /** [m] How near a way on (TPlanningField::wayOnDist) a candidate for a
+     * temporary destination lies: the slowest speed's inflation + 2 cells of
+     * a map of resolution `res`. A field for decide() needs wayOnReach >= it
+     * (std::invalid_argument otherwise). */
+    double wayOnBand(double res) const { return m_radius + m_o.margins.back() + 2 * res; }
 
     /** Step 1 alone: the destination to plan to, and whether it is temporary;
      * false when there is neither a reachable goal nor a reachable frontier. */

@@ -1,6 +1,7 @@
 #pragma once
 #include <risknav/mapping/free_space.h>
 
+#include <limits>
 #include <vector>
 
 namespace risknav::speed {
@@ -18,15 +19,21 @@ namespace risknav::speed {
  * undecided however often it is observed, is a frontier for the undecided
  * rule but no way on), and the free cells of the grid's outer ring, as far
  * from obstacles (where the map ends, not the world: the way on back along a
- * corridor the robot-centred grid has forgotten). */
+ * corridor the robot-centred grid has forgotten).
+ * `wayOnDist` is exact up to `wayOnReach`; beyond it a cell may hold +inf
+ * (the controller only asks whether a cell is within a band of the ways on,
+ * so the pipeline computes no farther: a speed-up, the same decisions). */
 struct TPlanningField {
     mapping::TFreeSpaceMap map;
     std::vector<float> clearance;  ///< [m], 0 on non-free cells
     std::vector<float> wayOnDist;  ///< [m], to open frontier and map-edge cells
+    double wayOnReach = std::numeric_limits<double>::infinity();  ///< [m]
     double clearanceAt(double x, double y) const;
 };
 
-/** `minOpening` [m]: see wayOnDist (0: every frontier cell is open). */
-TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map,
-                                    double minOpening = 0.0);
+/** `minOpening` [m]: see wayOnDist (0: every frontier cell is open);
+ * `wayOnReach` [m]: wayOnDist is exact up to it (+inf: everywhere). */
+TPlanningField computePlanningField(
+    const mapping::TFreeSpaceMap& map, double minOpening = 0.0,
+    double wayOnReach = std::numeric_limits<double>::infinity());
 }  // namespace risknav::speed
