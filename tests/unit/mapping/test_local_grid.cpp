@@ -99,6 +99,34 @@ TEST(LocalGrid, FusionTruthTable) {
             EXPECT_EQ(fuseCells(all[a], all[b]), expected[a][b]) << a << " " << b;
 }
 
+TEST(LocalGrid, FuseGridsIsClassifyAndFuseCellByCell) {
+    // fuseGrids() looks the pair of classes up in a table: the same as
+    // classifyCell() + fuseCells() on every cell, thresholds' edges included
+    std::mt19937 rng(5);
+    const int n = 64;
+    CLocalProbGrid a(n, 0.05, 0, 0), b(n, 0.05, 0, 0);
+    const float edges[] = {0.2f, 0.7f, 0.5f, 0.19999999f, 0.70000005f, 0.001f, 0.999f};
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    std::uniform_int_distribution<int> pick(0, 9), count(0, 2);
+    for (auto* g : {&a, &b})
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++) {
+                const int r = pick(rng);
+                g->setCell(i, j, r < 7 ? edges[r] : u(rng), uint16_t(count(rng)));
+            }
+    const auto m = fuseGrids(a, b, 0.7, 0.2);
+    int byClass[3] = {0, 0, 0};
+    for (size_t k = 0; k < m.cells.size(); k++) {
+        const auto expected =
+            fuseCells(classifyCell(a.probabilities()[k], a.counts()[k], 0.7, 0.2),
+                      classifyCell(b.probabilities()[k], b.counts()[k], 0.7, 0.2));
+        ASSERT_EQ(m.cells[k], expected) << k;
+        byClass[int(expected)]++;
+    }
+    for (int c : byClass)
+        EXPECT_GT(c, 100);  // every fused class occurs
+}
+
 TEST(LocalGrid, SectorModelFreeBeforeOccupiedAroundNothingBeyond) {
     CLocalProbGrid g(200, 0.05);
     const mrpt::math::TPose2D robot(0.02, 0.02, 0);
