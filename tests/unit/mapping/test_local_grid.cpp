@@ -360,6 +360,44 @@ TEST(LocalProbGrid, TiledScanEqualsThePlainSectorModel) {
         boundaryCases++;
     }
     EXPECT_EQ(boundaryCases, 40);
+    // The same along a row: 181 rays alternately reading 1 m and 2 m, a
+    // cell at ~1.5 m a hair off the boundary between two of them (the row
+    // walk's cross products decide at 3e-9 rad and beyond, the exact formula
+    // nearer); its reading (free, or none) shows which ray it got.
+    int walkCases = 0;
+    for (int trial = 0; trial < 48; trial++) {
+        mrpt::obs::CObservation2DRangeScan scan;
+        scan.aperture = float(M_PI);
+        scan.maxRange = 3.0f;
+        scan.rightToLeft = trial % 2 == 0;
+        scan.resizeScan(181);
+        for (size_t k = 0; k < 181; k++) {
+            scan.setScanRange(k, k % 2 ? 2.0f : 1.0f);
+            scan.setScanRangeValidity(k, true);
+        }
+        const double step = double(scan.aperture) / 180, sign = scan.rightToLeft ? 1 : -1;
+        CLocalProbGrid g(100, 0.05, 0, 0);
+        const double sx = g.idx2x(50) + 0.011, sy = g.idx2y(50) - 0.006;
+        const int ci = 50 + int(u(rng) * 60) - 30, cj = 50 + int(u(rng) * 60) - 30;
+        if (std::hypot(g.idx2x(ci) - sx, g.idx2y(cj) - sy) < 0.5)
+            continue;
+        const double bearing = std::atan2(g.idx2y(cj) - sy, g.idx2x(ci) - sx);
+        const double off[] = {1e-10, -1e-10, 2e-9, -2e-9, 3e-9, -3e-9, 3e-8, -3e-8};
+        const long k = 60 + long(u(rng) * 60);  // the boundary between rays k and k + 1
+        const double syaw =
+            bearing - sign * ((double(k) + 0.5) * step - 0.5 * M_PI) + off[trial % 8];
+        const mrpt::math::TPose2D robot(sx, sy, syaw);
+        std::vector<float> p(g.probabilities());
+        std::vector<uint16_t> count(g.counts());
+        bruteForceScan(p, count, g, robot, scan, laserModel());
+        g.integrateScan(robot, scan, laserModel());
+        for (size_t c = 0; c < p.size(); c++) {
+            ASSERT_EQ(g.counts()[c], count[c]) << "walk trial " << trial;
+            ASSERT_EQ(g.probabilities()[c], p[c]) << "walk trial " << trial;
+        }
+        walkCases++;
+    }
+    EXPECT_GT(walkCases, 30);
 }
 
 // The bound integrateScan's fast path relies on: the polynomial atan2 within

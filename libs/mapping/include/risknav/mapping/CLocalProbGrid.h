@@ -90,6 +90,7 @@ class CLocalProbGrid {
     // integrateScan's per-ray tables, kept to spare the allocations
     std::vector<uint8_t> m_rayValid;
     std::vector<double> m_rayFree, m_rayOcc;
+    std::vector<double> m_boundX, m_boundY;  ///< the sectors' edge directions
 };
 
 /** Classification of (000) section 2: P > occupied: obstacle; P < free: free;
