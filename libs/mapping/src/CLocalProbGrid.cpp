@@ -143,7 +143,7 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
     // least tol / |v| rad from its edges, where std::atan2's formula cannot
     // round it elsewhere; nearer an edge, or in a sector whose centre is
     // within 2 sectors of the +-pi wrap, rayOf() decides.
-    const bool walk = step >= 1e-4 && step <= M_PI / 4 && slack < 0.25;
+    const bool walk = step >= 1e-3 && step <= M_PI / 4 && slack < 0.25;
     const long kLo = walk ? long(std::floor((0.5 * aperture - M_PI) / step)) - 3 : 0;
     const long kHi = walk ? long(std::ceil((0.5 * aperture + M_PI) / step)) + 3 : -1;
     m_boundX.clear();
@@ -153,11 +153,14 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
         m_boundX.push_back(std::cos(b));
         m_boundY.push_back(std::sin(b));
     }
-    constexpr double kCrossTol = 1e-9;  // [rad]; the formulas err by ~1e-15
+    // [rad]; the formulas err by ~1e-15, or by the rounding of a yaw of
+    // large magnitude (an unwrapped one of 1e7 rad rounds by ~1e-9)
+    const double big = std::fabs(syaw) + 2 * M_PI;
+    const double crossTol = 1e-9 + 8 * (std::nextafter(big, 2 * big) - big);
     constexpr long kNoGuess = std::numeric_limits<long>::min();
     auto walkRay = [&](double dx, double dy, double r, long& k) -> long {
         if (k != kNoGuess) {
-            const double tol = kCrossTol * r;
+            const double tol = crossTol * r;
             for (int tries = 0; tries < 4 && k > kLo && k < kHi; tries++) {
                 const size_t b = size_t(k - kLo);
                 const double lo = sign * (m_boundX[b] * dy - m_boundY[b] * dx);

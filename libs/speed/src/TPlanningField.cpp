@@ -157,8 +157,8 @@ TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map, double mi
     }
     // every cell whose measured distance is <= wayOnReach has a centre
     // distance <= wayOnReach / res + 0.5 cells (one more for rounding)
-    const double reachCells = wayOnReach / map.resolution + 1.5;
-    if (reachCells < n)
+    const double reachCells = std::max(0.0, wayOnReach / map.resolution + 1.5);
+    if (reachCells < std::min(n, 4096))
         mapping::boundedSquaredDistanceTransform(wayOn, n, n, false,
                                                  int(std::ceil(reachCells)), d2);
     else

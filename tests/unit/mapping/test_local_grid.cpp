@@ -365,7 +365,7 @@ TEST(LocalProbGrid, TiledScanEqualsThePlainSectorModel) {
     // walk's cross products decide at 3e-9 rad and beyond, the exact formula
     // nearer); its reading (free, or none) shows which ray it got.
     int walkCases = 0;
-    for (int trial = 0; trial < 48; trial++) {
+    for (int trial = 0; trial < 96; trial++) {
         mrpt::obs::CObservation2DRangeScan scan;
         scan.aperture = float(M_PI);
         scan.maxRange = 3.0f;
@@ -384,8 +384,11 @@ TEST(LocalProbGrid, TiledScanEqualsThePlainSectorModel) {
         const double bearing = std::atan2(g.idx2y(cj) - sy, g.idx2x(ci) - sx);
         const double off[] = {1e-10, -1e-10, 2e-9, -2e-9, 3e-9, -3e-9, 3e-8, -3e-8};
         const long k = 60 + long(u(rng) * 60);  // the boundary between rays k and k + 1
-        const double syaw =
-            bearing - sign * ((double(k) + 0.5) * step - 0.5 * M_PI) + off[trial % 8];
+        // every third trial with an unwrapped yaw of ~2e7 rad, which the
+        // exact formula rounds by ~1e-9 rad
+        const double turns = trial % 3 == 2 ? 2 * M_PI * 3.5e6 : 0.0;
+        const double syaw = bearing - sign * ((double(k) + 0.5) * step - 0.5 * M_PI) +
+                            off[trial % 8] + turns;
         const mrpt::math::TPose2D robot(sx, sy, syaw);
         std::vector<float> p(g.probabilities());
         std::vector<uint16_t> count(g.counts());
@@ -397,7 +400,34 @@ TEST(LocalProbGrid, TiledScanEqualsThePlainSectorModel) {
         }
         walkCases++;
     }
-    EXPECT_GT(walkCases, 30);
+    EXPECT_GT(walkCases, 60);
+    // A found case: an unwrapped yaw of -2.2e7 rad, where the exact formula
+    // rounds the cell at (0.475, -2.875) from the sensor, 1e-9 rad off the
+    // edge between rays 37 and 38 of 1440, into ray 38 (without the walk's
+    // margin for the yaw's rounding the walk put it in 37)
+    {
+        mrpt::obs::CObservation2DRangeScan scan;
+        scan.aperture = float(2 * M_PI);
+        scan.maxRange = 5.0f;
+        scan.rightToLeft = true;
+        scan.resizeScan(1440);
+        for (size_t k = 0; k < 1440; k++) {
+            scan.setScanRange(k, k % 2 ? 4.0f : 2.0f);  // ray 37 reads it free, 38 not
+            scan.setScanRangeValidity(k, true);
+        }
+        CLocalProbGrid g(200, 0.05, 0, 0);  // cell centres at odd multiples of 0.025
+        const mrpt::math::TPose2D robot(0, 0, -21964016.210175823);
+        std::vector<float> p(g.probabilities());
+        std::vector<uint16_t> count(g.counts());
+        bruteForceScan(p, count, g, robot, scan, laserModel());
+        g.integrateScan(robot, scan, laserModel());
+        const int i = g.x2idx(0.475), j = g.y2idx(-2.875);
+        EXPECT_EQ(g.counts()[g.index(i, j)], 0);  // ray 38's 2 m: not read
+        for (size_t c = 0; c < p.size(); c++) {
+            ASSERT_EQ(g.counts()[c], count[c]) << "huge yaw, cell " << c;
+            ASSERT_EQ(g.probabilities()[c], p[c]) << "huge yaw, cell " << c;
+        }
+    }
 }
 
 // The bound integrateScan's fast path relies on: the polynomial atan2 within
