@@ -5,19 +5,15 @@
 #include <stdexcept>
 
 namespace risknav::mapping {
-void squaredDistanceTransform(const std::vector<uint8_t>& source, int w, int h,
-                              bool borderIsSource, std::vector<int32_t>& out) {
-    if (w < 0 || h < 0 || source.size() != size_t(w) * size_t(h))
-        throw std::invalid_argument("distance transform: source is not w x h");
-    out.assign(source.size(), kNoSource);
-    if (source.empty())
-        return;
-    // Pass 1, along the columns, all columns at once row by row (contiguous,
-    // branch-free): the distance in cells to the nearest source in the same
-    // column; kFar (> any real one, and kFar + 1 does not overflow) for none.
-    const int32_t kFar = 1 << 24;
-    std::vector<int32_t> col(source.size());
-    const int32_t edge = borderIsSource ? 1 : kFar;
+namespace {
+/** Both transforms' first pass, along the columns, all columns at once row
+ * by row (contiguous, branch-free): per cell the distance in cells to the
+ * nearest source in its column (the ring outside the grid one cell beyond
+ * the first and last rows when `borderIsSource`), capped at `cap` >= 1. */
+void columnDistances(const std::vector<uint8_t>& source, int w, int h,
+                     bool borderIsSource, int32_t cap, std::vector<int32_t>& col) {
+    col.resize(source.size());
+    const int32_t edge = borderIsSource ? 1 : cap;
     for (int i = 0; i < w; i++)
         col[size_t(i)] = source[size_t(i)] ? 0 : edge;
     for (int j = 1; j < h; j++) {
@@ -25,7 +21,7 @@ void squaredDistanceTransform(const std::vector<uint8_t>& source, int w, int h,
         const int32_t* up = &col[size_t(j - 1) * w];
         int32_t* c = &col[size_t(j) * w];
         for (int i = 0; i < w; i++)
-            c[i] = s[i] ? 0 : std::min(up[i] + 1, kFar);
+            c[i] = s[i] ? 0 : std::min(up[i] + 1, cap);
     }
     {
         int32_t* c = &col[size_t(h - 1) * w];
@@ -38,6 +34,21 @@ void squaredDistanceTransform(const std::vector<uint8_t>& source, int w, int h,
         for (int i = 0; i < w; i++)
             c[i] = std::min(c[i], down[i] + 1);
     }
+}
+}  // namespace
+
+void squaredDistanceTransform(const std::vector<uint8_t>& source, int w, int h,
+                              bool borderIsSource, std::vector<int32_t>& out) {
+    if (w < 0 || h < 0 || source.size() != size_t(w) * size_t(h))
+        throw std::invalid_argument("distance transform: source is not w x h");
+    out.assign(source.size(), kNoSource);
+    if (source.empty())
+        return;
+    // Pass 1: the column distances; kFar (> any real one, and kFar + 1 does
+    // not overflow) for none.
+    const int32_t kFar = 1 << 24;
+    std::vector<int32_t> col;
+    columnDistances(source, w, h, borderIsSource, kFar, col);
     // Pass 2, along each row: the lower envelope of the parabolas
     // (x - q)^2 + f(q), f(q) = col(q)^2, over the cells q that have one
     // (and the border cells q = -1 and q = w with f = 0 when the border is a
@@ -147,29 +158,8 @@ void boundedSquaredDistanceTransform(const std::vector<uint8_t>& source, int w, 
         return;
     // Column distances as in squaredDistanceTransform(), capped at reach + 1
     // ("none within reach"); the rows' pass then takes their squares.
-    const int32_t cap = reach + 1;
-    const int32_t edge = borderIsSource ? 1 : cap;
-    std::vector<int32_t> col(source.size());
-    for (int i = 0; i < w; i++)
-        col[size_t(i)] = source[size_t(i)] ? 0 : std::min(edge, cap);
-    for (int j = 1; j < h; j++) {
-        const uint8_t* s = &source[size_t(j) * w];
-        const int32_t* up = &col[size_t(j - 1) * w];
-        int32_t* c = &col[size_t(j) * w];
-        for (int i = 0; i < w; i++)
-            c[i] = s[i] ? 0 : std::min(up[i] + 1, cap);
-    }
-    {
-        int32_t* c = &col[size_t(h - 1) * w];
-        for (int i = 0; i < w; i++)
-            c[i] = std::min(c[i], edge);
-    }
-    for (int j = h - 2; j >= 0; j--) {
-        const int32_t* down = &col[size_t(j + 1) * w];
-        int32_t* c = &col[size_t(j) * w];
-        for (int i = 0; i < w; i++)
-            c[i] = std::min(c[i], down[i] + 1);
-    }
+    std::vector<int32_t> col;
+    columnDistances(source, w, h, borderIsSource, reach + 1, col);
     if (reach <= 127)
         boundedRows<int16_t>(col, w, h, borderIsSource, reach, out);
     else

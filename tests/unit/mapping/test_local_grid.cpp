@@ -282,6 +282,22 @@ void bruteForceScan(std::vector<float>& p, std::vector<uint16_t>& count,
             count[k]++;
         }
 }
+/** `rays` valid rays over `aperture` [rad], ray k reading `even` [m] for
+ * even k and `odd` for odd k (neighbours that read a cell differently). */
+mrpt::obs::CObservation2DRangeScan alternatingScan(size_t rays, double aperture,
+                                                   float maxRange, bool rightToLeft,
+                                                   float even, float odd) {
+    mrpt::obs::CObservation2DRangeScan scan;
+    scan.aperture = float(aperture);
+    scan.maxRange = maxRange;
+    scan.rightToLeft = rightToLeft;
+    scan.resizeScan(rays);
+    for (size_t k = 0; k < rays; k++) {
+        scan.setScanRange(k, k % 2 ? odd : even);
+        scan.setScanRangeValidity(k, true);
+    }
+    return scan;
+}
 }  // namespace
 
 // The tiled integrateScan (rays per tile, tiles beyond every reading skipped)
@@ -333,15 +349,8 @@ TEST(LocalProbGrid, TiledScanEqualsThePlainSectorModel) {
     // wrong side there, and the exact formula must decide.
     int boundaryCases = 0;
     for (int trial = 0; trial < 40; trial++) {
-        mrpt::obs::CObservation2DRangeScan scan;
-        scan.aperture = float(M_PI);
-        scan.maxRange = 3.0f;
-        scan.rightToLeft = trial % 2 == 0;
-        scan.resizeScan(2);
-        scan.setScanRange(0, 1.0f);  // the two rays read a cell at 1 m differently
-        scan.setScanRange(1, 2.0f);
-        scan.setScanRangeValidity(0, true);
-        scan.setScanRangeValidity(1, true);
+        // the two rays read a cell at 1 m differently
+        const auto scan = alternatingScan(2, M_PI, 3.0f, trial % 2 == 0, 1.0f, 2.0f);
         CLocalProbGrid g(60, 0.05, 0, 0);
         const int ci = 30 + int(u(rng) * 20) - 10, cj = 30 + int(u(rng) * 20) - 10;
         const double sx = g.idx2x(30) + 0.013, sy = g.idx2y(30) - 0.007;
@@ -366,15 +375,7 @@ TEST(LocalProbGrid, TiledScanEqualsThePlainSectorModel) {
     // nearer); its reading (free, or none) shows which ray it got.
     int walkCases = 0;
     for (int trial = 0; trial < 96; trial++) {
-        mrpt::obs::CObservation2DRangeScan scan;
-        scan.aperture = float(M_PI);
-        scan.maxRange = 3.0f;
-        scan.rightToLeft = trial % 2 == 0;
-        scan.resizeScan(181);
-        for (size_t k = 0; k < 181; k++) {
-            scan.setScanRange(k, k % 2 ? 2.0f : 1.0f);
-            scan.setScanRangeValidity(k, true);
-        }
+        const auto scan = alternatingScan(181, M_PI, 3.0f, trial % 2 == 0, 1.0f, 2.0f);
         const double step = double(scan.aperture) / 180, sign = scan.rightToLeft ? 1 : -1;
         CLocalProbGrid g(100, 0.05, 0, 0);
         const double sx = g.idx2x(50) + 0.011, sy = g.idx2y(50) - 0.006;
@@ -406,15 +407,8 @@ TEST(LocalProbGrid, TiledScanEqualsThePlainSectorModel) {
     // edge between rays 37 and 38 of 1440, into ray 38 (without the walk's
     // margin for the yaw's rounding the walk put it in 37)
     {
-        mrpt::obs::CObservation2DRangeScan scan;
-        scan.aperture = float(2 * M_PI);
-        scan.maxRange = 5.0f;
-        scan.rightToLeft = true;
-        scan.resizeScan(1440);
-        for (size_t k = 0; k < 1440; k++) {
-            scan.setScanRange(k, k % 2 ? 4.0f : 2.0f);  // ray 37 reads it free, 38 not
-            scan.setScanRangeValidity(k, true);
-        }
+        // ray 37 reads the cell free, ray 38 does not reach it
+        const auto scan = alternatingScan(1440, 2 * M_PI, 5.0f, true, 2.0f, 4.0f);
         CLocalProbGrid g(200, 0.05, 0, 0);  // cell centres at odd multiples of 0.025
         const mrpt::math::TPose2D robot(0, 0, -21964016.210175823);
         std::vector<float> p(g.probabilities());
