@@ -26,23 +26,16 @@ TFreeSpaceMap fuseGrids(const CLocalProbGrid& a, const CLocalProbGrid& b,
     const auto& pb = b.probabilities();
     const auto& ca = a.counts();
     const auto& cb = b.counts();
-    // classifyCell() and fuseCells() without branches (a speed-up, the same
-    // cells): each class as its enum's number, the pair looked up in a table
-    // that fuseCells() fills
+    // fuseCells() of the two classes looked up in a table it fills (a
+    // speed-up, the same cells)
     TFusedCell table[4][4];
     for (int a = 0; a < 4; a++)
         for (int b = 0; b < 4; b++)
             table[a][b] = fuseCells(TCellClass(a), TCellClass(b));
-    auto code = [&](float p, uint16_t n) {
-        const double d = p;
-        const int obstacle = d > occupiedThreshold, free = d < freeThreshold;
-        const int undecided = uint8_t(n > 0 ? TCellClass::UndecidedObserved
-                                            : TCellClass::UndecidedUnobserved);
-        return obstacle ? int(TCellClass::Obstacle)
-                        : (free ? int(TCellClass::Free) : undecided);
-    };
     for (size_t k = 0; k < m.cells.size(); k++)
-        m.cells[k] = table[code(pa[k], ca[k])][code(pb[k], cb[k])];
+        m.cells[k] =
+            table[int(classifyCell(pa[k], ca[k], occupiedThreshold, freeThreshold))]
+                 [int(classifyCell(pb[k], cb[k], occupiedThreshold, freeThreshold))];
     return m;
 }
 
