@@ -345,9 +345,6 @@ void runAfraidExperiment(const TAppContext& ctx) {
         doorWithout += fo.doorCollisions;
         stopWith += fw.insideStopping;
         stopWithout += fo.insideStopping;
-        unsigned events = 0;
-        for (const auto& z : learner.zones())
-            events += z.obstacleEvents;
         csv.row({std::to_string(seed),
                  CCsvWriter::num(s0),
                  CCsvWriter::num(s1),
