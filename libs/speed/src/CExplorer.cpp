@@ -229,7 +229,11 @@ TModeResult CExplorer::runMode(int fixedIndex,
         goalsEgo.emplace_back(ge.x(), ge.y());
     }
     std::optional<TPoint2D> previousTarget;  // temporary, of this destination
-    std::optional<TPoint2D> nearestTarget;   // the point nearest this destination
+    // the point nearest this destination; none: one at infinity, never arrived at
+    // (not a std::optional: gcc 12 warned it might be read uninitialized)
+    const double inf = std::numeric_limits<double>::infinity();
+    const TPoint2D noNearest(inf, inf);
+    TPoint2D nearestTarget = noNearest;
     double bestToGoal = std::numeric_limits<double>::infinity(), bestToGoalTime = 0;
     double unreachableSince = -1;
     size_t dest = 0;
@@ -238,7 +242,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
         r.destinationStatus[dest] = status;
         dest++;
         previousTarget.reset();
-        nearestTarget.reset();
+        nearestTarget = noNearest;
         unreachableSince = -1;
         bestToGoal = std::numeric_limits<double>::infinity();
         bestToGoalTime = world.time();
@@ -271,9 +275,8 @@ TModeResult CExplorer::runMode(int fixedIndex,
         auto arrived = [&] {
             return std::hypot(goalsEgo[dest].x - ego.x, goalsEgo[dest].y - ego.y) <
                        explore.goal_tolerance ||
-                   (nearestTarget &&
-                    std::hypot(nearestTarget->x - ego.x, nearestTarget->y - ego.y) <
-                        explore.goal_tolerance / 2);
+                   std::hypot(nearestTarget.x - ego.x, nearestTarget.y - ego.y) <
+                       explore.goal_tolerance / 2;
         };
         while (dest < goalsEgo.size() && arrived()) {
             const TPose2D tp = world.truePose();
@@ -311,7 +314,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
             if (d.nearestToGoal)
                 nearestTarget = d.target;
             else
-                nearestTarget.reset();
+                nearestTarget = noNearest;
             if (d.temporaryTarget && d.reason != TSpeedReason::Unreachable)
                 previousTarget = d.target;
             else
