@@ -680,6 +680,29 @@ TEST(NavigateE2E, UnstickTurnsToOneTargetAreCappedSoMrptsErrorShows) {
     EXPECT_EQ(turns, 3);
 }
 
+TEST(NavigateE2E, ARobotStoppedAtADoorPostTurnsAwayFromItAndGoesOn) {
+    // Rooms M1 seed 8 stopped in a doorway 0.33 m from a post (the edge of
+    // MRPT's shape, radius + shape_margin), facing its target: MRPT took no
+    // forward path (each nears the post), reported an apparent collision
+    // every cycle and timed out. Started there: with the unstick turns off
+    // it never moves; with them it turns away from the post and arrives.
+    const std::string cfg = m1WorldConfig(freshDir("w"), "12.05 4.57 20", "15.0 4.9",
+                                          "explore_rooms.png", "");
+    const std::string opts =
+        "--seed 1 --set CAbstractNavigator.alarm_seems_not_approaching_target_timeout=20";
+    const json off = navRun(cfg, freshDir("off"),
+                            opts + " --set CRiskAwareReactiveNav.unstick_time=0");
+    EXPECT_EQ(off["status"], "navigation_error");
+    EXPECT_LT(off["distance_m"].get<double>(), 0.05);
+    const std::string out = freshDir("on");
+    const json on = navRun(cfg, out, opts);
+    EXPECT_EQ(on["status"], "goal_reached") << on["navigation_error"];
+    EXPECT_EQ(on["collisions"], 0);
+    EXPECT_NE(
+        readFile(out + "/cycles.csv").find(",unstick,\"obstacle at MRPT's robot shape"),
+        std::string::npos);
+}
+
 TEST(NavigateE2E, MclLocalizationOnTheLaserKeepsThePoseErrorSmall) {
     // The same best route, localized by MRPT's CMonteCarloLocalization2D on
     // the simulated laser and the map instead of dead reckoning.

@@ -4,6 +4,7 @@
 #include <risknav/nav/CAdaptiveSpeedLimiter.h>
 #include <risknav/nav/CLayeredConfig.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
+#include <risknav/nav/escape_heading.h>
 #include <risknav/sim/CSimRobotInterface.h>
 
 #include <mrpt/config/CConfigFileMemory.h>
@@ -32,6 +33,9 @@ namespace risknav::nav {
 namespace {
 const char* kSection = "CRiskAwareReactiveNav";
 constexpr int kMaxUnstickTurns = 3;  // per target (see navigationStep())
+/** [m] Points this far outside MRPT's robot shape count as at its edge
+ * (pointsNearShape()): a laser's noise moves them in and out of it. */
+constexpr double kShapeEdge = 0.03;
 
 // A robot that does nothing: MRPT's navigator only loads a config here, but
 // its destructor stops the robot it is given (not the one being driven).
@@ -481,9 +485,13 @@ void CRiskAwareReactiveNav::navigationStep() {
             // turned to where MRPT is aimed: the guide point when a limiter
             // gives one (guide_lookahead), else the waypoint
             const mrpt::math::TPoint2D aim = guidePoint(pose, *target).value_or(*target);
-            const double bearing = mrpt::math::wrapToPi(
+            double bearing = mrpt::math::wrapToPi(
                 std::atan2(aim.y - pose.y, aim.x - pose.x) - pose.phi);
-            const double deg = std::abs(bearing) * 180 / M_PI;
+            const double aimBearing = bearing;
+            // an escape turn (below) turns to its own heading
+            if (m_escapeHeading)
+                bearing = mrpt::math::wrapToPi(*m_escapeHeading - pose.phi);
+            double deg = std::abs(bearing) * 180 / M_PI;
             // At most kMaxUnstickTurns per target, counted again once the
             // robot got 0.5 m nearer to it than at the nearest turn: at a target
             // behind a wall, turning to it for ever would hide MRPT's own
@@ -500,21 +508,53 @@ void CRiskAwareReactiveNav::navigationStep() {
             const bool mayUnstick =
                 !sameTarget || nearer || m_unstuck->turns < kMaxUnstickTurns;
             const double unstickDeg = riskOptions.unstick_heading_deg;
-            if (m_turning)
-                m_turning = deg > (m_unsticking ? unstickDeg : limitDeg) / 3;
-            else if (limitDeg > 0 && deg > limitDeg)
-                m_turning = true, m_unsticking = false;
-            else if (stuck && deg > unstickDeg && mayUnstick) {
-                m_turning = true, m_unsticking = true;
-                // the reference is the nearest the robot was at a turn: pushed
-                // back and returning does not count as getting nearer
+            // the reference is the nearest the robot was at a turn: pushed
+            // back and returning does not count as getting nearer
+            auto countTurn = [&] {
                 m_unstuck = sameTarget && !nearer
                                 ? TUnstick{*target, std::min(dist, m_unstuck->distance),
                                            m_unstuck->turns + 1}
                                 : TUnstick{*target, dist, 1};
+            };
+            if (m_turning) {
+                m_turning = deg > (m_unsticking ? unstickDeg : limitDeg) / 3;
+                if (!m_turning)
+                    m_escapeHeading.reset();
+            } else if (limitDeg > 0 && deg > limitDeg) {
+                m_turning = true, m_unsticking = false;
+            } else if (stuck && deg > unstickDeg && mayUnstick) {
+                m_turning = true, m_unsticking = true;
+                countTurn();
                 m_unstickReason = "target " + numberText(std::round(deg)) +
                                   " deg off after " + numberText(std::round(stillFor)) +
                                   " s without motion";
+            } else if (stuck && mayUnstick) {
+                // Facing its target, yet still: obstacle points at (or in)
+                // MRPT's robot shape that every forward path nears (rooms
+                // M1 seed 8: stopped in a doorway 0.33 m from a post, MRPT's
+                // "apparent collision" for 45 s, then its timeout). Turned
+                // until its heading leads away from each of them (the first
+                // step of every forward path leaves them), as near the target
+                // as that allows and within turn_in_place_deg of it (MRPT's
+                // forward-only PTGs must still aim at it).
+                const double maxOff =
+                    limitDeg > 0 ? (limitDeg - unstickDeg) * M_PI / 180 : M_PI;
+                if (const auto e =
+                        escapeHeading(pointsNearShape(), aimBearing, 0.0, maxOff);
+                    e && std::abs(*e) * 180 / M_PI > unstickDeg / 3) {
+                    m_turning = true, m_unsticking = true;
+                    m_escapeHeading = pose.phi + *e;
+                    bearing = *e;
+                    countTurn();
+                    m_unstickReason =
+                        "obstacle at MRPT's robot shape after " +
+                        numberText(std::round(stillFor)) +
+                        " s without motion: turned away from it, " +
+                        numberText(
+                            std::round(std::abs(mrpt::math::wrapToPi(*e - aimBearing)) *
+                                       180 / M_PI)) +
+                        " deg off the target";
+                }
             }
             if (m_turning) {
                 mrpt::kinematics::CVehicleVelCmd_DiffDriven cmd;
@@ -534,8 +574,26 @@ void CRiskAwareReactiveNav::navigationStep() {
         }
     }
     m_turning = m_unsticking = false;
+    m_escapeHeading.reset();
     m_last = {};  // set by generate_vel_cmd() when MRPT sends a new command
     mrpt::nav::CReactiveNavigationSystem::navigationStep();
+}
+
+std::vector<mrpt::math::TPoint2D> CRiskAwareReactiveNav::pointsNearShape() const {
+    // MRPT's shape as a disc of its farthest vertex (or its circular radius)
+    double r = 0;
+    for (const auto& v : m_robotShape)
+        r = std::max(r, std::hypot(v.x, v.y));
+    if (m_robotShape.empty())
+        r = m_robotShapeCircularRadius;
+    const double reach = r + kShapeEdge;
+    std::vector<mrpt::math::TPoint2D> near;
+    const auto& xs = m_WS_Obstacles.getPointsBufferRef_x();
+    const auto& ys = m_WS_Obstacles.getPointsBufferRef_y();
+    for (size_t k = 0; k < xs.size(); k++)
+        if (std::hypot(xs[k], ys[k]) <= reach)
+            near.emplace_back(xs[k], ys[k]);
+    return near;
 }
 
 std::optional<mrpt::math::TPoint2D> CRiskAwareReactiveNav::guidePoint(

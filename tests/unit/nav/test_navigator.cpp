@@ -5,6 +5,7 @@
 #include <risknav/nav/CAdaptiveSpeedLimiter.h>
 #include <risknav/nav/CAfraidSpeedLimiter.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
+#include <risknav/nav/escape_heading.h>
 #include <risknav/nav/waypoint_file.h>
 #include <risknav/sim/CSimRobotInterface.h>
 #include <risknav/sim/CSimWorld.h>
@@ -14,6 +15,7 @@
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/kinematics/CVehicleVelCmd_DiffDriven.h>
 #include <mrpt/math/CPolygon.h>
+#include <mrpt/math/wrap2pi.h>
 #include <mrpt/nav/reactive/CLogFileRecord.h>
 #include <mrpt/nav/tpspace/CParameterizedTrajectoryGenerator.h>
 #include <mrpt/system/filesystem.h>
@@ -22,6 +24,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <random>
 #include <sstream>
 
 using namespace risknav;
@@ -280,4 +283,58 @@ TEST(WaypointFile, MrptsSpeedRatioIsAppliedAsItsApproachSpeed) {
     EXPECT_DOUBLE_EQ(seq.waypoints[0].speed_ratio, 0.4);
     EXPECT_EQ(seq.waypoints[0].target_frame_id, "map");
     EXPECT_DOUBLE_EQ(seq.waypoints[1].speed_ratio, 1.0);
+}
+
+TEST(EscapeHeading, AgreesWithASweepOfAllHeadings) {
+    // Against brute force: 7,200 headings, each checked against every point;
+    // the function's answer is admissible and no sampled admissible heading
+    // within maxOff is nearer the preferred one.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> ang(-M_PI, M_PI), rad(0.2, 0.4);
+    int found = 0, boxed = 0;
+    for (int trial = 0; trial < 300; trial++) {
+        std::vector<mrpt::math::TPoint2D> pts;
+        const int n = 1 + trial % 4;
+        const double centre = ang(rng);  // points clustered, as a post or a wall is
+        for (int k = 0; k < n; k++) {
+            const double b = centre + 0.6 * ang(rng) / M_PI;
+            pts.emplace_back(rad(rng) * std::cos(b), rad(rng) * std::sin(b));
+        }
+        const double preferred = ang(rng), extra = trial % 2 ? 0.0 : 0.2,
+                     maxOff = trial % 3 ? M_PI : 1.4;
+        auto leaves = [&](double h) {
+            for (const auto& p : pts)
+                if (std::cos(h) * p.x + std::sin(h) * p.y >=
+                    -std::sin(extra) * std::hypot(p.x, p.y))
+                    return false;
+            return true;
+        };
+        double bestOff = 1e9;
+        for (int s = 0; s < 7200; s++) {
+            const double h = -M_PI + 2 * M_PI * s / 7200;
+            const double off = std::abs(mrpt::math::wrapToPi(h - preferred));
+            if (off <= maxOff && leaves(h))
+                bestOff = std::min(bestOff, off);
+        }
+        const auto e = nav::escapeHeading(pts, preferred, extra, maxOff);
+        if (!e) {
+            boxed++;
+            EXPECT_GT(bestOff, 1e8) << "trial " << trial;  // the sweep found none either
+            continue;
+        }
+        found++;
+        EXPECT_TRUE(leaves(*e)) << "trial " << trial;
+        const double off = std::abs(mrpt::math::wrapToPi(*e - preferred));
+        EXPECT_LE(off, maxOff + 1e-9);
+        EXPECT_LE(off, bestOff + 2e-6) << "trial " << trial;  // 1e-6 past an arc end
+        EXPECT_GT(off, bestOff - 2 * M_PI / 7200 - 1e-6) << "trial " << trial;
+    }
+    EXPECT_GT(found, 150);  // both outcomes were exercised
+    EXPECT_GT(boxed, 5);
+    // none to leave: no escape; a door post ahead-left (as in rooms seed 8,
+    // target straight ahead): turned right, just past perpendicular to it
+    EXPECT_FALSE(nav::escapeHeading({}, 0.0, 0.0, M_PI));
+    const auto e = nav::escapeHeading({{0.33, 0.05}, {0.30, 0.15}}, 0.0, 0.0, M_PI);
+    ASSERT_TRUE(e);
+    EXPECT_NEAR(*e, std::atan2(0.05, 0.33) - M_PI / 2, 1e-5);
 }

@@ -42,7 +42,12 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
          * can creep at 1e-4 m/s for minutes at a turn, its own "not
          * approaching" alarm silent) is turned in place toward its target
          * when that is more than unstick_heading_deg off its heading, until
-         * it is within a third of that angle (0 = off, else >= 2 s). At most
+         * it is within a third of that angle (0 = off, else >= 2 s). A
+         * robot that faces its target yet has sensed obstacle points at its
+         * MRPT shape (within 3 cm of it) is turned instead to the heading
+         * nearest the target that leads away from all of them (no more than
+         * turn_in_place_deg - unstick_heading_deg off it; escapeHeading()):
+         * MRPT 2.5.8 takes no forward path that nears such a point. At most
          * 3 turns per target, counted again once the robot got 0.5 m nearer
          * to it, so that MRPT's own error at an unreachable target shows. */
         double unstick_time = 5;
@@ -162,6 +167,11 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     };
     std::optional<TUnstick> m_unstuck;
     std::string m_unstickReason;
+    /** [rad, world] the heading an escape turn turns to (escapeHeading()). */
+    std::optional<double> m_escapeHeading;
+    /** MRPT's last sensed obstacle points (robot frame) inside or at the
+     * edge of its robot shape. */
+    std::vector<mrpt::math::TPoint2D> pointsNearShape() const;
     /** Each PTG's cte_a0w_deg as read (CPTG_DiffDrive_alpha; else ""). */
     std::vector<std::string> m_a0wText;
 };
