@@ -187,6 +187,12 @@ TEST(ExploreE2E, AnUnreachableDestinationIsReportedAndTheRobotStops) {
     EXPECT_EQ(m["destinations"][0], "reached");
     EXPECT_NE(m["destinations"][1], "reached");
     EXPECT_EQ(m["collisions"], 0);
+    // an error only where the robot arrived (it was once 0.0 for the missed one)
+    EXPECT_TRUE(m["destination_error_m"][0].is_number());
+    EXPECT_TRUE(m["destination_error_m"][1].is_null());
+    // no slowest mode here, and no ratio where a mode missed a destination
+    EXPECT_TRUE(!s.contains("adaptive_over_slowest_time") ||
+                s["adaptive_over_slowest_time"].is_null());
 }
 
 TEST(ExploreE2E, EveryKeyInTheDocumentedConfigIsKnown) {
@@ -258,5 +264,6 @@ TEST(ExploreE2E, ADestinationNotApproachedForTheTimeoutIsGivenUp) {
     const auto s = readJson(out + "/summary.json");
     EXPECT_EQ(s["status"], "incomplete");
     EXPECT_EQ(s["modes"][0]["destinations"][0], "unreachable");
+    EXPECT_TRUE(s["modes"][0]["destination_error_m"][0].is_null());
     EXPECT_EQ(s["modes"][0]["collisions"], 0);
 }

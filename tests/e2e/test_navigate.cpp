@@ -11,12 +11,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <regex>
 #include <sstream>
 
 using namespace risknav::test;
 using nlohmann::json;
+namespace fs = std::filesystem;
 
 namespace {
 json navRun(const std::string& config, const std::string& out,
@@ -153,9 +155,16 @@ TEST(NavigateE2E, RiskRoutesBestAndWorstAreDriven) {
 }
 
 TEST(NavigateE2E, AfraidExperimentOneSeedIsFasterThanSafeSpeed) {
+    // --out relative to the working directory, which is not the config's
+    // folder (the learned file, staged there, was once looked up beside the config)
     const std::string out = freshDir("xp");
-    const json s = navRun(sourcePath("datasets/corridor-doors/afraid_experiment.ini"),
-                          out, "--seed 2");
+    const fs::path o(out);
+    const auto r =
+        run("cd '" + o.parent_path().string() + "' && " + binPath("risknav-navigate") +
+            " -q -o '" + o.filename().string() + "' --seed 2 '" +
+            sourcePath("datasets/corridor-doors/afraid_experiment.ini") + "'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const json s = readJson(out + "/summary.json");
     ASSERT_EQ(s["per_seed"].size(), 1u);
     const auto& p = s["per_seed"][0];
     EXPECT_GT(p["zones"].get<int>(), 0);
@@ -373,10 +382,22 @@ INSTANTIATE_TEST_SUITE_P(
         TBad{"run_too_long", "duration_max +=.*", "duration_max = 1e5\nsim_dt = 0.001",
              "[Navigate] duration_max = '1e5': is 1e+08 world steps of sim_dt = 0.001 "
              "s, at most 2e+06"},
+        // the outputs too: 5e5 cycles of navlog would be ~28 GB
+        TBad{"navlog_too_long", "duration_max +=.*", "duration_max = 1e5\nnavlog = true",
+             "[Navigate] duration_max = '1e5': is 500000 navigation cycles with navlog "
+             "= true, at most 36000"},
         TBad{"mrpt_ptg_count_fraction", "PTG_COUNT +=[^\\n]*", "PTG_COUNT = 2.7",
              "[CReactiveNavigationSystem] PTG_COUNT = '2.7': not an integer"},
         TBad{"spawned_on_clutter", "start +=.*", "start = 8.0 4.5 90",
              "the robot is spawned in collision with [Clutter"},
+        // people and clutter are checked against the map as in risknav-simulate
+        // (they were taken in silence here)
+        TBad{"walker_through_a_wall", "path      = 19.0 6.6  0.8 6.6",
+             "path = 19.0 6.6  19.0 3.0",
+             "[CorridorWalker1] path = '19.0 6.6  19.0 3.0': segment 1 runs through an "
+             "obstacle of the map at"},
+        TBad{"clutter_off_the_map", "x      = 8.0", "x = -30",
+             "[Clutter1] x, y: outside the map"},
         TBad{"adaptive_fuses_a_missing_sensor",
              "speed_limiters = CStoppingDistanceLimiter",
              "speed_limiters = CAdaptiveSpeedLimiter\n[CAdaptiveSpeedLimiter]\n",
@@ -395,6 +416,10 @@ INSTANTIATE_TEST_SUITE_P(
         TBad{"unstick_heading_zero", "speed_limiters = CStoppingDistanceLimiter",
              "speed_limiters = CStoppingDistanceLimiter\nunstick_heading_deg = 0",
              "[CRiskAwareReactiveNav] unstick_heading_deg = '0'"},
+        TBad{"limiter_listed_twice", "speed_limiters = CStoppingDistanceLimiter",
+             "speed_limiters = CStoppingDistanceLimiter CStoppingDistanceLimiter",
+             "[CRiskAwareReactiveNav] speed_limiters = 'CStoppingDistanceLimiter "
+             "CStoppingDistanceLimiter': CStoppingDistanceLimiter is listed twice"},
         TBad{"unknown_key", "goal_tolerance", "goal_tolerence", "goal_tolerence"},
         TBad{"engine_key_missing", "engine_config +=.*",
              "engine_config =", "MRPT's reactive engine refused the config"}),
@@ -422,12 +447,24 @@ TEST(NavigateE2E, RiskRoutesOfAnotherMapOrStartAreAClearError) {
               std::regex_replace(
                   std::regex_replace(cfg, std::regex("risk.ini"), dir + "/risk.ini"),
                   std::regex("start +=[^\\n]*"), "start = 3.0 7.0 0"));
+    // a route the evaluator excluded, named (it was driven, "U = inf")
+    writeFile(w + "/risk_c.ini",
+              std::regex_replace(readFile(dir + "/risk.ini"),
+                                 std::regex("two_routes.png"), dir + "/two_routes.png") +
+                  "\n[Route3]\nname = C\nwaypoints = 2.0 7.0  12.0 13.8  22.0 7.0\n");
+    writeFile(w + "/excluded.ini",
+              std::regex_replace(
+                  std::regex_replace(cfg, std::regex("risk.ini"), w + "/risk_c.ini"),
+                  std::regex("risk_route +=[^\\n]*"), "risk_route = C"));
     const TEarlierOutput earlier{{"summary.json", "{\"earlier\": true}\n"}};
     for (const auto& [file, expect] : std::vector<std::pair<std::string, std::string>>{
              {"other_map.ini",
               "is not [World]'s (480 x 280 of 0.05 m from (0, 0)): the same grid, other "
               "walls"},
-             {"other_start.ini", "the risk evaluator's routes start at (2.00, 7.00)"}}) {
+             {"other_start.ini", "the risk evaluator's routes start at (2.00, 7.00)"},
+             {"excluded.ini",
+              "[Navigate] risk_route = 'C': the risk evaluator excluded "
+              "this route (collides with an obstacle)"}}) {
         const std::string out = freshDir("out");
         writeEarlierOutput(out, earlier);
         const auto r = run(binPath("risknav-navigate") + " -q -o '" + out + "' '" + w +
@@ -730,6 +767,23 @@ TEST(NavigateE2E, AfraidExperimentIsReproducible) {
     EXPECT_EQ(readFile(a + "/learned.afraid"), readFile(b + "/learned.afraid"));
     EXPECT_EQ(readFile(a + "/experiment.csv"), readFile(b + "/experiment.csv"));
     EXPECT_FALSE(readFile(a + "/learning.rawlog").empty());
+}
+
+TEST(NavigateE2E, AfraidExperimentRefusesAnEmptyOrRepeatedSeedList) {
+    // an empty list once ran the default seeds, a repeated seed counted twice
+    for (const auto& [set, msg] : std::vector<std::pair<std::string, std::string>>{
+             {"AfraidExperiment.seeds=",
+              "[AfraidExperiment] seeds = '': needs at least 1"},
+             {"AfraidExperiment.seeds=1 2 1",
+              "[AfraidExperiment] seeds = '1 2 1': seed 1 is listed twice"}}) {
+        const std::string out = freshDir("out");
+        const TEarlierOutput earlier{{"summary.json", "{\"earlier\": true}\n"}};
+        writeEarlierOutput(out, earlier);
+        const auto r = run(
+            binPath("risknav-navigate") + " -q -o '" + out + "' --set '" + set + "' '" +
+            sourcePath("datasets/corridor-doors/afraid_experiment.ini") + "'");
+        expectBadInput(r, msg, out, earlier, "risknav-navigate: error: ");
+    }
 }
 
 TEST(NavigateE2E, AfraidExperimentRefusesTheAfraidLimiterInTheList) {

@@ -139,5 +139,9 @@ INSTANTIATE_TEST_SUITE_P(
               "[CorridorWalker1] speed_max = '1e308': must be in (0, 10] m/s"},
         TCase{"bad_option", "", "", "--frobnicate", "unknown option '--frobnicate'"},
         TCase{"bad_seed", "", "", "--seed -1",
-              "--seed '-1': must be a non-negative integer"}),
+              "--seed '-1': must be an integer in [0, 9007199254740992]"},
+        // beyond 2^53 the config's seed key refuses it: config_effective.ini
+        // would not load back
+        TCase{"seed_beyond_2_53", "", "", "--seed 9007199254740993",
+              "--seed '9007199254740993': must be an integer in [0, 9007199254740992]"}),
     [](const ::testing::TestParamInfo<TCase>& i) { return i.param.name; });

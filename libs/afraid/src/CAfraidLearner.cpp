@@ -96,7 +96,7 @@ void CAfraidLearner::TOptions::loadFromConfigFile(const mrpt::config::CConfigFil
     v_safe = readDouble(c, s, "v_safe", v_safe);
     // The seed is an integer type: its range is a parsing rule.
     seed = static_cast<uint64_t>(
-        readDouble(c, s, "seed", double(seed), TRange::closed(0, 9007199254740992.0)));
+        readDouble(c, s, "seed", double(seed), TRange::closed(0, kMaxSeed)));
 }
 
 void CAfraidLearner::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,

@@ -1,5 +1,6 @@
 #include <risknav/common/CAppRunner.h>
 #include <risknav/common/CBadInputError.h>
+#include <risknav/common/config_read.h>
 #include <risknav/common/version.h>
 
 #include <mrpt/version.h>
@@ -107,9 +108,10 @@ TAppArgs parseAppArgs(const std::vector<std::string>& args, const TAppInfo& info
             char* end = nullptr;
             errno = 0;
             const unsigned long long n = std::strtoull(v.c_str(), &end, 10);
-            if (v.empty() || v[0] == '-' || *end != '\0' || errno)
+            if (v.empty() || v[0] == '-' || *end != '\0' || errno ||
+                n > static_cast<unsigned long long>(kMaxSeed))
                 throw CBadInputError("--seed '" + v +
-                                     "': must be a non-negative integer");
+                                     "': must be an integer in [0, 9007199254740992]");
             a.seed = n;
         } else if (s.size() > 1 && s[0] == '-')
             throw CBadInputError("unknown option '" + s + "' (see --help)");

@@ -120,13 +120,18 @@ std::string fmt(double v, int decimals) {
 
 void TAfraidExperimentOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                                   const std::string& s) {
-    const auto sd = readNumbers(c, s, "seeds", {}, TRange::closed(0, 9007199254740992.0));
+    // an empty list is refused (not the default seeds), and so is a repeated
+    // seed (the same run twice would count twice in the statistics)
+    const auto sd = readNumbers(c, s, "seeds", {}, TRange::closed(0, kMaxSeed), 1);
     if (!sd.empty()) {
         seeds.clear();
         for (double v : sd) {
             if (v != std::floor(v))
                 throwBadKey(c, s, "seeds", readString(c, s, "seeds", ""),
                             "seeds are whole numbers");
+            if (std::find(seeds.begin(), seeds.end(), uint64_t(v)) != seeds.end())
+                throwBadKey(c, s, "seeds", readString(c, s, "seeds", ""),
+                            "seed " + std::to_string(uint64_t(v)) + " is listed twice");
             seeds.push_back(uint64_t(v));
         }
     }

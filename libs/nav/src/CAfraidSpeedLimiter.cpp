@@ -101,7 +101,10 @@ TSpeedLimit CAfraidSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const {
     if (v >= in.desiredSpeed)
         return {in.desiredSpeed, ""};
     char why[96];
-    std::snprintf(why, sizeof(why), "afraid zone within %.2f m ahead", reach);
+    if (v < options.v_max)  // v_afraid = v_safe: a zone on the path ahead
+        std::snprintf(why, sizeof(why), "afraid zone within %.2f m ahead", reach);
+    else  // no zone: only v_behaviour = v_max (eq. 14) below what MRPT asked
+        std::snprintf(why, sizeof(why), "v_max %.2f m/s (no zone ahead)", options.v_max);
     return {v, why};
 }
 

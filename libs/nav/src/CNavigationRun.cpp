@@ -53,6 +53,16 @@ const std::set<std::string> kEngineSections = {"CAbstractNavigator",
                                                "CMultiObjectiveMotionOptimizerBase",
                                                "CMultiObjMotionOpt_Scalarization"};
 
+// The message of an error MRPT logged: after its "Message:" header, the
+// first line.
+std::string mrptErrorText(std::string m) {
+    const auto p = m.find("Message:");
+    if (p != std::string::npos)
+        m = m.substr(p + 8);
+    const auto b = m.find_first_not_of(" \n");
+    return firstLine(b == std::string::npos ? m : m.substr(b));
+}
+
 std::string pointText(double x, double y) {
     char b[64];
     std::snprintf(b, sizeof(b), "(%.2f, %.2f)", x, y);
@@ -129,6 +139,32 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
         mcl.loadFromConfigFile(c);
     loadRoute(c);
     checkAgainstMap(c);
+    // The outputs, bounded before the run starts (a tester's 1e5 s run that
+    // never arrived was on its way to ~28 GB of navlog, ~56 KB a cycle): at
+    // most 36,000 navlog cycles (2 h at 0.2 s, ~2 GB) and a rawlog of at most
+    // 5e8 ranges (~2 GB, as risknav-simulate); one frame a cycle
+    {
+        const double cycles = options.duration_max / options.nav_period;
+        const auto& l = world.laser.options;
+        const auto& r2 = world.range2.options;
+        const double rays =
+            double(l.beams) +
+            (r2.enabled ? double(r2.beams) / std::max(1, r2.frame_decimation) : 0.0);
+        const std::string dm =
+            readString(c, kSec, "duration_max", numberText(options.duration_max));
+        if (options.navlog && cycles > 36000 * (1 + 1e-9))
+            throwBadKey(c, kSec, "duration_max", dm,
+                        "is " + numberText(std::round(cycles)) +
+                            " navigation cycles with navlog = true, at most 36000 (~2 "
+                            "GB of navlog; lower duration_max, raise nav_period or set "
+                            "navlog = false)");
+        if (options.rawlog && cycles * rays > 5e8 * (1 + 1e-9))
+            throwBadKey(c, kSec, "duration_max", dm,
+                        "is " + numberText(std::round(cycles)) + " rawlog frames of " +
+                            numberText(std::round(rays)) +
+                            " ranges, at most 5e+08 ranges in all (~2 GB of rawlog; "
+                            "lower duration_max or set rawlog = false)");
+    }
 
     // The engine and the limiters, through a navigator that never runs: an
     // unknown limiter, a missing section or key, a bad .afraid file, or a
@@ -322,6 +358,14 @@ void CNavigationRun::loadRoute(CIniConfig& c) {
             throwBadKey(c, kSec, "risk_route", options.risk_route,
                         "no such route in " + options.risk_config + " (routes: " + names +
                             "; or best, worst)");
+        // a route the evaluator ruled out is not driven (its U is no score)
+        const auto& named = rows[size_t(pick)];
+        if (named.excluded || !named.feasible || !std::isfinite(named.result.U))
+            throwBadKey(
+                c, kSec, "risk_route", options.risk_route,
+                "the risk evaluator excluded this route (" +
+                    (named.reason.empty() ? std::string("not feasible") : named.reason) +
+                    ")");
     }
     if (pick < 0)
         throwBadKey(c, kSec, "risk_config", options.risk_config,
@@ -366,7 +410,10 @@ void CNavigationRun::checkAgainstMap(const CIniConfig& c) const {
                       pointText(s.x, s.y).c_str(), cl, world.robot.radius);
         throwBadKey(c, kSec, "start", startText, b);
     }
-    // the clutter the map does not hold (people move; they are not checked)
+    // the people's paths and the clutter against the map (as risknav-simulate)
+    world.checkAgentsAgainstMap(c);
+    // the clutter the map does not hold, at the start (people move: a person
+    // crossing the start is the world's, not the config's, problem)
     double d = 0;
     if (const auto* k =
             world.agents.clutterOverlapping(s.x, s.y, world.robot.radius, &d)) {
@@ -430,8 +477,12 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
             list += (list.empty() ? "" : " ") + n;
         c.write("CRiskAwareReactiveNav", "speed_limiters", list);
     }
+    // absolute: a relative key is read relative to the config's folder, while
+    // the caller's path (e.g. a staged output under a relative --out) is
+    // relative to the working directory
     if (setup.afraidFile)
-        c.write("CAfraidSpeedLimiter", "afraid_file", *setup.afraidFile);
+        c.write("CAfraidSpeedLimiter", "afraid_file",
+                fs::absolute(*setup.afraidFile).string());
 
     TNavRunResult r;
     world.reset(options.start, setup.seed, options.start_time);
@@ -445,22 +496,19 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     // MRPT's errors (e.g. exceptions it catches inside navigationStep()) are
     // counted for summary.json instead of flooding the terminal.
     nav.logging_enable_console_output = false;
-    nav.logRegisterCallback([&r](std::string_view msg, mrpt::system::VerbosityLevel lvl,
-                                 std::string_view, mrpt::Clock::time_point) {
-        if (lvl < mrpt::system::LVL_ERROR)
-            return;
-        r.mrptErrors++;
-        if (r.firstMrptError.empty()) {
-            std::string m(msg);
-            const auto p = m.find("Message:");
-            if (p != std::string::npos)
-                m = m.substr(p + 8);
-            r.firstMrptError =
-                firstLine(m.substr(m.find_first_not_of(" \n") == std::string::npos
-                                       ? 0
-                                       : m.find_first_not_of(" \n")));
-        }
-    });
+    // the last error's text, for its mrpt_error event (when and where)
+    std::string lastMrptError;
+    int mrptErrorsSeen = 0;
+    nav.logRegisterCallback(
+        [&r, &lastMrptError](std::string_view msg, mrpt::system::VerbosityLevel lvl,
+                             std::string_view, mrpt::Clock::time_point) {
+            if (lvl < mrpt::system::LVL_ERROR)
+                return;
+            r.mrptErrors++;
+            lastMrptError = mrptErrorText(std::string(msg));
+            if (r.firstMrptError.empty())
+                r.firstMrptError = lastMrptError;
+        });
     const_cast<mrpt::system::CTimeLogger&>(nav.getDelaysTimeLogger()).disable();
     nav.setEngineConfig(m_engine.get());
     nav.loadConfigFile(c);
@@ -660,6 +708,15 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
                 te.detail = b;
             }
             r.events.push_back(te);
+        }
+        // MRPT's errors of this step (caught inside navigationStep()): one
+        // event with their count and the last one's message
+        if (r.mrptErrors > mrptErrorsSeen) {
+            r.events.push_back(TNavRunEvent{
+                t, "mrpt_error", nav.getWaypointNavStatus().waypoint_index_current_goal,
+                truth.x, truth.y,
+                std::to_string(r.mrptErrors - mrptErrorsSeen) + " x " + lastMrptError});
+            mrptErrorsSeen = r.mrptErrors;
         }
 
         const auto st = nav.getCurrentState();

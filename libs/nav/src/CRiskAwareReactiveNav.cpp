@@ -381,6 +381,17 @@ void CRiskAwareReactiveNav::TOptions::saveToConfigFile(mrpt::config::CConfigFile
 void CRiskAwareReactiveNav::TOptions::validate() const {
     checkRule(speed_limiters.size() <= 16, kSection, "speed_limiters",
               std::to_string(speed_limiters.size()) + " names", "at most 16 limiters");
+    // one instance per class: both would read one section, and a repeated
+    // name is a typo, not a second limiter
+    for (size_t i = 0; i < speed_limiters.size(); i++)
+        for (size_t j = 0; j < i; j++)
+            if (shortName(speed_limiters[i]) == shortName(speed_limiters[j])) {
+                std::string list;
+                for (const auto& n : speed_limiters)
+                    list += (list.empty() ? "" : " ") + n;
+                checkRule(false, kSection, "speed_limiters", list,
+                          shortName(speed_limiters[i]) + " is listed twice");
+            }
     checkKey(kSection, "turn_in_place_deg", turn_in_place_deg,
              TRange::closed(0, 180, "deg"));
     checkKey(kSection, "turn_rate_deg", turn_rate_deg, TRange::closed(1, 360, "deg/s"));

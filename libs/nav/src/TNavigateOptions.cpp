@@ -55,8 +55,7 @@ void TNavigateOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
     duration_max = readDouble(c, s, "duration_max", duration_max);
     stall_timeout = readDouble(c, s, "stall_timeout", stall_timeout);
     stall_distance = readDouble(c, s, "stall_distance", stall_distance);
-    const double sd =
-        readDouble(c, s, "seed", double(seed), TRange::closed(0, 9007199254740992.0));
+    const double sd = readDouble(c, s, "seed", double(seed), TRange::closed(0, kMaxSeed));
     if (sd != std::floor(sd))
         throwBadKey(c, s, "seed", readString(c, s, "seed", ""), "not an integer");
     seed = static_cast<uint64_t>(sd);

@@ -51,7 +51,7 @@ void CRiskEvaluator::TOptions::loadFromConfigFile(const mrpt::config::CConfigFil
     eval_step = readDouble(c, s, "eval_step", eval_step);
     // The seed is an integer type: its range is a parsing rule.
     seed = static_cast<uint64_t>(
-        readDouble(c, s, "seed", double(seed), TRange::closed(0, 9007199254740992.0)));
+        readDouble(c, s, "seed", double(seed), TRange::closed(0, kMaxSeed)));
 }
 
 void CRiskEvaluator::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 using namespace risknav::common;
+using mrpt::math::TPoint2D;
 
 namespace risknav::sim {
 namespace {
@@ -138,6 +140,72 @@ CSimWorld::TScans CSimWorld::sense() {
     }
     m_senses++;
     return s;
+}
+
+bool CSimWorld::onMap(double x, double y) const {
+    return x >= m_grid.getXMin() && x <= m_grid.getXMax() && y >= m_grid.getYMin() &&
+           y <= m_grid.getYMax();
+}
+
+std::optional<TPoint2D> CSimWorld::firstSampleWhere(
+    const TPoint2D& a, const TPoint2D& b,
+    const std::function<bool(const TPoint2D&)>& bad) const {
+    const double step = 0.5 * m_grid.getResolution();
+    const int n = std::max(1, int(std::ceil(std::hypot(b.x - a.x, b.y - a.y) / step)));
+    for (int k = 0; k <= n; k++) {
+        const TPoint2D q(a.x + (b.x - a.x) * k / n, a.y + (b.y - a.y) * k / n);
+        if (bad(q))
+            return q;
+    }
+    return std::nullopt;
+}
+
+void CSimWorld::checkAgentsAgainstMap(const mrpt::config::CConfigFileBase& c) const {
+    auto where = [](const TPoint2D& p) {
+        char b[64];
+        std::snprintf(b, sizeof(b), "(%.2f, %.2f)", p.x, p.y);
+        return std::string(b);
+    };
+    // People walk where the map is free: a lane inside or through a wall (a
+    // tester's: a walker at y = 0.1 in the outer wall, a pedestrian path
+    // across the corridor's walls) was taken in silence.
+    auto checkPath = [&](const std::string& sec, const std::vector<TPoint2D>& p) {
+        const std::string text = readString(c, sec, "path", "");
+        for (const auto& q : p)
+            if (!onMap(q.x, q.y))
+                throwBadKey(c, sec, "path", text,
+                            "point " + where(q) + " is outside the map");
+        // its centre on a map obstacle (the datasets' lanes pass end walls and
+        // corners 0.2 m off, less than a person's radius: people brush past
+        // walls, they do not walk through them)
+        for (size_t i = 1; i < p.size(); i++)
+            if (const auto q = firstSampleWhere(p[i - 1], p[i], [&](const TPoint2D& r) {
+                    return clearance(r.x, r.y) <= 0;
+                }))
+                throwBadKey(c, sec, "path", text,
+                            "segment " + std::to_string(i) +
+                                " runs through an obstacle of the map at " + where(*q));
+    };
+    for (const auto& d : agents.doors) {
+        checkPath(d.section, d.path);
+        for (const TPoint2D q :
+             {TPoint2D(d.door[0], d.door[1]), TPoint2D(d.door[2], d.door[3])})
+            if (!onMap(q.x, q.y))
+                throwBadKey(c, d.section, "door", readString(c, d.section, "door", ""),
+                            "point " + where(q) + " is outside the map");
+    }
+    for (const auto& w : agents.walkers)
+        checkPath(w.section, w.path);
+    for (const auto& k : agents.clutter) {
+        if (!onMap(k.x, k.y))
+            throw CBadInputError(configWhere(c) + "[" + k.section +
+                                 "] x, y: outside the map");
+        if (clearance(k.x, k.y) <= 0)
+            throw CBadInputError(configWhere(c) + "[" + k.section +
+                                 "] x, y: " + where({k.x, k.y}) +
+                                 " lies inside an obstacle of the map (clutter is what "
+                                 "the map does not hold)");
+    }
 }
 
 }  // namespace risknav::sim

@@ -34,7 +34,7 @@ void CWorldSimulator::TSimulationOptions::loadFromConfigFile(
     duration_max = readDouble(c, s, "duration_max", duration_max);
     // The seed is an integer type: its range is a parsing rule.
     seed = static_cast<uint64_t>(
-        readDouble(c, s, "seed", double(seed), TRange::closed(0, 9007199254740992.0)));
+        readDouble(c, s, "seed", double(seed), TRange::closed(0, kMaxSeed)));
     start_time = readDouble(c, s, "start_time", start_time);
     near_miss_distance = readDouble(c, s, "near_miss_distance", near_miss_distance);
     relevance_beta = readDouble(c, s, "relevance_beta", relevance_beta);
@@ -132,14 +132,10 @@ void CWorldSimulator::checkAgainstMap(const CIniConfig& c) const {
         std::snprintf(b, sizeof(b), "(%.2f, %.2f)", p.x, p.y);
         return std::string(b);
     };
-    auto onMap = [&](const TPoint2D& p) {
-        return p.x >= world.grid().getXMin() && p.x <= world.grid().getXMax() &&
-               p.y >= world.grid().getYMin() && p.y <= world.grid().getYMax();
-    };
     const auto wps = route.waypoints();
     const std::string wpText = readString(c, "Route", "waypoints", "");
     for (const auto& p : wps)
-        if (!onMap(p))
+        if (!world.onMap(p.x, p.y))
             throwBadKey(c, "Route", "waypoints", wpText,
                         "point " + where(p) + " is outside the map");
     const double R = world.robot.radius;
@@ -164,23 +160,10 @@ void CWorldSimulator::checkAgainstMap(const CIniConfig& c) const {
     std::vector<TPoint2D> pass = wps;
     if (route.options.mode == "loop")
         pass.push_back(wps.front());
-    // The first of a segment's half-cell samples where `bad` holds.
-    const double step = 0.5 * world.grid().getResolution();
-    auto firstSample = [&](const TPoint2D& a, const TPoint2D& b,
-                           const auto& bad) -> std::optional<TPoint2D> {
-        const int n =
-            std::max(1, int(std::ceil(std::hypot(b.x - a.x, b.y - a.y) / step)));
-        for (int k = 0; k <= n; k++) {
-            const TPoint2D q(a.x + (b.x - a.x) * k / n, a.y + (b.y - a.y) * k / n);
-            if (bad(q))
-                return q;
-        }
-        return std::nullopt;
-    };
     for (size_t i = 1; i < pass.size(); i++)
-        if (const auto q = firstSample(pass[i - 1], pass[i], [&](const TPoint2D& p) {
-                return world.clearance(p.x, p.y) < R;
-            })) {
+        if (const auto q = world.firstSampleWhere(
+                pass[i - 1], pass[i],
+                [&](const TPoint2D& p) { return world.clearance(p.x, p.y) < R; })) {
             char b[220];
             std::snprintf(b, sizeof(b),
                           "segment %zu %s -> %s runs through an obstacle at %s "
@@ -197,46 +180,7 @@ void CWorldSimulator::checkAgainstMap(const CIniConfig& c) const {
             throwBadKey(c, "Route", "waypoints", wpText,
                         "the route has no length (every waypoint is the start)");
     }
-    // People walk where the map is free: a lane inside or through a wall (a
-    // tester's: a walker at y = 0.1 in the outer wall, a pedestrian path
-    // across the corridor's walls) was taken in silence.
-    auto checkPath = [&](const std::string& sec, const std::vector<TPoint2D>& p) {
-        const std::string text = readString(c, sec, "path", "");
-        for (const auto& q : p)
-            if (!onMap(q))
-                throwBadKey(c, sec, "path", text,
-                            "point " + where(q) + " is outside the map");
-        // its centre on a map obstacle (the datasets' lanes pass end walls and
-        // corners 0.2 m off, less than a person's radius: people brush past
-        // walls, they do not walk through them)
-        for (size_t i = 1; i < p.size(); i++)
-            if (const auto q = firstSample(p[i - 1], p[i], [&](const TPoint2D& r) {
-                    return world.clearance(r.x, r.y) <= 0;
-                }))
-                throwBadKey(c, sec, "path", text,
-                            "segment " + std::to_string(i) +
-                                " runs through an obstacle of the map at " + where(*q));
-    };
-    for (const auto& d : world.agents.doors) {
-        checkPath(d.section, d.path);
-        for (const TPoint2D q :
-             {TPoint2D(d.door[0], d.door[1]), TPoint2D(d.door[2], d.door[3])})
-            if (!onMap(q))
-                throwBadKey(c, d.section, "door", readString(c, d.section, "door", ""),
-                            "point " + where(q) + " is outside the map");
-    }
-    for (const auto& w : world.agents.walkers)
-        checkPath(w.section, w.path);
-    for (const auto& k : world.agents.clutter) {
-        if (!onMap({k.x, k.y}))
-            throw CBadInputError(c.path() + ": [" + k.section +
-                                 "] x, y: outside the map");
-        if (world.clearance(k.x, k.y) <= 0)
-            throw CBadInputError(c.path() + ": [" + k.section +
-                                 "] x, y: " + where({k.x, k.y}) +
-                                 " lies inside an obstacle of the map (clutter is what "
-                                 "the map does not hold)");
-    }
+    world.checkAgentsAgainstMap(c);
 }
 
 namespace {

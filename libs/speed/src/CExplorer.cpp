@@ -77,13 +77,10 @@ void CExplorer::loadFromConfigFile(const CIniConfig& c, std::optional<uint64_t> 
         }
     };
     check("start", explore.start[0], explore.start[1]);
-    // the clutter the map does not hold: on the map, and not on the robot
-    // (a tester's start inside a disc gave a collision in every mode, exit 0)
-    for (const auto& k : world.agents.clutter)
-        if (k.x < g.getXMin() || k.x > g.getXMax() || k.y < g.getYMin() ||
-            k.y > g.getYMax())
-            throw CBadInputError(c.path() + ": [" + k.section +
-                                 "] x, y: outside the map");
+    // people and clutter against the map (as every app that steps the world)
+    world.checkAgentsAgainstMap(c);
+    // the clutter the map does not hold, not on the robot (a tester's start
+    // inside a disc gave a collision in every mode, exit 0)
     double d = 0;
     if (const auto* k = world.agents.clutterOverlapping(
             explore.start[0], explore.start[1], world.robot.radius, &d)) {
@@ -248,7 +245,8 @@ TModeResult CExplorer::runMode(int fixedIndex,
         bestToGoalTime = world.time();
     };
     r.destinationStatus.assign(goalsWorld.size(), "not_reached");
-    r.destinationError.assign(goalsWorld.size(), 0.0);
+    r.destinationError.assign(goalsWorld.size(),
+                              std::numeric_limits<double>::quiet_NaN());
     r.timeAtSpeed.assign(speed.speeds.size(), 0.0);
     sim::CSafetyMonitor safety;
     safety.reset();

@@ -41,8 +41,7 @@ void TExploreOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
         readDouble(c, s, "not_approaching_timeout", not_approaching_timeout);
     look_around = readBool(c, s, "look_around", look_around);
     max_snapshots = readInt(c, s, "max_snapshots", max_snapshots);
-    seed = uint64_t(
-        readDouble(c, s, "seed", double(seed), TRange::closed(0, 9007199254740992.0)));
+    seed = uint64_t(readDouble(c, s, "seed", double(seed), TRange::closed(0, kMaxSeed)));
 }
 
 void TExploreOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,

@@ -62,7 +62,10 @@ json modeSummary(const TModeResult& r, const TSpeedControlOptions& o) {
     j["time_at_speed_s"] = ts;
     j["time_stopped_or_turning_s"] = r.timeStopped;
     j["destinations"] = r.destinationStatus;
-    j["destination_error_m"] = r.destinationError;
+    json err = json::array();  // null: not reached (no arrival to measure)
+    for (double e : r.destinationError)
+        err.push_back(std::isfinite(e) ? json(e) : json());
+    j["destination_error_m"] = err;
     j["destinations_reached"] =
         std::count(r.destinationStatus.begin(), r.destinationStatus.end(), "reached");
     j["all_reached"] = r.allReached();
@@ -284,8 +287,13 @@ void runExploreApp(const TAppContext& ctx) {
         if (r.fixedIndex == int(ex.speed.speeds.size()) - 1)
             slowest = &r;
     }
-    if (adaptive && slowest && slowest->time > 0)
-        summary["adaptive_over_slowest_time"] = adaptive->time / slowest->time;
+    // a ratio of times is the paper's comparison only when both modes reached
+    // every destination (of two timeouts it is 1.0 and says nothing): else null
+    if (adaptive && slowest)
+        summary["adaptive_over_slowest_time"] =
+            adaptive->allReached() && slowest->allReached() && slowest->time > 0
+                ? json(adaptive->time / slowest->time)
+                : json();
     writeExploreOutputs(ex, runs, out);
     json outputs = out.stagedNames();
     mrpt::config::CConfigFileMemory effective;

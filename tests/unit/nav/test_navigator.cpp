@@ -244,6 +244,18 @@ TEST(AfraidLimiter, SlowsAheadOfAZoneOnlyWhenHeadingIntoIt) {
     EXPECT_NE(limitAt(3.9, 0).reason.find("afraid zone"), std::string::npos);
     EXPECT_DOUBLE_EQ(limitAt(3.9, M_PI).maxSpeed, 0.8);  // driving away from it
     EXPECT_DOUBLE_EQ(limitAt(5.0, M_PI).maxSpeed, 0.2);  // inside it
+    // MRPT asking for more than v_max far from any zone: capped at v_max, and
+    // the reason says so (it once claimed a zone ahead)
+    common::TSpeedLimitInput fast;
+    fast.robot = &robot;
+    fast.pose = TPose2D(1.0, 2.0, 0);
+    fast.desiredSpeed = 1.0;
+    const auto capped = made->limit(fast);
+    EXPECT_DOUBLE_EQ(capped.maxSpeed, 0.8);
+    EXPECT_EQ(capped.reason.find("afraid zone"), std::string::npos) << capped.reason;
+    EXPECT_NE(capped.reason.find("v_max"), std::string::npos) << capped.reason;
+    fast.pose = TPose2D(3.9, 2.0, 0);
+    EXPECT_NE(made->limit(fast).reason.find("afraid zone"), std::string::npos);
 }
 
 TEST(AfraidLimiter, BadFilesAndKeysAreClearErrors) {

@@ -36,6 +36,11 @@ struct TRange {
     static double inf() { return std::numeric_limits<double>::infinity(); }
 };
 
+/** The largest seed a config or --seed takes: 2^53, below which every
+ * integer is exact as the double the readers parse (so config_effective.ini
+ * loads back what was run). */
+constexpr double kMaxSeed = 9007199254740992.0;
+
 /** A decimal number as people write it: digits, sign, point, exponent. Not
  * what strtod also takes (hex "0x10", "inf", "nan"), and not a value it
  * rounds to 0 or to a subnormal. The one number rule of every risknav reader

@@ -14,6 +14,8 @@
 #include <mrpt/obs/CObservation2DRangeScan.h>
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -51,6 +53,20 @@ class CSimWorld {
      * unknown sections or keys (the app does, knowing its other sections). */
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& c);
     void saveToConfigFile(mrpt::config::CConfigFileBase& c) const;
+    /** The people's paths and doors and the clutter against the map (after
+     * loadFromConfigFile()): a path point or door end off the map, a path
+     * segment through a map obstacle, clutter off the map or inside an
+     * obstacle. Throws CBadInputError naming the file, section and key. Every
+     * app that steps the world calls it. */
+    void checkAgentsAgainstMap(const mrpt::config::CConfigFileBase& c) const;
+    /** The first of the half-cell samples of segment a-b (a and b included)
+     * where `bad` holds, or nullopt. */
+    std::optional<mrpt::math::TPoint2D> firstSampleWhere(
+        const mrpt::math::TPoint2D& a, const mrpt::math::TPoint2D& b,
+        const std::function<bool(const mrpt::math::TPoint2D&)>& bad) const;
+    /** (x, y) within the map's bounds. */
+    bool onMap(double x, double y) const;
+
     /** Sets the map directly (from code); validates the options. */
     void setMap(const mrpt::maps::COccupancyGridMap2D& grid);
 
