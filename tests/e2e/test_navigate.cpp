@@ -425,6 +425,21 @@ INSTANTIATE_TEST_SUITE_P(
              "engine_config =", "MRPT's reactive engine refused the config"}),
     [](const auto& i) { return std::string(i.param.name); });
 
+TEST(NavigateE2E, ARawlogBeyondItsBoundIsRefusedBeforeTheRun) {
+    // 5e5 cycles of 10,000 ranges: 5e9 ranges, ~17 GB of rawlog
+    const std::string out = freshDir("out");
+    const TEarlierOutput earlier{{"summary.json", "{\"earlier\": true}\n"}};
+    writeEarlierOutput(out, earlier);
+    const auto r = run(binPath("risknav-navigate") + " -q -o '" + out +
+                       "' --set Laser.beams=10000 --set Navigate.duration_max=1e5 "
+                       "--set Navigate.navlog=false --set Navigate.rawlog=true '" +
+                       sourcePath("datasets/office/navigate.ini") + "'");
+    expectBadInput(r,
+                   "[Navigate] duration_max = '1e5': is 500000 rawlog frames of 10000 "
+                   "ranges, at most 5e+08 ranges in all",
+                   out, earlier, "risknav-navigate: error: ");
+}
+
 TEST(NavigateE2E, RiskRoutesOfAnotherMapOrStartAreAClearError) {
     // risk_config's routes are planned on its own map and start: a map that
     // differs from [World]'s (here by one wall pixel cleared) or a start

@@ -246,7 +246,10 @@ std::string readPath(const CConfigFileBase& c, const std::string& s, const std::
     const std::string p = configRelativePath(c, v);
     std::error_code ec;
     if (mustExist && !fs::is_regular_file(p, ec))
-        throwBadKey(c, s, k, v, "file not found (" + p + ")");
+        throwBadKey(c, s, k, v,
+                    std::string(fs::is_directory(p, ec) ? "is a folder, not a file"
+                                                        : "file not found") +
+                        " (" + p + ")");
     return p;  // absolute: config_effective.ini lives elsewhere
 }
 

@@ -52,8 +52,13 @@ void CAfraidSpeedLimiter::loadConfig(const mrpt::config::CConfigFileBase& c,
                                      const std::string& section) {
     options.krr.section = section;
     loadOptions(options, c, section);
-    setGrid(
-        afraid::CAfraidGrid::load(options.afraid_file));  // CBadInputError on a bad file
+    // a bad file's error names the file; the key that named it goes first
+    try {
+        setGrid(afraid::CAfraidGrid::load(options.afraid_file));
+    } catch (const CBadInputError& e) {
+        throw CBadInputError(configWhere(c, section, "afraid_file") + "[" + section +
+                             "] afraid_file: " + e.what());
+    }
 }
 
 void CAfraidSpeedLimiter::saveConfig(mrpt::config::CConfigFileBase& c,

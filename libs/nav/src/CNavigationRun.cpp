@@ -145,11 +145,7 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
     // 5e8 ranges (~2 GB, as risknav-simulate); one frame a cycle
     {
         const double cycles = options.duration_max / options.nav_period;
-        const auto& l = world.laser.options;
-        const auto& r2 = world.range2.options;
-        const double rays =
-            double(l.beams) +
-            (r2.enabled ? double(r2.beams) / std::max(1, r2.frame_decimation) : 0.0);
+        const double rays = world.rangesPerFrame();
         const std::string dm =
             readString(c, kSec, "duration_max", numberText(options.duration_max));
         if (options.navlog && cycles > 36000 * (1 + 1e-9))

@@ -142,6 +142,12 @@ CSimWorld::TScans CSimWorld::sense() {
     return s;
 }
 
+double CSimWorld::rangesPerFrame() const {
+    const auto& r2 = range2.options;
+    return double(laser.options.beams) +
+           (r2.enabled ? double(r2.beams) / std::max(1, r2.frame_decimation) : 0.0);
+}
+
 bool CSimWorld::onMap(double x, double y) const {
     return x >= m_grid.getXMin() && x <= m_grid.getXMax() && y >= m_grid.getYMin() &&
            y <= m_grid.getYMax();

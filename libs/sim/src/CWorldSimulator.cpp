@@ -98,11 +98,7 @@ void CWorldSimulator::loadFromConfigFile(const CIniConfig& c,
     const auto& sim = simulation;
     const double steps = sim.duration_max / sim.sim_dt,
                  frames = sim.duration_max * sim.frame_rate_hz;
-    const auto& l = world.laser.options;
-    const auto& r2 = world.range2.options;
-    const double rays =
-        double(l.beams) +
-        (r2.enabled ? double(r2.beams) / std::max(1, r2.frame_decimation) : 0.0);
+    const double rays = world.rangesPerFrame();
     const std::string dm =
         readString(c, "Simulation", "duration_max", numberText(sim.duration_max));
     if (steps > 2e7 * (1 + 1e-9))

@@ -263,8 +263,11 @@ TEST(AfraidLimiter, BadFilesAndKeysAreClearErrors) {
     test::writeFile(d + "/bad.afraid", "not an afraid file");
     nav::registerAllClasses_nav();
     for (const auto& [text, expect] : std::vector<std::pair<std::string, std::string>>{
+             // the file's own error, after the key that named it
              {"[CAfraidSpeedLimiter]\nafraid_file = " + d + "/bad.afraid\n",
-              "bad.afraid"},
+              "[CAfraidSpeedLimiter] afraid_file: " + d + "/bad.afraid"},
+             {"[CAfraidSpeedLimiter]\nafraid_file = " + d + "\n",
+              "is a folder, not a file"},
              {"[CAfraidSpeedLimiter]\nafraid_file = " + d + "/none.afraid\n",
               "none.afraid"},
              {"[CAfraidSpeedLimiter]\n", "afraid_file"}}) {

@@ -64,6 +64,9 @@ class CSimWorld {
     std::optional<mrpt::math::TPoint2D> firstSampleWhere(
         const mrpt::math::TPoint2D& a, const mrpt::math::TPoint2D& b,
         const std::function<bool(const mrpt::math::TPoint2D&)>& bad) const;
+    /** Ranges a sense() gives on average: the laser's beams plus the second
+     * sensor's per its frame decimation (when enabled); what bounds a rawlog. */
+    double rangesPerFrame() const;
     /** (x, y) within the map's bounds. */
     bool onMap(double x, double y) const;
 
