@@ -440,6 +440,31 @@ TEST(NavigateE2E, ARawlogBeyondItsBoundIsRefusedBeforeTheRun) {
                    out, earlier, "risknav-navigate: error: ");
 }
 
+TEST(NavigateE2E, AnUnreadablePtgCacheFileIsRebuiltQuietly) {
+    // MRPT printed its exception and backtrace (18 lines) even with -q
+    const std::string cache = freshDir("ptgc");
+    const std::string cmd = binPath("risknav-navigate") + " -q --set " +
+                            "Navigate.ptg_cache_dir=" + cache +
+                            " --set Navigate.duration_max=2 '" +
+                            sourcePath("datasets/office/navigate.ini") + "' -o ";
+    const auto first = run(cmd + "'" + freshDir("a") + "'");
+    ASSERT_EQ(first.exitCode, 0) << first.err;
+    std::vector<fs::path> grids;
+    for (const auto& e : fs::recursive_directory_iterator(cache))
+        if (e.path().filename().string().rfind("ReacNavGrid_", 0) == 0)
+            grids.push_back(e.path());
+    ASSERT_FALSE(grids.empty());
+    const std::string bytes = readFile(grids[0].string());
+    ASSERT_GT(bytes.size(), 200u);
+    writeFile(grids[0].string(), bytes.substr(0, 100));  // cut short
+    const std::string out = freshDir("b");
+    const auto again = run(cmd + "'" + out + "'");
+    EXPECT_EQ(again.exitCode, 0);
+    EXPECT_EQ(again.err, "");
+    EXPECT_TRUE(readJson(out + "/summary.json").contains("status"));
+    EXPECT_GT(fs::file_size(grids[0]), 200u);  // rebuilt
+}
+
 TEST(NavigateE2E, RiskRoutesOfAnotherMapOrStartAreAClearError) {
     // risk_config's routes are planned on its own map and start: a map that
     // differs from [World]'s (here by one wall pixel cleared) or a start

@@ -27,6 +27,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <random>
 #include <set>
 #include <sstream>
@@ -542,7 +543,22 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
         // one run at a time builds or reads a subfolder's grids (MRPT writes
         // them in place, not atomically)
         const TFileLock lock((fs::path(cacheDir) / ".lock").string());
-        nav.initialize();
+        // MRPT prints an unreadable grid file's exception with its backtrace
+        // to std::cerr (18 lines, even with -q) and then rebuilds the grid:
+        // caught here and told in one line
+        std::ostringstream mrptSaid;
+        struct TCerrTo {
+            std::streambuf* old;
+            explicit TCerrTo(std::ostream& o) : old(std::cerr.rdbuf(o.rdbuf())) {}
+            ~TCerrTo() { std::cerr.rdbuf(old); }
+        };
+        {
+            const TCerrTo redirect(mrptSaid);
+            nav.initialize();
+        }
+        if (!mrptSaid.str().empty() && !setup.quiet)
+            std::cerr << "risknav-navigate: note: MRPT rebuilt a PTG grid of " << cacheDir
+                      << " (" << firstLine(mrptSaid.str()) << ")\n";
     }
     if (navlog) {
         nav.setLogFileDirectory(setup.navlogDir);
