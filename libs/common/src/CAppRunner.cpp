@@ -126,6 +126,13 @@ TAppArgs parseAppArgs(const std::vector<std::string>& args, const TAppInfo& info
         throw CBadInputError("missing CONFIG.ini (see --help)");
     a.configPath = positional.front();
     a.extra.assign(positional.begin() + 1, positional.end());
+    // every message names the config: a line break in its name would cut
+    // the one-line error short
+    for (const auto* p : {&a.configPath, &a.outDir})
+        if (p->find_first_of("\n\r") != std::string::npos)
+            throw CBadInputError(
+                std::string(p == &a.configPath ? "CONFIG.ini" : "--out") +
+                ": a path with a line break is not supported");
     if (!a.extra.empty() && info.extraArgs.empty())
         throw CBadInputError("unexpected argument '" + a.extra.front() +
                              "' (see --help)");
