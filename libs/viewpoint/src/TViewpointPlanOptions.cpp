@@ -31,8 +31,7 @@ void TViewpointPlanOptions::loadFromConfigFile(const mrpt::config::CConfigFileBa
     exhaustive = readBool(c, s, "exhaustive", exhaustive);
     threads = readInt(c, s, "threads", threads);
     monte_carlo_draws = readInt(c, s, "monte_carlo_draws", monte_carlo_draws);
-    seed = uint64_t(
-        readDouble(c, s, "seed", double(seed), TRange::closed(0, kMaxSeed)));
+    seed = uint64_t(readDouble(c, s, "seed", double(seed), TRange::closed(0, kMaxSeed)));
 }
 
 void TViewpointPlanOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,

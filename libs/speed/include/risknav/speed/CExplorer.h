@@ -61,7 +61,7 @@ struct TModeResult {
     std::vector<mrpt::math::TPose2D> observations;  ///< true pose per cycle
     std::vector<TSnapshot> snapshots;
     std::vector<std::string> destinationStatus;  ///< reached | unreachable | not_reached
-    std::vector<double> destinationError;        ///< [m] true distance when reached, NaN if not
+    std::vector<double> destinationError;  ///< [m] true distance when reached, NaN if not
     double time = 0, distance = 0;
     int collisions = 0, collisionsStatic = 0, nearMisses = 0, marginBrokenCycles = 0;
     double minClearance = 0;          ///< [m] robot edge to the map
