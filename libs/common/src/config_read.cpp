@@ -300,6 +300,12 @@ std::string typedValueMessage(const mrpt::config::CConfigFileBase& c,
     return "[" + e.section + "] " + e.key + " = '" + value + "': " + rule;
 }
 
+std::string pointText(double x, double y) {
+    char b[64];
+    std::snprintf(b, sizeof(b), "(%.2f, %.2f)", x, y);
+    return b;
+}
+
 std::string numberText(double v) {
     if (std::isnan(v))
         return "nan";

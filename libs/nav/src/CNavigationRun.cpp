@@ -64,12 +64,6 @@ std::string mrptErrorText(std::string m) {
     return firstLine(b == std::string::npos ? m : m.substr(b));
 }
 
-std::string pointText(double x, double y) {
-    char b[64];
-    std::snprintf(b, sizeof(b), "(%.2f, %.2f)", x, y);
-    return b;
-}
-
 // The scoped simulated clock: MRPT's navigator times itself on mrpt::Clock.
 struct TSimClock {
     explicit TSimClock(double t0) {

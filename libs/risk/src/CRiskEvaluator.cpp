@@ -30,9 +30,7 @@ TPoint2D readPoint(const mrpt::config::CConfigFileBase& c, const std::string& s,
 }
 
 std::string fmtPoint(const TPoint2D& p) {
-    char b[64];
-    std::snprintf(b, sizeof(b), "(%.2f, %.2f)", p.x, p.y);
-    return b;
+    return pointText(p.x, p.y);
 }
 }  // namespace
 

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 using namespace risknav::common;
 using mrpt::math::TPoint2D;
@@ -167,11 +166,7 @@ std::optional<TPoint2D> CSimWorld::firstSampleWhere(
 }
 
 void CSimWorld::checkAgentsAgainstMap(const mrpt::config::CConfigFileBase& c) const {
-    auto where = [](const TPoint2D& p) {
-        char b[64];
-        std::snprintf(b, sizeof(b), "(%.2f, %.2f)", p.x, p.y);
-        return std::string(b);
-    };
+    auto where = [](const TPoint2D& p) { return pointText(p.x, p.y); };
     // People walk where the map is free: a lane inside or through a wall (a
     // tester's: a walker at y = 0.1 in the outer wall, a pedestrian path
     // across the corridor's walls) was taken in silence.

@@ -123,11 +123,7 @@ void CWorldSimulator::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
 }
 
 void CWorldSimulator::checkAgainstMap(const CIniConfig& c) const {
-    auto where = [](const TPoint2D& p) {
-        char b[64];
-        std::snprintf(b, sizeof(b), "(%.2f, %.2f)", p.x, p.y);
-        return std::string(b);
-    };
+    auto where = [](const TPoint2D& p) { return pointText(p.x, p.y); };
     const auto wps = route.waypoints();
     const std::string wpText = readString(c, "Route", "waypoints", "");
     for (const auto& p : wps)

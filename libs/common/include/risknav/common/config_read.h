@@ -137,6 +137,9 @@ void copyConfigKeys(
     const mrpt::config::CConfigFileBase& from, mrpt::config::CConfigFileBase& to,
     const std::function<bool(const std::string&, const std::string&)>& skip = {});
 
+/** A point for messages: "(x.xx, y.yy)" [m]. */
+std::string pointText(double x, double y);
+
 /** "file.ini: " for a CIniConfig, "" otherwise: prefix of every message;
  * with the section and key: "file.ini (--set): " when --set gave that key. */
 std::string configWhere(const mrpt::config::CConfigFileBase& c);
