@@ -606,6 +606,14 @@ TEST(NavigateE2E, AdaptiveLimiterReachesTheOfficeDestinationsThroughTheEngine) {
     EXPECT_TRUE(
         iniKeys(out + "/config_effective.ini").count("[CAdaptiveSpeedLimiter]speeds"));
     expectEffectiveConfigReproduces(out, s);
+    // Its cycles on a worker thread beside MRPT's evaluation (the default)
+    // decide exactly as on the navigator's own thread.
+    const std::string serial = freshDir("m1-serial");
+    const json t = navRun(sourcePath("datasets/office/navigate_m1.ini"), serial,
+                          "--seed 1 --set CAdaptiveSpeedLimiter.worker_thread=false");
+    EXPECT_EQ(t["time_s"], s["time_s"]);
+    EXPECT_EQ(cyclesWithoutStepTime(serial + "/cycles.csv"),
+              cyclesWithoutStepTime(out + "/cycles.csv"));
 }
 
 TEST(NavigateE2E, AStuckRobotIsTurnedToItsTargetAndGoesOn) {

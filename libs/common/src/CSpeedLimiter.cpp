@@ -40,6 +40,12 @@ TSpeedLimit CSpeedLimiter::limit(const TSpeedLimitInput& in) const {
     return impl_limit(in);
 }
 
+void CSpeedLimiter::observe(const TSpeedLimitInput& in) const {
+    if (!in.robot)
+        throw std::invalid_argument("CSpeedLimiter::observe: no robot");
+    impl_observe(in);
+}
+
 void registerAllClasses_common() {
     mrpt::rtti::registerClass(CLASS_ID(CSpeedLimiter));
 }

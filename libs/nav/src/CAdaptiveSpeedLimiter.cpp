@@ -53,6 +53,7 @@ void CAdaptiveSpeedLimiter::TOptions::loadFromConfigFile(
     local_map_resolution = readDouble(c, s, "local_map_resolution", local_map_resolution);
     memory_size = readDouble(c, s, "memory_size", memory_size);
     memory_resolution = readDouble(c, s, "memory_resolution", memory_resolution);
+    worker_thread = readBool(c, s, "worker_thread", worker_thread);
     auto model = [&](const std::string& key, const std::string& name,
                      mapping::TSensorModel& m, const mapping::TSensorModel& builtIn) {
         m = builtIn;
@@ -80,6 +81,7 @@ void CAdaptiveSpeedLimiter::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     writeKey(c, s, "local_map_resolution", local_map_resolution);
     writeKey(c, s, "memory_size", memory_size);
     writeKey(c, s, "memory_resolution", memory_resolution);
+    writeKey(c, s, "worker_thread", worker_thread);
     if (!laser_model.empty())
         laser.saveToConfigFile(c, laser_model);
     if (!range2_model.empty())
@@ -142,7 +144,8 @@ void CAdaptiveSpeedLimiter::loadConfig(const mrpt::config::CConfigFileBase& c,
                                                 "local_map_size",
                                                 "local_map_resolution",
                                                 "memory_size",
-                                                "memory_resolution"};
+                                                "memory_resolution",
+                                                "worker_thread"};
     std::vector<std::string> keys;
     c.getAllKeys(section, keys);
     for (const auto& k : keys)
@@ -154,9 +157,10 @@ void CAdaptiveSpeedLimiter::loadConfig(const mrpt::config::CConfigFileBase& c,
                         "measure_cycle_time fixed_speed_index laser_model range2_model "
                         "use_range2 "
                         "local_map_size local_map_resolution memory_size "
-                        "memory_resolution)");
+                        "memory_resolution worker_thread)");
     TOptions o;
     loadOptions(o, c, section);
+    finishObserved();
     options = o;
     reset();
 }
@@ -167,6 +171,8 @@ void CAdaptiveSpeedLimiter::saveConfig(mrpt::config::CConfigFileBase& c,
 }
 
 void CAdaptiveSpeedLimiter::reset() {
+    finishObserved();
+    m_observed.reset();
     resetState();
 }
 
@@ -221,13 +227,13 @@ double CAdaptiveSpeedLimiter::cycleTime() const {
     return std::clamp(nt / n, 1e-3, 10.0);
 }
 
-TSpeedLimit CAdaptiveSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const {
+void CAdaptiveSpeedLimiter::runCycle(const TSpeedLimitInput& in) const {
     // a new run (the clock went back) or another robot: a new map
     if ((m_lastTime && in.time < *m_lastTime) ||
         (m_pipeline && in.robot->radius != m_radius)) {
         resetState();
     }
-    // the measured cycle, per sensor: intervals between calls with its scan
+    // the measured cycle, per sensor: intervals between cycles with its scan
     auto measure = [&](bool has, std::optional<double>& last, std::deque<double>& dts) {
         if (!has)
             return;
@@ -251,10 +257,11 @@ TSpeedLimit CAdaptiveSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const 
     m_lastT = T;
     // (000) section 2: move the grids by the ego-motion, update, classify, fuse
     m_pipeline->update(in.pose, in.scan, in.scan2);
+    m_creep = false;
     if (!in.target) {
         m_last.reset();
         m_lastGoal.reset();
-        return {in.desiredSpeed, ""};
+        return;
     }
     // sections 3-5: the fastest safe speed on the way to the target
     const speed::TSpeedDecision d = m_pipeline->decide(
@@ -265,9 +272,53 @@ TSpeedLimit CAdaptiveSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const 
         m_previousTarget.reset();
     m_last = d;
     m_lastGoal = *in.target;
+    m_creep = m_pipeline->heldLongEnough(d.speed <= 0);
+}
+
+void CAdaptiveSpeedLimiter::impl_observe(const TSpeedLimitInput& in) const {
+    finishObserved();  // the cycle before (normally waited for already)
+    m_observed = in.time;
+    if (!options.worker_thread) {
+        runCycle(in);
+        return;
+    }
+    if (!m_worker)
+        m_worker = std::make_unique<common::CWorkerThread>();
+    // the worker reads copies of the scans (the caller's may go before the
+    // cycle ends)
+    TSpeedLimitInput copy = in;
+    copy.obstacles = nullptr;  // not read by the cycle
+    auto keep = [](const mrpt::obs::CObservation2DRangeScan* s,
+                   std::optional<mrpt::obs::CObservation2DRangeScan>& kept)
+        -> const mrpt::obs::CObservation2DRangeScan* {
+        if (!s)
+            return nullptr;
+        kept = *s;
+        return &*kept;
+    };
+    copy.scan = keep(in.scan, m_scanCopy);
+    copy.scan2 = keep(in.scan2, m_scan2Copy);
+    m_worker->start([this, copy] { runCycle(copy); });
+}
+
+void CAdaptiveSpeedLimiter::finishObserved() const {
+    if (m_worker)
+        m_worker->wait();
+}
+
+TSpeedLimit CAdaptiveSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const {
+    finishObserved();
+    // the cycle observe() ran on this sensing (same time) is this call's;
+    // otherwise (a caller that does not observe) the cycle runs now
+    if (!(m_observed && *m_observed == in.time))
+        runCycle(in);
+    m_observed.reset();
+    if (!m_last)
+        return {in.desiredSpeed, ""};
+    const speed::TSpeedDecision& d = *m_last;
     double v = d.speed;
     char why[160];
-    const bool creep = m_pipeline->heldLongEnough(d.speed <= 0);
+    const bool creep = m_creep;
     if (creep)
         v = options.fixed_speed_index >= 0
                 ? options.speed.speeds[size_t(options.fixed_speed_index)]
@@ -301,6 +352,7 @@ TSpeedLimit CAdaptiveSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const 
 
 std::optional<mrpt::math::TPoint2D> CAdaptiveSpeedLimiter::guidePoint(
     const mrpt::math::TPose2D& pose, double lookahead) const {
+    finishObserved();
     if (!m_last || !m_pipeline || m_last->reason == speed::TSpeedReason::Unreachable ||
         m_last->path.points.size() < 2)
         return std::nullopt;

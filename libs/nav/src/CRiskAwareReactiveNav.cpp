@@ -26,6 +26,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <utility>
 
 using namespace risknav::common;
 
@@ -587,7 +588,41 @@ void CRiskAwareReactiveNav::navigationStep() {
     m_turning = m_unsticking = false;
     m_escapeHeading.reset();
     m_last = {};  // set by generate_vel_cmd() when MRPT sends a new command
-    mrpt::nav::CReactiveNavigationSystem::navigationStep();
+    m_observeDue = !m_limiters.empty();
+    try {
+        mrpt::nav::CReactiveNavigationSystem::navigationStep();
+    } catch (...) {
+        m_observeDue = false;
+        finishObserved(true);
+        throw;
+    }
+    m_observeDue = false;
+    finishObserved(false);
+}
+
+void CRiskAwareReactiveNav::STEP3_WSpaceToTPSpace(
+    const size_t ptg_idx, std::vector<double>& out_TPObstacles,
+    mrpt::nav::ClearanceDiagram& out_clearance,
+    const mrpt::math::TPose2D& rel_pose_PTG_origin_wrt_sense, const bool eval_clearance) {
+    if (std::exchange(m_observeDue, false)) {
+        const TSpeedLimitInput in = limiterInput(nullptr, 0.0);
+        for (const auto& l : m_limiters)
+            l->observe(in);
+    }
+    mrpt::nav::CReactiveNavigationSystem::STEP3_WSpaceToTPSpace(
+        ptg_idx, out_TPObstacles, out_clearance, rel_pose_PTG_origin_wrt_sense,
+        eval_clearance);
+}
+
+void CRiskAwareReactiveNav::finishObserved(bool quiet) {
+    for (const auto& l : m_limiters) {
+        try {
+            l->finishObserved();
+        } catch (const std::exception& e) {
+            if (!quiet)
+                doEmergencyStop(std::string("[CRiskAwareReactiveNav] ") + e.what());
+        }
+    }
 }
 
 std::vector<mrpt::math::TPoint2D> CRiskAwareReactiveNav::pointsNearShape() const {

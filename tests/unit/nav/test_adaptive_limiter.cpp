@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -255,6 +256,66 @@ TEST(AdaptiveLimiter, ItsGuidePointLiesAheadOnItsPlannedWayRoundAWall) {
     EXPECT_FALSE(stop->guidePoint(pose, 1.5));
 }
 
+TEST(AdaptiveLimiter, AnObservedCycleIsTheCycleLimitWouldRunOnWorkerOrCallerThread) {
+    // Three limiters on the same scans: one only called (limit() runs each
+    // cycle), one observed on its worker thread, one observed on the
+    // caller's thread (observe() runs the cycle, limit() takes it). Some
+    // cycles are observed without a limit() (the engine commanded no
+    // forward speed): they still map.
+    auto w = syntheticWorld(corridor(), 1.5);
+    const TPose2D pose(2.0, 0.0, 0.0);
+    const TPoint2D goal(15.0, 0.0);
+    auto called = makeLimiter("[CAdaptiveSpeedLimiter]\n");
+    auto worker = makeLimiter("[CAdaptiveSpeedLimiter]\nworker_thread = true\n");
+    auto caller = makeLimiter("[CAdaptiveSpeedLimiter]\nworker_thread = false\n");
+    auto observedOnly = makeLimiter("[CAdaptiveSpeedLimiter]\n");
+    w.reset(pose, 3);
+    common::TRobotOptions robot;
+    for (int k = 0; k < 8; k++) {
+        const auto scans = w.sense();
+        common::TSpeedLimitInput in;
+        in.robot = &robot;
+        in.pose = pose;
+        in.scan = scans.laser.get();
+        in.scan2 = scans.range2.get();
+        in.target = goal;
+        in.time = 100.0 + 0.2 * k;
+        worker->observe(in);
+        caller->observe(in);
+        observedOnly->observe(in);
+        in.desiredSpeed = 1.1;
+        if (k == 0 || k == 3 || k == 7) {
+            const auto a = called->limit(in), b = worker->limit(in),
+                       c = caller->limit(in);
+            EXPECT_EQ(b.maxSpeed, c.maxSpeed) << k;
+            EXPECT_EQ(b.reason, c.reason) << k;
+            if (k == 0) {  // the same cycles so far
+                EXPECT_EQ(a.maxSpeed, b.maxSpeed);
+                EXPECT_EQ(a.reason, b.reason);
+            }
+        } else {
+            worker->finishObserved();
+        }
+        w.step(0, 0, 0.2);
+    }
+    const auto& dw = asAdaptive(worker).lastDecision();
+    const auto& dc = asAdaptive(caller).lastDecision();
+    ASSERT_TRUE(dw && dc);
+    EXPECT_EQ(dw->speed, dc->speed);
+    EXPECT_EQ(dw->dUndecided, dc->dUndecided);
+    EXPECT_EQ(dw->path.points.size(), dc->path.points.size());
+    // the cycles observed without a limit() mapped: more of RANGE2's 1.5 m
+    // is known free (N = 5) than after the called limiter's three cycles
+    auto freeCells = [](const common::CSpeedLimiter::Ptr& l) {
+        const auto& cells = asAdaptive(l).pipeline()->field().map.cells;
+        return std::count(cells.begin(), cells.end(), mapping::TFusedCell::Free);
+    };
+    EXPECT_EQ(freeCells(worker), freeCells(caller));
+    EXPECT_GT(freeCells(worker), freeCells(called));
+    // observed cycles alone (no limit() at all) map the same
+    EXPECT_EQ(freeCells(observedOnly), freeCells(worker));
+}
+
 TEST(AdaptiveLimiter, BadOrMissingKeysAreClearErrorsNamingSectionAndKey) {
     nav::registerAllClasses_nav();
     struct TCase {
@@ -272,6 +333,7 @@ TEST(AdaptiveLimiter, BadOrMissingKeysAreClearErrorsNamingSectionAndKey) {
         {"local_map_size = 1\n", "CAdaptiveSpeedLimiter", "local_map_size"},
         {"memory_size = 5\n", "CAdaptiveSpeedLimiter", "memory_size"},
         {"spedes = 1.1\n", "CAdaptiveSpeedLimiter", "spedes"},
+        {"worker_thread = maybe\n", "CAdaptiveSpeedLimiter", "worker_thread"},
         // a model section named but missing
         {"laser_model = MapLaser\n", "CAdaptiveSpeedLimiter", "laser_model"},
         // a model that never decides a cell (no N)

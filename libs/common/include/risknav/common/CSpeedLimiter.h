@@ -65,6 +65,20 @@ class CSpeedLimiter : public mrpt::rtti::CObject {
      * without a robot or with a negative / non-finite desired speed. */
     TSpeedLimit limit(const TSpeedLimitInput& in) const;
 
+    /** A new sensing cycle: called by the navigator once per cycle right
+     * after it sensed, before its engine evaluates the motions, with the
+     * cycle's pose, scans, target and time (no desired speed, no path: the
+     * engine has not chosen them yet); limit() follows in the same cycle when
+     * the engine commands a forward speed. A limiter whose work needs only
+     * these may start it here (the adaptive limiter: its map and plans, on a
+     * worker thread while the engine evaluates); finishObserved() ends it.
+     * Default: nothing. Throws std::invalid_argument without a robot. */
+    void observe(const TSpeedLimitInput& in) const;
+    /** Waits for the work observe() started (the navigator calls it at the
+     * end of each cycle, so that none outlives it); rethrows its error.
+     * Default: nothing. */
+    virtual void finishObserved() const {}
+
     /** Where a limiter that plans a way itself (the adaptive limiter's
      * path, on its own map) would have the robot steer from `pose`: a point
      * on that way `lookahead` [m] ahead, in the frame of the limiter's input
@@ -83,6 +97,7 @@ class CSpeedLimiter : public mrpt::rtti::CObject {
 
   protected:
     virtual TSpeedLimit impl_limit(const TSpeedLimitInput& in) const = 0;
+    virtual void impl_observe(const TSpeedLimitInput&) const {}
 };
 
 /** Registers libs/common's MRPT classes (the plugin bases). Idempotent. */

@@ -1,9 +1,12 @@
 #pragma once
 #include <risknav/common/CSpeedLimiter.h>
 #include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CWorkerThread.h>
 #include <risknav/mapping/TSensorModel.h>
 #include <risknav/speed/CAdaptiveSpeedPipeline.h>
 #include <risknav/speed/TSpeedControlOptions.h>
+
+#include <mrpt/obs/CObservation2DRangeScan.h>
 
 #include <deque>
 #include <memory>
@@ -49,6 +52,15 @@ namespace risknav::nav {
  * steers and avoids obstacles itself, can move (or turn) on and look.
  * The robot's radius comes from TSpeedLimitInput::robot ([Robot]).
  *
+ * One cycle per sensing: the navigator calls observe() right after it
+ * sensed, and the cycle (map update, plans, decision) runs there, on a
+ * worker thread while MRPT's engine evaluates its motions (worker_thread =
+ * true; it needs nothing the engine decides); limit() in the same cycle
+ * waits for it and compares its speed with the desired one. A cycle is run
+ * on every sensing, also one in which the engine then commands no forward
+ * speed (and so calls no limiter). A caller that does not observe() gets
+ * the cycle run inside limit(), as before.
+ *
  * Section [CAdaptiveSpeedLimiter] (every key optional; unknown keys are
  * refused):
  *   speeds               [m/s]  1.1 0.7 0.35 0.2  candidates, fastest first
@@ -76,6 +88,9 @@ namespace risknav::nav {
  *   local_map_resolution [m]    0.05
  *   memory_size          [m]    50    coarse free-space memory; 0 = none
  *   memory_resolution    [m]    0.25
+ *   worker_thread        [bool] true  run the observed cycle on a worker
+ *                                     thread beside the engine; false: on
+ *                                     the navigator's (the same decisions)
  * A named model section that does not exist is an error. */
 class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
     DEFINE_MRPT_OBJECT(CAdaptiveSpeedLimiter, risknav::nav)
@@ -96,6 +111,7 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
         double local_map_resolution = 0.05;  ///< [m]
         double memory_size = 50.0;           ///< [m], 0 = none
         double memory_resolution = 0.25;     ///< [m]
+        bool worker_thread = true;           ///< observed cycles beside the engine
         std::string section = "CAdaptiveSpeedLimiter";
 
         TOptions();
@@ -127,18 +143,32 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
     std::optional<mrpt::math::TPoint2D> guidePoint(const mrpt::math::TPose2D& pose,
                                                    double lookahead) const override;
     /** The last cycle's decision (nullopt before the first planned cycle). */
-    const std::optional<speed::TSpeedDecision>& lastDecision() const { return m_last; }
+    const std::optional<speed::TSpeedDecision>& lastDecision() const {
+        finishObserved();
+        return m_last;
+    }
     /** The T [s] the last decision used. */
-    double lastCycleTime() const { return m_lastT; }
+    double lastCycleTime() const {
+        finishObserved();
+        return m_lastT;
+    }
     /** N of the configured models. */
     int necessaryObservations() const;
     /** The pipeline (map, field) of the last call; null before the first. */
-    const speed::CAdaptiveSpeedPipeline* pipeline() const { return m_pipeline.get(); }
+    const speed::CAdaptiveSpeedPipeline* pipeline() const {
+        finishObserved();
+        return m_pipeline.get();
+    }
+    void finishObserved() const override;
 
   protected:
     common::TSpeedLimit impl_limit(const common::TSpeedLimitInput& in) const override;
+    void impl_observe(const common::TSpeedLimitInput& in) const override;
 
   private:
+    /** One cycle: the measured T, the map update and, with a target, the
+     * decision (m_last, m_creep). */
+    void runCycle(const common::TSpeedLimitInput& in) const;
     speed::CAdaptiveSpeedPipeline::TParams params(double radius, double T) const;
     double cycleTime() const;
     void resetState() const;  ///< the mutable state only
@@ -152,6 +182,13 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
     mutable std::optional<mrpt::math::TPoint2D> m_previousTarget;
     mutable std::optional<speed::TSpeedDecision> m_last;
     mutable std::optional<mrpt::math::TPoint2D> m_lastGoal;  ///< its input target
+    mutable bool m_creep = false;  ///< the last decision held long enough at 0
+    /** The scans of the cycle on the worker (copies). */
+    mutable std::optional<mrpt::obs::CObservation2DRangeScan> m_scanCopy, m_scan2Copy;
+    /** Time of the cycle observe() ran that no limit() has used yet. */
+    mutable std::optional<double> m_observed;
+    /** Last member: destroyed first, so its job ends while the state lives. */
+    mutable std::unique_ptr<common::CWorkerThread> m_worker;
 };
 
 }  // namespace risknav::nav

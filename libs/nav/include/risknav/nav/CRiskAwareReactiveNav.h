@@ -137,15 +137,28 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     /** MRPT's step, aimed at the guide point (guide_lookahead) when a
      * limiter gives one; the waypoint is put back after it. */
     void performNavigationStep() override;
+    /** MRPT's mapping of the sensed obstacles into a PTG's TP-space; its
+     * first call in a step (MRPT has sensed, and evaluates its motions from
+     * here on) first gives every limiter observe() on what was sensed (the
+     * adaptive limiter starts its cycle beside the engine's evaluation). */
+    void STEP3_WSpaceToTPSpace(const size_t ptg_idx, std::vector<double>& out_TPObstacles,
+                               mrpt::nav::ClearanceDiagram& out_clearance,
+                               const mrpt::math::TPose2D& rel_pose_PTG_origin_wrt_sense,
+                               const bool eval_clearance) override;
     /** MRPT's record, plus the limiter that won this cycle. */
     void loggingGetWSObstaclesAndShape(mrpt::nav::CLogFileRecord& out_log) override;
 
   private:
+    /** Waits for the work the limiters' observe() started; an error it
+     * ended with stops the navigation as MRPT stops it for an error in its
+     * step (NAV_ERROR with the message), or is dropped (`quiet`). */
+    void finishObserved(bool quiet);
     /** currentTarget() from a copy of MRPT's waypoint status. */
     std::optional<TCurrentTarget> currentTarget(
         const mrpt::nav::TWaypointStatusSequence& st) const;
     std::vector<common::CSpeedLimiter::Ptr> m_limiters;
     TLimitRecord m_last;
+    bool m_observeDue = false;  ///< this step's limiters have not observed yet
     /** While the step aims at a guide point: the waypoint MRPT's target
      * stands for (what the limiters are told). */
     std::optional<mrpt::math::TPoint2D> m_realTarget;
