@@ -11,7 +11,11 @@
 // stepping for the nav period (4 x 0.05 s) and the route's restart when a
 // goal is reached run between PauseTiming() and ResumeTiming(), so every
 // iteration is one real navigating step. Times are wall-clock
-// (UseRealTime()); steps_per_s = iterations / timed wall time.
+// (UseRealTime()); steps_per_s = iterations / timed wall time. The adaptive
+// limiter's cycle runs on a worker thread beside MRPT's evaluation (its
+// worker_thread default) and ends within the step: the CPU column is the
+// benchmark thread's alone; cpu_us_all_threads is the process's CPU time
+// over the timed steps (both threads) per step.
 //
 // BM_LimiterCall/<name>: one limit() call of a separate instance of each
 // limiter, loaded from the same config, on the input the all-limiters
@@ -37,6 +41,7 @@
 #include <mrpt/system/filesystem.h>
 
 #include <benchmark/benchmark.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -297,17 +302,27 @@ TNavBench& fixture(const std::string& variant) {
     return *f;
 }
 
+double processCpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
 void runSteps(benchmark::State& state, TNavBench& f) {
     // this run's counts (the fixture goes on across runs)
     f.legs = f.resets = f.commanded = 0;
     f.wins.clear();
+    double cpu = 0;
     for (auto _ : state) {
+        const double c0 = processCpuSeconds();
         f.step();
+        cpu += processCpuSeconds() - c0;
         state.PauseTiming();
         f.after();
         state.ResumeTiming();
     }
     f.report(state);
+    state.counters["cpu_us_all_threads"] = 1e6 * cpu / double(state.iterations());
 }
 
 void BM_BareEngineStep(benchmark::State& state) {

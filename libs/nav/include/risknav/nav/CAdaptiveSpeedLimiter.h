@@ -17,7 +17,7 @@ namespace risknav::nav {
 /** The adaptive speed control of Miura, Negishi, Shirai 2006 (000) (M1) as a
  * speed limiter inside MRPT's reactive engine (CRiskAwareReactiveNav).
  *
- * Each call (one navigator cycle) it runs speed::CAdaptiveSpeedPipeline, the
+ * Each cycle (one navigator sensing) it runs speed::CAdaptiveSpeedPipeline, the
  * same per-cycle pipeline as risknav-explore: the robot's own two
  * robot-centred uncertain grids (laser `scan`, second range sensor `scan2`)
  * follow the believed pose (ego-motion, (000) section 2) and take the scans
@@ -39,14 +39,14 @@ namespace risknav::nav {
  *
  * The cycle time T (measure_cycle_time = true, the default): the navigator's
  * own cycle, measured: per sensor, the median of the last 16 intervals [s]
- * (TSpeedLimitInput::time) between calls that brought a scan of it; the
+ * (TSpeedLimitInput::time) between cycles that brought a scan of it; the
  * rule's N T is max over the fused sensors of N_s T_s (a decimated RANGE2 is
  * observed less often than the laser), given to the controller as
  * T = max_s(N_s T_s) / N with N = max_s N_s. Until an interval has been
  * measured, and with measure_cycle_time = false, T = cycle_time.
  *
  * Beyond the paper (as risknav-explore's creep): a robot held at 0
- * (undecided or unreachable) for N calls in a row has observed what it can
+ * (undecided or unreachable) for N cycles in a row has observed what it can
  * see from there N times; the limit then becomes the slowest candidate
  * speed (reason "... held N cycles: creeping"), so that MRPT's engine, which
  * steers and avoids obstacles itself, can move (or turn) on and look.
@@ -72,7 +72,7 @@ namespace risknav::nav {
  *   frontier_goal_weight [-]    2.0   temporary destination cost (beyond)
  *   target_switch_cost   [m]    3.0   temporary destination hysteresis
  *   cycle_time           [s]    0.3   T when not measured (see above)
- *   measure_cycle_time   [bool] true  T from the time between calls
+ *   measure_cycle_time   [bool] true  T from the time between cycles
  *   fixed_speed_index    [-]    -1    -1 adaptive; k: fixed at speeds[k]
  *                                     (the paper's baseline, section 6)
  *   laser_model          [name] ""    section with the laser's sensor model
