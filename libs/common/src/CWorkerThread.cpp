@@ -16,11 +16,12 @@ CWorkerThread::~CWorkerThread() {
 void CWorkerThread::start(std::function<void()> job) {
     std::unique_lock<std::mutex> lock(m_mutex);
     m_cv.wait(lock, [&] { return !m_job && !m_running; });
+    // the thread first: if it cannot be made, nothing is pending
+    if (!m_thread.joinable())
+        m_thread = std::thread([this] { loop(); });
     m_error = nullptr;
     m_job = std::move(job);
     m_pending = true;
-    if (!m_thread.joinable())
-        m_thread = std::thread([this] { loop(); });
     lock.unlock();
     m_cv.notify_all();
 }
