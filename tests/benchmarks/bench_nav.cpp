@@ -230,6 +230,14 @@ struct TNavBench {
     }
 
     void resetWorld() {
+        // MRPT's navigator was made for one run: its navigation ends (an
+        // idle step) so that the next starts afresh (its pose history, its
+        // last command, the robot time of its last pose update: the world's
+        // time starts again at 0; left as they were, MRPT ignored every pose
+        // until the new time passed the old one and drove from the old pose)
+        nav->cancel();
+        syncClock();
+        nav->navigationStep();
         clockBase += world.time() + 10;
         world.reset(kStart, 11 + uint64_t(resets), clockBase);
         forward = true;

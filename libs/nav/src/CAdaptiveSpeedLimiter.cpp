@@ -54,6 +54,7 @@ void CAdaptiveSpeedLimiter::TOptions::loadFromConfigFile(
     memory_size = readDouble(c, s, "memory_size", memory_size);
     memory_resolution = readDouble(c, s, "memory_resolution", memory_resolution);
     worker_thread = readBool(c, s, "worker_thread", worker_thread);
+    cycle_decimation = readInt(c, s, "cycle_decimation", cycle_decimation);
     auto model = [&](const std::string& key, const std::string& name,
                      mapping::TSensorModel& m, const mapping::TSensorModel& builtIn) {
         m = builtIn;
@@ -82,6 +83,7 @@ void CAdaptiveSpeedLimiter::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     writeKey(c, s, "memory_size", memory_size);
     writeKey(c, s, "memory_resolution", memory_resolution);
     writeKey(c, s, "worker_thread", worker_thread);
+    writeKey(c, s, "cycle_decimation", cycle_decimation);
     if (!laser_model.empty())
         laser.saveToConfigFile(c, laser_model);
     if (!range2_model.empty())
@@ -96,6 +98,7 @@ void CAdaptiveSpeedLimiter::TOptions::validate() const {
         range2.validate();
     checkKey(s, "fixed_speed_index", double(fixed_speed_index),
              TRange::closed(-1, double(speed.speeds.size()) - 1));
+    checkKey(s, "cycle_decimation", double(cycle_decimation), TRange::closed(1, 100));
     checkKey(s, "local_map_size", local_map_size, TRange::closed(2, 100, "m"));
     checkKey(s, "local_map_resolution", local_map_resolution,
              TRange::closed(0.01, 0.5, "m"));
@@ -145,7 +148,8 @@ void CAdaptiveSpeedLimiter::loadConfig(const mrpt::config::CConfigFileBase& c,
                                                 "local_map_resolution",
                                                 "memory_size",
                                                 "memory_resolution",
-                                                "worker_thread"};
+                                                "worker_thread",
+                                                "cycle_decimation"};
     std::vector<std::string> keys;
     c.getAllKeys(section, keys);
     for (const auto& k : keys)
@@ -157,12 +161,11 @@ void CAdaptiveSpeedLimiter::loadConfig(const mrpt::config::CConfigFileBase& c,
                         "measure_cycle_time fixed_speed_index laser_model range2_model "
                         "use_range2 "
                         "local_map_size local_map_resolution memory_size "
-                        "memory_resolution worker_thread)");
+                        "memory_resolution worker_thread cycle_decimation)");
     TOptions o;
     loadOptions(o, c, section);
-    finishObserved();
+    reset();  // no cycle runs on the old options
     options = o;
-    reset();
 }
 
 void CAdaptiveSpeedLimiter::saveConfig(mrpt::config::CConfigFileBase& c,
@@ -171,22 +174,31 @@ void CAdaptiveSpeedLimiter::saveConfig(mrpt::config::CConfigFileBase& c,
 }
 
 void CAdaptiveSpeedLimiter::reset() {
-    finishObserved();
-    m_observed.reset();
+    try {
+        waitCycle();
+    } catch (const std::exception&) {
+        // its result is dropped with the rest of the run
+    }
     resetState();
 }
 
 void CAdaptiveSpeedLimiter::resetState() const {
     m_pipeline.reset();
-    m_radius = m_lastT = 0;
-    m_lastTime.reset();
     m_lastLaser.reset();
     m_lastRange2.reset();
     m_dtLaser.clear();
     m_dtRange2.clear();
     m_previousTarget.reset();
-    m_last.reset();
-    m_lastGoal.reset();
+    m_cycleIn = TCycleInput{};
+    m_result = TCycleResult{};
+    m_adopted = TCycleResult{};
+    m_inFlight = false;
+    m_sensings = 0;
+    m_lastSensing.reset();
+    m_radius = 0;
+    m_keptLaser.reset();
+    m_keptRange2.reset();
+    m_observed.reset();
 }
 
 speed::CAdaptiveSpeedPipeline::TParams CAdaptiveSpeedLimiter::params(double radius,
@@ -227,105 +239,156 @@ double CAdaptiveSpeedLimiter::cycleTime() const {
     return std::clamp(nt / n, 1e-3, 10.0);
 }
 
-void CAdaptiveSpeedLimiter::runCycle(const TSpeedLimitInput& in) const {
+void CAdaptiveSpeedLimiter::sense(const TSpeedLimitInput& in) const {
     // a new run (the clock went back) or another robot: a new map
-    if ((m_lastTime && in.time < *m_lastTime) ||
-        (m_pipeline && in.robot->radius != m_radius)) {
+    if (m_lastSensing && (in.time < *m_lastSensing || in.robot->radius != m_radius)) {
+        waitCycle();
         resetState();
     }
-    // the measured cycle, per sensor: intervals between cycles with its scan
-    auto measure = [&](bool has, std::optional<double>& last, std::deque<double>& dts) {
-        if (!has)
+    m_lastSensing = in.time;
+    m_radius = in.robot->radius;
+    // the latest scan of each sensor until a cycle takes it (copies: the
+    // caller's may go before the cycle ends)
+    auto keep = [&](const mrpt::obs::CObservation2DRangeScan* s,
+                    std::optional<TKeptScan>& kept) {
+        if (!s)
             return;
-        if (last && in.time > *last) {
-            dts.push_back(in.time - *last);
-            if (dts.size() > kIntervals)
-                dts.pop_front();
-        }
-        last = in.time;
+        if (!kept)
+            kept.emplace();
+        kept->scan = *s;
+        kept->pose = in.pose;
+        kept->time = in.time;
     };
-    measure(in.scan != nullptr, m_lastLaser, m_dtLaser);
-    measure(in.scan2 != nullptr, m_lastRange2, m_dtRange2);
-    m_lastTime = in.time;
-    const double T = cycleTime();
-    if (!m_pipeline) {
-        m_radius = in.robot->radius;
-        m_pipeline =
-            std::make_unique<speed::CAdaptiveSpeedPipeline>(params(m_radius, T), in.pose);
-    }
-    m_pipeline->setCycleTime(T);
-    m_lastT = T;
-    // (000) section 2: move the grids by the ego-motion, update, classify, fuse
-    m_pipeline->update(in.pose, in.scan, in.scan2);
-    m_creep = false;
-    if (!in.target) {
-        m_last.reset();
-        m_lastGoal.reset();
+    keep(in.scan, m_keptLaser);
+    keep(in.scan2, m_keptRange2);
+    if (m_sensings++ % size_t(options.cycle_decimation) != 0)
         return;
-    }
-    // sections 3-5: the fastest safe speed on the way to the target
-    const speed::TSpeedDecision d = m_pipeline->decide(
-        in.pose, *in.target, options.fixed_speed_index, m_previousTarget);
-    if (d.temporaryTarget && d.reason != speed::TSpeedReason::Unreachable)
-        m_previousTarget = d.target;
-    else
-        m_previousTarget.reset();
-    m_last = d;
-    m_lastGoal = *in.target;
-    m_creep = m_pipeline->heldLongEnough(d.speed <= 0);
-}
-
-void CAdaptiveSpeedLimiter::impl_observe(const TSpeedLimitInput& in) const {
-    finishObserved();  // the cycle before (normally waited for already)
-    m_observed = in.time;
+    // a cycle's sensing: the cycle before ends (normally long since) and,
+    // unless taken already, its decision is taken now
+    waitCycle();
+    if (m_inFlight)
+        adopt();
+    m_cycleIn.pose = in.pose;
+    m_cycleIn.target = in.target;
+    m_cycleIn.time = in.time;
+    m_cycleIn.radius = m_radius;
+    m_cycleIn.laser = std::move(m_keptLaser);
+    m_cycleIn.range2 = std::move(m_keptRange2);
+    m_keptLaser.reset();
+    m_keptRange2.reset();
     if (!options.worker_thread) {
-        runCycle(in);
+        runCycle();
+        m_inFlight = true;
         return;
     }
     if (!m_worker)
         m_worker = std::make_unique<common::CWorkerThread>();
-    // the worker reads copies of the scans (the caller's may go before the
-    // cycle ends)
-    TSpeedLimitInput copy = in;
-    copy.obstacles = nullptr;  // not read by the cycle
-    auto keep = [](const mrpt::obs::CObservation2DRangeScan* s,
-                   std::optional<mrpt::obs::CObservation2DRangeScan>& kept)
-        -> const mrpt::obs::CObservation2DRangeScan* {
+    m_inFlight = true;
+    m_worker->start([this] { runCycle(); });
+}
+
+void CAdaptiveSpeedLimiter::runCycle() const {
+    const TCycleInput& in = m_cycleIn;
+    // the measured cycle, per sensor: intervals between the scans of it
+    // that cycles took
+    auto measure = [&](const std::optional<TKeptScan>& s, std::optional<double>& last,
+                       std::deque<double>& dts) {
         if (!s)
-            return nullptr;
-        kept = *s;
-        return &*kept;
+            return;
+        if (last && s->time > *last) {
+            dts.push_back(s->time - *last);
+            if (dts.size() > kIntervals)
+                dts.pop_front();
+        }
+        last = s->time;
     };
-    copy.scan = keep(in.scan, m_scanCopy);
-    copy.scan2 = keep(in.scan2, m_scan2Copy);
-    m_worker->start([this, copy] { runCycle(copy); });
+    measure(in.laser, m_lastLaser, m_dtLaser);
+    measure(in.range2, m_lastRange2, m_dtRange2);
+    const double T = cycleTime();
+    if (!m_pipeline)
+        m_pipeline = std::make_unique<speed::CAdaptiveSpeedPipeline>(params(in.radius, T),
+                                                                     in.pose);
+    m_pipeline->setCycleTime(T);
+    TCycleResult& r = m_result;
+    r.T = T;
+    // (000) section 2: move the grids by the ego-motion, update, classify, fuse
+    m_pipeline->update(in.pose, in.laser ? &in.laser->scan : nullptr,
+                       in.laser ? in.laser->pose : in.pose,
+                       in.range2 ? &in.range2->scan : nullptr,
+                       in.range2 ? in.range2->pose : in.pose);
+    r.creep = false;
+    r.decision.reset();
+    r.goal.reset();
+    if (in.target) {
+        // sections 3-5: the fastest safe speed on the way to the target
+        const speed::TSpeedDecision d = m_pipeline->decide(
+            in.pose, *in.target, options.fixed_speed_index, m_previousTarget);
+        if (d.temporaryTarget && d.reason != speed::TSpeedReason::Unreachable)
+            m_previousTarget = d.target;
+        else
+            m_previousTarget.reset();
+        r.decision = d;
+        r.goal = *in.target;
+        r.creep = m_pipeline->heldLongEnough(d.speed <= 0);
+    }
+    r.field = m_pipeline->field();  // guidePoint() reads it while the next cycle runs
+}
+
+void CAdaptiveSpeedLimiter::waitCycle() const {
+    if (!m_worker)
+        return;
+    try {
+        m_worker->wait();
+    } catch (...) {
+        m_inFlight = false;  // its result is not to be taken
+        throw;
+    }
+}
+
+void CAdaptiveSpeedLimiter::adopt() const {
+    std::swap(m_adopted, m_result);
+    m_adopted.valid = true;
+    m_inFlight = false;
+}
+
+void CAdaptiveSpeedLimiter::impl_observe(const TSpeedLimitInput& in) const {
+    m_observed = in.time;
+    sense(in);
 }
 
 void CAdaptiveSpeedLimiter::finishObserved() const {
-    if (m_worker)
-        m_worker->wait();
+    if (options.cycle_decimation != 1)
+        return;
+    waitCycle();
+    if (m_inFlight)
+        adopt();
 }
 
 TSpeedLimit CAdaptiveSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const {
-    finishObserved();
-    // the cycle observe() ran on this sensing (same time) is this call's;
-    // otherwise (a caller that does not observe) the cycle runs now
+    // observe() saw this sensing (same time); otherwise (a caller that does
+    // not observe) this call is the sensing
     if (!(m_observed && *m_observed == in.time))
-        runCycle(in);
+        sense(in);
     m_observed.reset();
-    if (!m_last)
+    // the cycle's decision now: always with cycle_decimation = 1, and for
+    // the first cycle of a run
+    if (m_inFlight && (options.cycle_decimation == 1 || !m_adopted.valid)) {
+        waitCycle();
+        adopt();
+    }
+    if (!m_adopted.decision)
         return {in.desiredSpeed, ""};
-    const speed::TSpeedDecision& d = *m_last;
+    const speed::TSpeedDecision& d = *m_adopted.decision;
     double v = d.speed;
     char why[160];
-    const bool creep = m_creep;
+    const bool creep = m_adopted.creep;
     if (creep)
         v = options.fixed_speed_index >= 0
                 ? options.speed.speeds[size_t(options.fixed_speed_index)]
                 : options.speed.speeds.back();
     if (v >= in.desiredSpeed)
         return {in.desiredSpeed, ""};
-    const int N = m_pipeline->controller().necessaryObservations();
+    const int N = necessaryObservations();
     switch (d.reason) {
         case speed::TSpeedReason::Narrow:
             std::snprintf(why, sizeof(why),
@@ -352,17 +415,19 @@ TSpeedLimit CAdaptiveSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const 
 
 std::optional<mrpt::math::TPoint2D> CAdaptiveSpeedLimiter::guidePoint(
     const mrpt::math::TPose2D& pose, double lookahead) const {
-    finishObserved();
-    if (!m_last || !m_pipeline || m_last->reason == speed::TSpeedReason::Unreachable ||
-        m_last->path.points.size() < 2)
+    // the decision limit() uses, on the field it planned on (a cycle after it
+    // may be running)
+    const auto& last = m_adopted.decision;
+    if (!last || last->reason == speed::TSpeedReason::Unreachable ||
+        last->path.points.size() < 2)
         return std::nullopt;
-    const auto& field = m_pipeline->field();
-    if (m_lastGoal) {
+    const auto& field = m_adopted.field;
+    if (const auto& goal = m_adopted.goal) {
         // the straight line to the goal is open on the map (known free with
         // the robot's radius to spare, up to where the map ends): no guide,
         // MRPT goes straight (it is tuned for that; led along a path that
         // hugs one side of a narrow passage it froze at the entrance)
-        const double dx = m_lastGoal->x - pose.x, dy = m_lastGoal->y - pose.y;
+        const double dx = goal->x - pose.x, dy = goal->y - pose.y;
         const double len = std::hypot(dx, dy), res = field.map.resolution;
         bool open = true;
         for (int k = 1, n = int(std::ceil(len / (0.5 * res))); open && k <= n; k++) {
@@ -374,7 +439,7 @@ std::optional<mrpt::math::TPoint2D> CAdaptiveSpeedLimiter::guidePoint(
         if (open)
             return std::nullopt;
     }
-    const auto& path = m_last->path;
+    const auto& path = last->path;
     return path
         .points[speed::lookaheadPoint(path, field, {pose.x, pose.y}, lookahead).ahead];
 }

@@ -167,6 +167,11 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
     const size_t nSpeeds = m_o.speeds.size();
     if (fixedIndex >= int(nSpeeds))
         throw std::invalid_argument("speed controller: no such fixed speed");
+    // every clearance read below is compared with an inflation
+    if (!(field.clearanceReach >= m_radius + m_o.margins.front()))
+        throw std::invalid_argument(
+            "speed controller: the planning field's clearance ends before the widest "
+            "inflation");
     if (!chooseTarget(field, start, goal, d.target, d.temporaryTarget, hints)) {
         d.reason = TSpeedReason::Unreachable;
         return d;

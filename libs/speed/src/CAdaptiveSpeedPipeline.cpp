@@ -48,14 +48,16 @@ CAdaptiveSpeedPipeline::CAdaptiveSpeedPipeline(const TParams& p, const TPose2D& 
 
 void CAdaptiveSpeedPipeline::update(const TPose2D& ego,
                                     const mrpt::obs::CObservation2DRangeScan* laser,
-                                    const mrpt::obs::CObservation2DRangeScan* range2) {
+                                    const TPose2D& laserPose,
+                                    const mrpt::obs::CObservation2DRangeScan* range2,
+                                    const TPose2D& range2Pose) {
     // (000) section 2: the grids follow the ego-motion, then take the scans
     m_laser.recenter(ego.x, ego.y);
     m_range2.recenter(ego.x, ego.y);
     if (laser)
-        m_laser.integrateScan(ego, *laser, m_p.laserModel);
+        m_laser.integrateScan(laserPose, *laser, m_p.laserModel);
     if (range2)
-        m_range2.integrateScan(ego, *range2, m_p.range2Model);
+        m_range2.integrateScan(range2Pose, *range2, m_p.range2Model);
     // classification and two-sensor fusion (section 2)
     m_fused = mapping::fuseGrids(m_laser, m_p.useRange2 ? m_range2 : m_laser,
                                  m_p.speed.occupied_threshold, m_p.speed.free_threshold);
@@ -63,8 +65,12 @@ void CAdaptiveSpeedPipeline::update(const TPose2D& ego,
     // there), though no sensor sees under it (the laser is mounted ahead
     // of the centre); otherwise the robot would start in "unknown" space.
     markFootprintFree(m_fused, ego, m_p.robotRadius);
+    // the clearance is read only against the widest inflation (the fastest
+    // speed's margin) and, by CExplorer and the limiter's guide point, the
+    // radius + 0.1 m and the radius: 0.5 m beyond the widest covers them all
     m_field = computePlanningField(m_fused, m_p.robotRadius,
-                                   m_ctrl.wayOnBand(m_p.localMapResolution));
+                                   m_ctrl.wayOnBand(m_p.localMapResolution),
+                                   m_p.robotRadius + m_p.speed.margins.front() + 0.5);
     if (m_memory)
         m_memory->update(m_fused);
 }

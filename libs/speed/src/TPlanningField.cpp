@@ -11,6 +11,19 @@ namespace risknav::speed {
 using mapping::TFusedCell;
 
 namespace {
+/** sqrt(float(d2)) - 0.5 for the small squared distances, which are most
+ * of a local map's (a speed-up: one look-up instead of a square root; the
+ * same doubles, so the same floats). */
+const std::vector<double>& halfCellLessRoots() {
+    static const std::vector<double> table = [] {
+        std::vector<double> t(4096);
+        for (size_t d2 = 0; d2 < t.size(); d2++)
+            t[d2] = double(std::sqrt(float(d2))) - 0.5;
+        return t;
+    }();
+    return table;
+}
+
 /** The distance [m] a squared centre distance `d2` [cells^2] measures: to
  * the source cell's near edge (centre distance - half a cell: a robot disc
  * at a cell centre with radius below this does not touch it), the float
@@ -18,6 +31,8 @@ namespace {
  * used here before, gave); +inf for kNoSource. */
 void toMetres(const std::vector<int32_t>& d2, double res, std::vector<float>& out) {
     out.resize(d2.size());
+    const std::vector<double>& roots = halfCellLessRoots();
+    const auto small = int32_t(roots.size());
     // runs of one value (0 on the unknown, none far from the frontier) are
     // most of a map: the last conversion is reused (a speed-up, same floats)
     int32_t last = mapping::kNoSource;
@@ -25,10 +40,10 @@ void toMetres(const std::vector<int32_t>& d2, double res, std::vector<float>& ou
     for (size_t k = 0; k < d2.size(); k++) {
         if (d2[k] != last) {
             last = d2[k];
-            lastOut =
-                last == mapping::kNoSource
-                    ? std::numeric_limits<float>::infinity()
-                    : float(std::max(0.0, (double(std::sqrt(float(last))) - 0.5) * res));
+            const double root =
+                last < small ? roots[size_t(last)] : double(std::sqrt(float(last))) - 0.5;
+            lastOut = last == mapping::kNoSource ? std::numeric_limits<float>::infinity()
+                                                 : float(std::max(0.0, root * res));
         }
         out[k] = lastOut;
     }
@@ -40,11 +55,28 @@ double TPlanningField::clearanceAt(double x, double y) const {
     return map.inside(i, j) ? clearance[map.index(i, j)] : 0.0;
 }
 
+namespace {
+/** The squared distances to `source`, exact for every cell whose measured
+ * distance (toMetres) is <= `reach` [m] (bounded where that saves time). */
+void squaredDistancesUpTo(const std::vector<uint8_t>& source, int n, bool borderIsSource,
+                          double res, double reach, std::vector<int32_t>& d2) {
+    // every cell whose measured distance is <= reach has a centre distance
+    // <= reach / res + 0.5 cells (one more for rounding)
+    const double reachCells = std::max(0.0, reach / res + 1.5);
+    if (reachCells < std::min(n, 4096))
+        mapping::boundedSquaredDistanceTransform(source, n, n, borderIsSource,
+                                                 int(std::ceil(reachCells)), d2);
+    else
+        mapping::squaredDistanceTransform(source, n, n, borderIsSource, d2);
+}
+}  // namespace
+
 TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map, double minOpening,
-                                    double wayOnReach) {
+                                    double wayOnReach, double clearanceReach) {
     TPlanningField f;
     f.map = map;
     f.wayOnReach = wayOnReach;
+    f.clearanceReach = clearanceReach;
     const int n = map.size;
     // wayOn: the frontier cells, then (below) only the open ones and the ring
     std::vector<uint8_t> blocked(map.cells.size()), wayOn(map.cells.size(), 0);
@@ -79,7 +111,7 @@ TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map, double mi
                                              (up[i] == kFree) | (down[i] == kFree)));
     }
     std::vector<int32_t> d2;
-    mapping::squaredDistanceTransform(blocked, n, n, true, d2);
+    squaredDistancesUpTo(blocked, n, true, map.resolution, clearanceReach, d2);
     toMetres(d2, map.resolution, f.clearance);
     // The ways on, for the choice of a temporary destination: open frontier
     // cells, and the grid's outer ring, whose free cells lead on into what the
@@ -155,14 +187,7 @@ TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map, double mi
                 wayOn[k] = 1;
         }
     }
-    // every cell whose measured distance is <= wayOnReach has a centre
-    // distance <= wayOnReach / res + 0.5 cells (one more for rounding)
-    const double reachCells = std::max(0.0, wayOnReach / map.resolution + 1.5);
-    if (reachCells < std::min(n, 4096))
-        mapping::boundedSquaredDistanceTransform(wayOn, n, n, false,
-                                                 int(std::ceil(reachCells)), d2);
-    else
-        mapping::squaredDistanceTransform(wayOn, n, n, false, d2);
+    squaredDistancesUpTo(wayOn, n, false, map.resolution, wayOnReach, d2);
     toMetres(d2, map.resolution, f.wayOnDist);
     return f;
 }

@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 using namespace risknav;
@@ -125,8 +126,10 @@ TEST(AdaptiveLimiter,
      AnUndecidedRegionAheadLimitsTheSpeedAndTheLimitGrowsAsTheMapConfirmsFreeSpace) {
     // RANGE2 (the stereo-like model: N = 5) sees 1.5 m: the fused map is free
     // only there, the corridor beyond is undecided; the target lies 13 m on.
+    // A cycle on every call (cycle_decimation = 1): the paper's one cycle per
+    // sensing; the default (every 2nd) is the test after this one.
     auto w = syntheticWorld(corridor(), 1.5);
-    auto l = makeLimiter("[CAdaptiveSpeedLimiter]\n");
+    auto l = makeLimiter("[CAdaptiveSpeedLimiter]\ncycle_decimation = 1\n");
     auto& a = asAdaptive(l);
     EXPECT_EQ(a.necessaryObservations(), 5);
     const auto lim = standAndLook(l, w, TPose2D(2, 0, 0), TPoint2D(15, 0), 12);
@@ -154,23 +157,105 @@ TEST(AdaptiveLimiter,
     // per observation: a lower limit on the same map. A constant in place of
     // d / (v T) >= N would not see T.
     auto slow = makeLimiter(
-        "[CAdaptiveSpeedLimiter]\nmeasure_cycle_time = false\ncycle_time = 0.4\n");
+        "[CAdaptiveSpeedLimiter]\nmeasure_cycle_time = false\ncycle_time = 0.4\n"
+        "cycle_decimation = 1\n");
     const auto limSlow = standAndLook(slow, w, TPose2D(2, 0, 0), TPoint2D(15, 0), 12);
     EXPECT_NEAR(asAdaptive(slow).lastCycleTime(), 0.4, 1e-12);
     EXPECT_LT(limSlow.back().maxSpeed, lim.back().maxSpeed);
     EXPECT_DOUBLE_EQ(limSlow.back().maxSpeed, 0.35);
     // and a sensor that needs more observations (N = 9) too
     auto weak = makeLimiter(
-        "[CAdaptiveSpeedLimiter]\nrange2_model = Weak\n"
+        "[CAdaptiveSpeedLimiter]\nrange2_model = Weak\ncycle_decimation = 1\n"
         "[Weak]\np_obs_given_obstacle = 0.55\np_obs_given_free = 0.45\n");
     EXPECT_GT(asAdaptive(weak).necessaryObservations(), 5);
     const auto limWeak = standAndLook(weak, w, TPose2D(2, 0, 0), TPoint2D(15, 0), 16);
     EXPECT_LT(limWeak.back().maxSpeed, lim.back().maxSpeed);
     // a desired speed below the limit is not limited: empty reason
-    const auto calm = standAndLook(makeLimiter("[CAdaptiveSpeedLimiter]\n"), w,
-                                   TPose2D(2, 0, 0), TPoint2D(15, 0), 12, 0.3);
+    const auto calm =
+        standAndLook(makeLimiter("[CAdaptiveSpeedLimiter]\ncycle_decimation = 1\n"), w,
+                     TPose2D(2, 0, 0), TPoint2D(15, 0), 12, 0.3);
     EXPECT_DOUBLE_EQ(calm.back().maxSpeed, 0.3);
     EXPECT_EQ(calm.back().reason, "");
+}
+
+TEST(AdaptiveLimiter,
+     ACycleOnEveryOtherSensingMeasuresTwiceTheCycleAndActsOneCycleLater) {
+    // The default schedule (cycle_decimation = 2) against a limiter with a
+    // cycle on every call that is given only every other sensing: the same
+    // cycles (the same scans, T = 0.4 s measured), each decision taken one
+    // cycle later (when the next cycle starts) and held for two calls; the
+    // first cycle is waited for.
+    auto w = syntheticWorld(corridor(), 1.5);
+    const auto every2nd = standAndLook(makeLimiter("[CAdaptiveSpeedLimiter]\n"), w,
+                                       TPose2D(2, 0, 0), TPoint2D(15, 0), 24);
+    auto each = makeLimiter("[CAdaptiveSpeedLimiter]\ncycle_decimation = 1\n");
+    w.reset(TPose2D(2, 0, 0), 3);
+    common::TRobotOptions robot;
+    std::vector<common::TSpeedLimit> reference;
+    for (int k = 0; k < 24; k++) {
+        const auto scans = w.sense();
+        if (k % 2 == 0) {
+            common::TSpeedLimitInput in;
+            in.robot = &robot;
+            in.pose = TPose2D(2, 0, 0);
+            in.desiredSpeed = 1.1;
+            in.scan = scans.laser.get();
+            in.scan2 = scans.range2.get();
+            in.target = TPoint2D(15, 0);
+            in.time = 100.0 + 0.2 * k;
+            reference.push_back(each->limit(in));
+        }
+        w.step(0, 0, 0.2);
+    }
+    EXPECT_NEAR(asAdaptive(each).lastCycleTime(), 0.4, 1e-9);
+    std::set<double> seen;
+    for (size_t s = 0; s < every2nd.size(); s++) {
+        const size_t cycle = s < 2 ? 0 : (s - 2) / 2;
+        EXPECT_EQ(every2nd[s].maxSpeed, reference[cycle].maxSpeed) << s;
+        EXPECT_EQ(every2nd[s].reason, reference[cycle].reason) << s;
+        seen.insert(every2nd[s].maxSpeed);
+    }
+    // the limit changed over the run (from 0 up), so a decision taken at once
+    // (one call earlier) would have failed the comparison above
+    EXPECT_GE(seen.size(), 2u);
+    // T = 0.4 s: the limit of a configured T = 0.4 s at one cycle a call
+    // (0.35 m/s, the first test)
+    EXPECT_DOUBLE_EQ(every2nd.back().maxSpeed, 0.35);
+}
+
+TEST(AdaptiveLimiter, ADecimatedSecondSensorIsKeptUntilACycleTakesIt) {
+    // RANGE2 on every other sensing, on the sensings between the limiter's
+    // cycles: each cycle takes the one before (at the pose it was taken
+    // from). A limiter that dropped it would never see free space confirmed
+    // by both sensors (held at 0, then creeping at 0.2 m/s).
+    auto w = syntheticWorld(corridor(), 1.5);
+    w.range2.options.frame_decimation = 2;
+    auto l = makeLimiter("[CAdaptiveSpeedLimiter]\n");
+    const TPose2D pose(2, 0, 0);
+    w.reset(pose, 3);
+    (void)w.sense();  // RANGE2 now on the limiter's odd sensings
+    common::TRobotOptions robot;
+    common::TSpeedLimit last;
+    int withRange2 = 0;
+    for (int k = 0; k < 24; k++) {
+        const auto scans = w.sense();
+        common::TSpeedLimitInput in;
+        in.robot = &robot;
+        in.pose = pose;
+        in.desiredSpeed = 1.1;
+        in.scan = scans.laser.get();
+        in.scan2 = scans.range2.get();
+        withRange2 += (k % 2 == 1 && in.scan2) ? 1 : 0;
+        EXPECT_EQ(in.scan2 != nullptr, k % 2 == 1) << k;
+        in.target = TPoint2D(15, 0);
+        in.time = 100.0 + 0.2 * k;
+        last = l->limit(in);
+        w.step(0, 0, 0.2);
+    }
+    EXPECT_EQ(withRange2, 12);
+    EXPECT_DOUBLE_EQ(last.maxSpeed, 0.35);
+    EXPECT_EQ(last.reason.find("creeping"), std::string::npos) << last.reason;
+    EXPECT_NEAR(asAdaptive(l).lastCycleTime(), 0.4, 1e-9);
 }
 
 TEST(AdaptiveLimiter, WithRange2SeeingFarTheCorridorIsFastAndWithoutAnyScanItCreeps) {
@@ -182,7 +267,7 @@ TEST(AdaptiveLimiter, WithRange2SeeingFarTheCorridorIsFastAndWithoutAnyScanItCre
     EXPECT_EQ(lim.back().reason, "");
     // no scans at all: nothing is ever decided; held N = 5 cycles at 0, the
     // limiter lets the engine creep on at the slowest speed
-    auto blind = makeLimiter("[CAdaptiveSpeedLimiter]\n");
+    auto blind = makeLimiter("[CAdaptiveSpeedLimiter]\ncycle_decimation = 1\n");
     common::TRobotOptions robot;
     for (int k = 0; k < 6; k++) {
         common::TSpeedLimitInput in;

@@ -9,6 +9,7 @@
 #include "free_space_fixtures.h"
 
 #include <cmath>
+#include <limits>
 #include <queue>
 #include <random>
 
@@ -277,6 +278,10 @@ TEST(PlanningField, ClearanceAndWayOnDistanceEqualBruteForceOnRandomMaps) {
         const auto f = computePlanningField(m, minOpening);
         const double reach = 0.1 + 0.15 * (trial % 3);
         const auto reached = computePlanningField(m, minOpening, reach);
+        // the clearance computed only as far as its own reach
+        const double clearReach = 0.05 + 0.1 * (trial % 4);
+        const auto cleared = computePlanningField(
+            m, minOpening, std::numeric_limits<double>::infinity(), clearReach);
         auto measured = [&](long d2) {
             return float(std::max(0.0, (double(std::sqrt(float(d2))) - 0.5) * 0.05));
         };
@@ -334,12 +339,18 @@ TEST(PlanningField, ClearanceAndWayOnDistanceEqualBruteForceOnRandomMaps) {
                     ASSERT_EQ(r, f.wayOnDist[k]) << trial << " " << i << " " << j;
                 else
                     ASSERT_TRUE(r > reach) << trial << " " << i << " " << j;
+                const float c = cleared.clearance[k];
+                if (f.clearance[k] <= clearReach)
+                    ASSERT_EQ(c, f.clearance[k]) << trial << " " << i << " " << j;
+                else
+                    ASSERT_TRUE(c > clearReach) << trial << " " << i << " " << j;
             }
         EXPECT_EQ(reached.clearance, f.clearance);
+        EXPECT_EQ(cleared.wayOnDist, f.wayOnDist);
     }
 }
 
-TEST(PlanningField, TheControllerRefusesAFieldComputedForANarrowerBand) {
+TEST(PlanningField, TheControllerRefusesAFieldComputedForANarrowerBandOrClearance) {
     const CAdaptiveSpeedController ctrl(TSpeedControlOptions{}, 0.25, 5);
     const double band = ctrl.wayOnBand(0.05);
     EXPECT_DOUBLE_EQ(band, 0.25 + TSpeedControlOptions{}.margins.back() + 0.1);
@@ -348,6 +359,14 @@ TEST(PlanningField, TheControllerRefusesAFieldComputedForANarrowerBand) {
     EXPECT_THROW(
         ctrl.decide(computePlanningField(m, 0.25, band - 0.01), {0, 0, 0}, {1, 0}),
         std::invalid_argument);
+    // and one whose clearance ends before the widest inflation (the
+    // fastest speed's margin)
+    const double widest = 0.25 + TSpeedControlOptions{}.margins.front();
+    EXPECT_NO_THROW(
+        ctrl.decide(computePlanningField(m, 0.25, band, widest), {0, 0, 0}, {1, 0}));
+    EXPECT_THROW(ctrl.decide(computePlanningField(m, 0.25, band, widest - 0.01),
+                             {0, 0, 0}, {1, 0}),
+                 std::invalid_argument);
 }
 
 TEST(SpeedController, TheMemoryKeepsTheRobotOutOfAForgottenDeadEndRoom) {

@@ -52,14 +52,31 @@ namespace risknav::nav {
  * steers and avoids obstacles itself, can move (or turn) on and look.
  * The robot's radius comes from TSpeedLimitInput::robot ([Robot]).
  *
- * One cycle per sensing: the navigator calls observe() right after it
- * sensed, and the cycle (map update, plans, decision) runs there, on a
- * worker thread while MRPT's engine evaluates its motions (worker_thread =
- * true; it needs nothing the engine decides); limit() in the same cycle
- * waits for it and compares its speed with the desired one. A cycle is run
- * on every sensing, also one in which the engine then commands no forward
- * speed (and so calls no limiter). A caller that does not observe() gets
- * the cycle run inside limit(), as before.
+ * The cycle's schedule (beyond the paper, which plans once per sensing
+ * cycle of ~0.3 s; MRPT's engine senses every 0.2 s here): the map-and-plan
+ * cycle runs on every cycle_decimation-th sensing (default 2: every 0.4 s),
+ * on the latest scan of each sensor since the cycle before, each taken at
+ * the pose of its own sensing (a decimated RANGE2 is kept until a cycle
+ * takes it). T, measured as above between the scans a cycle took, is then
+ * the cycle's period, and the undecided rule d / (v T) >= N accounts for
+ * it. The navigator calls observe() right after it sensed; on a cycle's
+ * sensing the cycle starts there, on a worker thread (worker_thread = true;
+ * it needs nothing MRPT's engine decides) or on the caller's thread.
+ *  - cycle_decimation = 1: limit() in the same navigator cycle waits for
+ *    that cycle and takes its decision (no latency).
+ *  - cycle_decimation = n >= 2: a cycle's decision is taken when the next
+ *    cycle starts, n sensings later, and holds for the n sensings after
+ *    that; the cycle runs on the worker beside the engine for those n
+ *    navigator cycles. The decision acts n to 2n - 1 sensings after its
+ *    scans: 0.4-0.6 s for n = 2, the age a decision has on the paper's
+ *    robot, whose one cycle (~0.3 s) senses, plans and then holds its
+ *    command for the next (a cycle's latency equals its period T, which
+ *    the rule's T covers). The first cycle of a run is waited for (no
+ *    limit is given without a decision).
+ * The same decisions on the worker and the caller's thread, and for a
+ * caller that only calls limit() (each call is then a sensing). A cycle
+ * runs on every cycle's sensing, also one in which the engine then
+ * commands no forward speed (and so calls no limiter).
  *
  * Section [CAdaptiveSpeedLimiter] (every key optional; unknown keys are
  * refused):
@@ -91,6 +108,8 @@ namespace risknav::nav {
  *   worker_thread        [bool] true  run the observed cycle on a worker
  *                                     thread beside the engine; false: on
  *                                     the navigator's (the same decisions)
+ *   cycle_decimation     [-]    2     the cycle runs on every n-th sensing
+ *                                     (1..100; see above)
  * A named model section that does not exist is an error. */
 class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
     DEFINE_MRPT_OBJECT(CAdaptiveSpeedLimiter, risknav::nav)
@@ -112,6 +131,7 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
         double memory_size = 50.0;           ///< [m], 0 = none
         double memory_resolution = 0.25;     ///< [m]
         bool worker_thread = true;           ///< observed cycles beside the engine
+        int cycle_decimation = 2;            ///< a cycle every n-th sensing
         std::string section = "CAdaptiveSpeedLimiter";
 
         TOptions();
@@ -142,23 +162,26 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
      * radius to spare, as far as the map reaches). */
     std::optional<mrpt::math::TPoint2D> guidePoint(const mrpt::math::TPose2D& pose,
                                                    double lookahead) const override;
-    /** The last cycle's decision (nullopt before the first planned cycle). */
+    /** The decision limit() uses now (the last one taken; nullopt before
+     * the first planned cycle). */
     const std::optional<speed::TSpeedDecision>& lastDecision() const {
-        finishObserved();
-        return m_last;
+        return m_adopted.decision;
     }
-    /** The T [s] the last decision used. */
-    double lastCycleTime() const {
-        finishObserved();
-        return m_lastT;
-    }
+    /** The T [s] that decision used. */
+    double lastCycleTime() const { return m_adopted.T; }
     /** N of the configured models. */
     int necessaryObservations() const;
-    /** The pipeline (map, field) of the last call; null before the first. */
+    /** The pipeline (map, field) after the last cycle that started (waits
+     * for it; with cycle_decimation >= 2 it may be a cycle ahead of
+     * lastDecision()); null before the first. */
     const speed::CAdaptiveSpeedPipeline* pipeline() const {
-        finishObserved();
+        waitCycle();
         return m_pipeline.get();
     }
+    /** With cycle_decimation = 1, waits for the cycle observe() started
+     * (and takes its decision): none outlives the navigator's cycle. With
+     * n >= 2 a cycle runs on across the navigator's cycles until the next
+     * one starts (which waits for it and rethrows its error). */
     void finishObserved() const override;
 
   protected:
@@ -166,26 +189,60 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
     void impl_observe(const common::TSpeedLimitInput& in) const override;
 
   private:
-    /** One cycle: the measured T, the map update and, with a target, the
-     * decision (m_last, m_creep). */
-    void runCycle(const common::TSpeedLimitInput& in) const;
+    /** A scan kept for a cycle, with the pose and time of its sensing. */
+    struct TKeptScan {
+        mrpt::obs::CObservation2DRangeScan scan;
+        mrpt::math::TPose2D pose;
+        double time = 0;
+    };
+    /** What one cycle reads (the caller's thread fills it before the cycle
+     * starts; the cycle owns it while it runs). */
+    struct TCycleInput {
+        mrpt::math::TPose2D pose;
+        std::optional<mrpt::math::TPoint2D> target;
+        double time = 0, radius = 0;
+        std::optional<TKeptScan> laser, range2;
+    };
+    /** What one cycle decided, and the field it planned on (guidePoint). */
+    struct TCycleResult {
+        bool valid = false;
+        std::optional<speed::TSpeedDecision> decision;
+        std::optional<mrpt::math::TPoint2D> goal;  ///< its input target
+        bool creep = false;                        ///< the decision held long enough at 0
+        double T = 0;
+        speed::TPlanningField field;
+    };
+
+    /** A sensing: a new run is detected, the scans kept and, on a cycle's
+     * sensing, the previous cycle's decision taken (n >= 2) and the cycle
+     * started. */
+    void sense(const common::TSpeedLimitInput& in) const;
+    /** One cycle on m_cycleIn: the measured T, the map update and, with a
+     * target, the decision; into m_result. */
+    void runCycle() const;
+    void waitCycle() const;  ///< the cycle in flight ends (rethrows its error)
+    void adopt() const;      ///< m_result becomes the decision limit() uses
     speed::CAdaptiveSpeedPipeline::TParams params(double radius, double T) const;
     double cycleTime() const;
     void resetState() const;  ///< the mutable state only
 
-    // the limiter's state: limit() is const (the plugin interface), the map
-    // it builds is not
+    // The limiter's state (limit() is const, the plugin interface; the map
+    // it builds is not). The cycle's own (touched only by runCycle(), on the
+    // worker while a cycle is in flight):
     mutable std::unique_ptr<speed::CAdaptiveSpeedPipeline> m_pipeline;
-    mutable double m_radius = 0, m_lastT = 0;
-    mutable std::optional<double> m_lastTime, m_lastLaser, m_lastRange2;
+    mutable std::optional<double> m_lastLaser, m_lastRange2;  ///< scan times
     mutable std::deque<double> m_dtLaser, m_dtRange2;
     mutable std::optional<mrpt::math::TPoint2D> m_previousTarget;
-    mutable std::optional<speed::TSpeedDecision> m_last;
-    mutable std::optional<mrpt::math::TPoint2D> m_lastGoal;  ///< its input target
-    mutable bool m_creep = false;  ///< the last decision held long enough at 0
-    /** The scans of the cycle on the worker (copies). */
-    mutable std::optional<mrpt::obs::CObservation2DRangeScan> m_scanCopy, m_scan2Copy;
-    /** Time of the cycle observe() ran that no limit() has used yet. */
+    mutable TCycleInput m_cycleIn;
+    mutable TCycleResult m_result;
+    // the caller's:
+    mutable TCycleResult m_adopted;   ///< the decision limit() uses
+    mutable bool m_inFlight = false;  ///< a cycle started, its result not taken
+    mutable size_t m_sensings = 0;    ///< since the run began
+    mutable std::optional<double> m_lastSensing;
+    mutable double m_radius = 0;
+    mutable std::optional<TKeptScan> m_keptLaser, m_keptRange2;  ///< since the last cycle
+    /** Time of the sensing observe() saw that no limit() has used yet. */
     mutable std::optional<double> m_observed;
     /** Last member: destroyed first, so its job ends while the state lives. */
     mutable std::unique_ptr<common::CWorkerThread> m_worker;

@@ -67,7 +67,17 @@ class CAdaptiveSpeedPipeline {
      * observation of that sensor this cycle. */
     void update(const mrpt::math::TPose2D& ego,
                 const mrpt::obs::CObservation2DRangeScan* laser,
-                const mrpt::obs::CObservation2DRangeScan* range2);
+                const mrpt::obs::CObservation2DRangeScan* range2) {
+        update(ego, laser, ego, range2, ego);
+    }
+    /** The same with each scan taken at its own pose (a scan of an earlier
+     * sensing, e.g. a decimated sensor's, kept for this cycle); the grids
+     * follow `ego`. */
+    void update(const mrpt::math::TPose2D& ego,
+                const mrpt::obs::CObservation2DRangeScan* laser,
+                const mrpt::math::TPose2D& laserPose,
+                const mrpt::obs::CObservation2DRangeScan* range2,
+                const mrpt::math::TPose2D& range2Pose);
 
     /** The controller on the latest field (after update()); the memory's
      * cost to the goal ranks temporary destinations when there is a memory.
