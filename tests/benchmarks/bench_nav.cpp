@@ -25,7 +25,10 @@
 // Counters: legs = route legs completed, resets = the world reset after a
 // navigation error or a leg over 300 s (0 expected), lim_<name> = share of
 // commanded cycles that limiter limited. RISKNAV_BENCH_NAV_CONFIG (ini text)
-// is appended to the config, e.g. to try a limiter option.
+// is appended to the config, e.g. to try a limiter option
+// ($'[CAdaptiveSpeedLimiter]\ncycle_decimation = 2': its cycle on every
+// other sensing). A reset ends MRPT's navigation before the world starts
+// again (see resetWorld()).
 #include <risknav/afraid/CAfraidGrid.h>
 #include <risknav/common/CIniConfig.h>
 #include <risknav/common/CSpeedLimiter.h>

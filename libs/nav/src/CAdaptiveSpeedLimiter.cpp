@@ -195,6 +195,8 @@ void CAdaptiveSpeedLimiter::resetState() const {
     m_inFlight = false;
     m_sensings = 0;
     m_lastSensing.reset();
+    m_lastTarget.reset();
+    m_retargeted = false;
     m_radius = 0;
     m_keptLaser.reset();
     m_keptRange2.reset();
@@ -245,7 +247,13 @@ void CAdaptiveSpeedLimiter::sense(const TSpeedLimitInput& in) const {
         waitCycle();
         resetState();
     }
+    // a new target (a waypoint reached): a cycle now, taken at once
+    const bool retarget =
+        m_lastSensing && (in.target.has_value() != m_lastTarget.has_value() ||
+                          (in.target && (in.target->x != m_lastTarget->x ||
+                                         in.target->y != m_lastTarget->y)));
     m_lastSensing = in.time;
+    m_lastTarget = in.target;
     m_radius = in.robot->radius;
     // the latest scan of each sensor until a cycle takes it (copies: the
     // caller's may go before the cycle ends)
@@ -261,6 +269,8 @@ void CAdaptiveSpeedLimiter::sense(const TSpeedLimitInput& in) const {
     };
     keep(in.scan, m_keptLaser);
     keep(in.scan2, m_keptRange2);
+    if (retarget)
+        m_sensings = 0;
     if (m_sensings++ % size_t(options.cycle_decimation) != 0)
         return;
     // a cycle's sensing: the cycle before ends (normally long since) and,
@@ -268,6 +278,7 @@ void CAdaptiveSpeedLimiter::sense(const TSpeedLimitInput& in) const {
     waitCycle();
     if (m_inFlight)
         adopt();
+    m_retargeted = retarget;
     m_cycleIn.pose = in.pose;
     m_cycleIn.target = in.target;
     m_cycleIn.time = in.time;
@@ -331,7 +342,7 @@ void CAdaptiveSpeedLimiter::runCycle() const {
         r.goal = *in.target;
         r.creep = m_pipeline->heldLongEnough(d.speed <= 0);
     }
-    r.field = m_pipeline->field();  // guidePoint() reads it while the next cycle runs
+    r.field = m_pipeline->takeField();  // guidePoint() reads it while the next cycle runs
 }
 
 void CAdaptiveSpeedLimiter::waitCycle() const {
@@ -349,6 +360,7 @@ void CAdaptiveSpeedLimiter::adopt() const {
     std::swap(m_adopted, m_result);
     m_adopted.valid = true;
     m_inFlight = false;
+    m_retargeted = false;
 }
 
 void CAdaptiveSpeedLimiter::impl_observe(const TSpeedLimitInput& in) const {
@@ -357,7 +369,9 @@ void CAdaptiveSpeedLimiter::impl_observe(const TSpeedLimitInput& in) const {
 }
 
 void CAdaptiveSpeedLimiter::finishObserved() const {
-    if (options.cycle_decimation != 1)
+    // a new target's cycle is taken by the end of its step also when the
+    // engine called no limit(): the next step's turn and guide point use it
+    if (options.cycle_decimation != 1 && !m_retargeted)
         return;
     waitCycle();
     if (m_inFlight)
@@ -370,9 +384,10 @@ TSpeedLimit CAdaptiveSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const 
     if (!(m_observed && *m_observed == in.time))
         sense(in);
     m_observed.reset();
-    // the cycle's decision now: always with cycle_decimation = 1, and for
-    // the first cycle of a run
-    if (m_inFlight && (options.cycle_decimation == 1 || !m_adopted.valid)) {
+    // the cycle's decision now: always with cycle_decimation = 1, for the
+    // first cycle of a run and for a new target's
+    if (m_inFlight &&
+        (options.cycle_decimation == 1 || !m_adopted.valid || m_retargeted)) {
         waitCycle();
         adopt();
     }

@@ -80,6 +80,10 @@ TSpeedDecision CAdaptiveSpeedPipeline::decide(
     const std::optional<TPoint2D>& previousTarget) {
     // the memory's cost to the destination, computed when a temporary
     // destination is to be chosen, at most once a cycle
+    if (m_field.map.cells.empty())
+        throw std::logic_error(
+            "adaptive speed pipeline: decide() without a field (call "
+            "update() first; takeField() took the last one)");
     bool costReady = false;
     TTargetHints hints;
     hints.previous = previousTarget;

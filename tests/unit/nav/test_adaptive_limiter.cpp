@@ -180,14 +180,15 @@ TEST(AdaptiveLimiter,
 
 TEST(AdaptiveLimiter,
      ACycleOnEveryOtherSensingMeasuresTwiceTheCycleAndActsOneCycleLater) {
-    // The default schedule (cycle_decimation = 2) against a limiter with a
+    // A cycle on every other sensing (cycle_decimation = 2) against a limiter with a
     // cycle on every call that is given only every other sensing: the same
     // cycles (the same scans, T = 0.4 s measured), each decision taken one
     // cycle later (when the next cycle starts) and held for two calls; the
     // first cycle is waited for.
     auto w = syntheticWorld(corridor(), 1.5);
-    const auto every2nd = standAndLook(makeLimiter("[CAdaptiveSpeedLimiter]\n"), w,
-                                       TPose2D(2, 0, 0), TPoint2D(15, 0), 24);
+    const auto every2nd =
+        standAndLook(makeLimiter("[CAdaptiveSpeedLimiter]\ncycle_decimation = 2\n"), w,
+                     TPose2D(2, 0, 0), TPoint2D(15, 0), 24);
     auto each = makeLimiter("[CAdaptiveSpeedLimiter]\ncycle_decimation = 1\n");
     w.reset(TPose2D(2, 0, 0), 3);
     common::TRobotOptions robot;
@@ -230,7 +231,7 @@ TEST(AdaptiveLimiter, ADecimatedSecondSensorIsKeptUntilACycleTakesIt) {
     // by both sensors (held at 0, then creeping at 0.2 m/s).
     auto w = syntheticWorld(corridor(), 1.5);
     w.range2.options.frame_decimation = 2;
-    auto l = makeLimiter("[CAdaptiveSpeedLimiter]\n");
+    auto l = makeLimiter("[CAdaptiveSpeedLimiter]\ncycle_decimation = 2\n");
     const TPose2D pose(2, 0, 0);
     w.reset(pose, 3);
     (void)w.sense();  // RANGE2 now on the limiter's odd sensings
@@ -392,7 +393,7 @@ TEST(AdaptiveLimiter, AnObservedCycleIsTheCycleLimitWouldRunOnWorkerOrCallerThre
     // the cycles observed without a limit() mapped: more of RANGE2's 1.5 m
     // is known free (N = 5) than after the called limiter's three cycles
     auto freeCells = [](const common::CSpeedLimiter::Ptr& l) {
-        const auto& cells = asAdaptive(l).pipeline()->field().map.cells;
+        const auto& cells = asAdaptive(l).pipeline()->fused().cells;
         return std::count(cells.begin(), cells.end(), mapping::TFusedCell::Free);
     };
     EXPECT_EQ(freeCells(worker), freeCells(caller));
@@ -447,4 +448,48 @@ TEST(AdaptiveLimiter, BadOrMissingKeysAreClearErrorsNamingSectionAndKey) {
     auto again = makeLimiter(saved.getContent());
     EXPECT_EQ(asAdaptive(again).options.speed.speeds, asAdaptive(l).options.speed.speeds);
     EXPECT_EQ(asAdaptive(again).options.memory_size, asAdaptive(l).options.memory_size);
+}
+
+TEST(AdaptiveLimiter, ANewTargetIsPlannedToAtItsOwnSensingAlsoBetweenCycles) {
+    // cycle_decimation = 2, the target changed on a sensing between two
+    // cycles (a waypoint reached): that sensing runs a cycle and its decision
+    // is the one in use by the end of the step, taken by limit() or, when the
+    // engine calls none, by finishObserved(). Kept to the old target's
+    // decision (the count's next cycle), the limit and the guide point would
+    // lead towards the waypoint already reached.
+    for (const bool callsLimit : {true, false}) {
+        auto w = syntheticWorld(corridor(), 1.5);
+        auto l = makeLimiter("[CAdaptiveSpeedLimiter]\ncycle_decimation = 2\n");
+        auto& a = asAdaptive(l);
+        const TPose2D pose(2, 0, 0);
+        w.reset(pose, 3);
+        common::TRobotOptions robot;
+        const TPoint2D far(15, 0), near(2.6, 0);  // near: in the free space seen
+        for (int k = 0; k < 15; k++) {
+            const auto scans = w.sense();
+            common::TSpeedLimitInput in;
+            in.robot = &robot;
+            in.pose = pose;
+            in.desiredSpeed = 1.1;
+            in.scan = scans.laser.get();
+            in.scan2 = scans.range2.get();
+            in.target = k < 13 ? far : near;  // sensing 13: not a cycle's by the count
+            in.time = 100.0 + 0.2 * k;
+            if (k < 13 || callsLimit) {
+                (void)l->limit(in);
+            } else {
+                l->observe(in);
+                l->finishObserved();
+            }
+            ASSERT_TRUE(a.lastDecision()) << k;
+            const auto& d = *a.lastDecision();
+            if (k < 13) {
+                EXPECT_TRUE(d.temporaryTarget) << k;  // far is beyond the map
+            } else {
+                EXPECT_FALSE(d.temporaryTarget) << k << " limit() " << callsLimit;
+                EXPECT_NEAR(d.target.x, near.x, 1e-9) << k << " limit() " << callsLimit;
+            }
+            w.step(0, 0, 0.2);
+        }
+    }
 }

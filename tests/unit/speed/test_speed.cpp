@@ -1,6 +1,7 @@
 // M1 speed control (Miura et al. 2006, sections 3-5).
 #include <risknav/mapping/CFreeSpaceMemory.h>
 #include <risknav/speed/CAdaptiveSpeedController.h>
+#include <risknav/speed/CAdaptiveSpeedPipeline.h>
 #include <risknav/speed/CExplorer.h>
 #include <risknav/speed/speed_rules.h>
 
@@ -529,4 +530,26 @@ TEST(StoppingRule, APostBesideTheRobotDoesNotStopItAPointAheadDoes) {
     EXPECT_FALSE(pathBlocked(path, {{0.1, 0.2}}, 0.35, robot, 0.1, 0.0, 0.06));
     // behind the robot: never
     EXPECT_FALSE(pathBlocked(path, {{-0.2, 0.0}}, 0.35, robot, 0.1, 0.0));
+}
+
+TEST(AdaptiveSpeedPipeline, TakeFieldMovesTheCycleFieldOutAndDecideThenRefuses) {
+    CAdaptiveSpeedPipeline::TParams p;
+    p.laserModel.p_obs_given_obstacle = 0.7;
+    p.laserModel.p_obs_given_free = 0.3;
+    p.useRange2 = false;
+    p.memorySize = 0;
+    const mrpt::math::TPose2D ego(1.0, 2.0, 0.3);
+    CAdaptiveSpeedPipeline pipe(p, ego);
+    pipe.update(ego, nullptr, ego, nullptr, ego);
+    const TPlanningField copy = pipe.field();
+    ASSERT_EQ(copy.map.cells.size(), 200u * 200u);
+    EXPECT_NO_THROW(pipe.decide(ego, {3.0, 2.0}, -1, std::nullopt));
+    const TPlanningField taken = pipe.takeField();
+    EXPECT_EQ(taken.map.cells, copy.map.cells);
+    EXPECT_EQ(taken.clearance, copy.clearance);
+    EXPECT_EQ(taken.wayOnDist, copy.wayOnDist);
+    EXPECT_TRUE(pipe.field().map.cells.empty());
+    EXPECT_THROW(pipe.decide(ego, {3.0, 2.0}, -1, std::nullopt), std::logic_error);
+    pipe.update(ego, nullptr, ego, nullptr, ego);  // the next cycle has its own
+    EXPECT_EQ(pipe.field().clearance, copy.clearance);
 }

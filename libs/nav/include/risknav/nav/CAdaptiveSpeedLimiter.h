@@ -54,7 +54,7 @@ namespace risknav::nav {
  *
  * The cycle's schedule (beyond the paper, which plans once per sensing
  * cycle of ~0.3 s; MRPT's engine senses every 0.2 s here): the map-and-plan
- * cycle runs on every cycle_decimation-th sensing (default 2: every 0.4 s),
+ * cycle runs on every cycle_decimation-th sensing (default 1: every one),
  * on the latest scan of each sensor since the cycle before, each taken at
  * the pose of its own sensing (a decimated RANGE2 is kept until a cycle
  * takes it). T, measured as above between the scans a cycle took, is then
@@ -72,7 +72,13 @@ namespace risknav::nav {
  *    robot, whose one cycle (~0.3 s) senses, plans and then holds its
  *    command for the next (a cycle's latency equals its period T, which
  *    the rule's T covers). The first cycle of a run is waited for (no
- *    limit is given without a decision).
+ *    limit is given without a decision), and so is the cycle of a sensing
+ *    whose target differs from the sensing before (a waypoint reached):
+ *    that sensing starts a cycle whatever the count (the next one is n
+ *    sensings later), so that no speed or guide point planned to the old
+ *    waypoint acts on the way to the new one (with decisions to the old
+ *    one for two more sensings, MRPT turned straight at the new waypoint
+ *    and stalled against a wall in 3 of 5 hall runs).
  * The same decisions on the worker and the caller's thread, and for a
  * caller that only calls limit() (each call is then a sensing). A cycle
  * runs on every cycle's sensing, also one in which the engine then
@@ -108,8 +114,11 @@ namespace risknav::nav {
  *   worker_thread        [bool] true  run the observed cycle on a worker
  *                                     thread beside the engine; false: on
  *                                     the navigator's (the same decisions)
- *   cycle_decimation     [-]    2     the cycle runs on every n-th sensing
- *                                     (1..100; see above)
+ *   cycle_decimation     [-]    1     the cycle runs on every n-th sensing
+ *                                     (1..100; see above: 2 halves the
+ *                                     cycle's CPU a step, but maps half the
+ *                                     scans: M1 stalled or crawled in 3 of
+ *                                     5 hall runs)
  * A named model section that does not exist is an error. */
 class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
     DEFINE_MRPT_OBJECT(CAdaptiveSpeedLimiter, risknav::nav)
@@ -131,7 +140,7 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
         double memory_size = 50.0;           ///< [m], 0 = none
         double memory_resolution = 0.25;     ///< [m]
         bool worker_thread = true;           ///< observed cycles beside the engine
-        int cycle_decimation = 2;            ///< a cycle every n-th sensing
+        int cycle_decimation = 1;            ///< a cycle every n-th sensing
         std::string section = "CAdaptiveSpeedLimiter";
 
         TOptions();
@@ -171,17 +180,19 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
     double lastCycleTime() const { return m_adopted.T; }
     /** N of the configured models. */
     int necessaryObservations() const;
-    /** The pipeline (map, field) after the last cycle that started (waits
-     * for it; with cycle_decimation >= 2 it may be a cycle ahead of
-     * lastDecision()); null before the first. */
+    /** The pipeline (grids, fused map) after the last cycle that started
+     * (waits for it; with cycle_decimation >= 2 it may be a cycle ahead of
+     * lastDecision()); null before the first. Its planning field is not
+     * there: each cycle moves it out, beside its decision. */
     const speed::CAdaptiveSpeedPipeline* pipeline() const {
         waitCycle();
         return m_pipeline.get();
     }
-    /** With cycle_decimation = 1, waits for the cycle observe() started
-     * (and takes its decision): none outlives the navigator's cycle. With
-     * n >= 2 a cycle runs on across the navigator's cycles until the next
-     * one starts (which waits for it and rethrows its error). */
+    /** With cycle_decimation = 1, and for a new target's cycle, waits for
+     * the cycle observe() started (and takes its decision): none outlives
+     * the navigator's cycle. Otherwise (n >= 2) a cycle runs on across the
+     * navigator's cycles until the next one starts (which waits for it and
+     * rethrows its error). */
     void finishObserved() const override;
 
   protected:
@@ -240,6 +251,8 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
     mutable bool m_inFlight = false;  ///< a cycle started, its result not taken
     mutable size_t m_sensings = 0;    ///< since the run began
     mutable std::optional<double> m_lastSensing;
+    mutable std::optional<mrpt::math::TPoint2D> m_lastTarget;  ///< of that sensing
+    mutable bool m_retargeted = false;  ///< the cycle in flight is a new target's
     mutable double m_radius = 0;
     mutable std::optional<TKeptScan> m_keptLaser, m_keptRange2;  ///< since the last cycle
     /** Time of the sensing observe() saw that no limit() has used yet. */

@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <optional>
+#include <utility>
 
 namespace risknav::speed {
 /** Marks the undecided cells under a robot disc at p as free (obstacle
@@ -105,6 +106,13 @@ class CAdaptiveSpeedPipeline {
     const mapping::CLocalProbGrid& range2Grid() const { return m_range2; }
     const mapping::TFreeSpaceMap& fused() const { return m_fused; }
     const TPlanningField& field() const { return m_field; }
+    /** Moves this cycle's field out, for a caller that keeps it (no copy):
+     * field() is empty, and decide() refuses, until the next update(). */
+    TPlanningField takeField() {
+        TPlanningField f = std::move(m_field);
+        m_field = TPlanningField{};
+        return f;
+    }
 
   private:
     TParams m_p;
