@@ -88,6 +88,23 @@ common::CSpeedLimiter::Ptr makeLimiter(const std::string& text) {
 }
 
 /** The limits of `cycles` calls, the robot still at `pose`, target `goal`. */
+/** A limiter's input at the robot's pose: both scans, sensing k's time. */
+common::TSpeedLimitInput sensingInput(const common::TRobotOptions& robot,
+                                      const TPose2D& pose,
+                                      const sim::CSimWorld::TScans& scans,
+                                      const TPoint2D& target, int k,
+                                      double desired = 1.1) {
+    common::TSpeedLimitInput in;
+    in.robot = &robot;
+    in.pose = pose;
+    in.desiredSpeed = desired;
+    in.scan = scans.laser.get();
+    in.scan2 = scans.range2.get();
+    in.target = target;
+    in.time = 100.0 + 0.2 * k;
+    return in;
+}
+
 std::vector<common::TSpeedLimit> standAndLook(const common::CSpeedLimiter::Ptr& l,
                                               sim::CSimWorld& w, const TPose2D& pose,
                                               const TPoint2D& goal, int cycles,
@@ -97,15 +114,7 @@ std::vector<common::TSpeedLimit> standAndLook(const common::CSpeedLimiter::Ptr& 
     std::vector<common::TSpeedLimit> out;
     for (int k = 0; k < cycles; k++) {
         const auto scans = w.sense();
-        common::TSpeedLimitInput in;
-        in.robot = &robot;
-        in.pose = pose;
-        in.desiredSpeed = desired;
-        in.scan = scans.laser.get();
-        in.scan2 = scans.range2.get();
-        in.target = goal;
-        in.time = 100.0 + 0.2 * k;
-        out.push_back(l->limit(in));
+        out.push_back(l->limit(sensingInput(robot, pose, scans, goal, k, desired)));
         w.step(0, 0, 0.2);
     }
     return out;
@@ -240,16 +249,9 @@ TEST(AdaptiveLimiter, ADecimatedSecondSensorIsKeptUntilACycleTakesIt) {
     int withRange2 = 0;
     for (int k = 0; k < 24; k++) {
         const auto scans = w.sense();
-        common::TSpeedLimitInput in;
-        in.robot = &robot;
-        in.pose = pose;
-        in.desiredSpeed = 1.1;
-        in.scan = scans.laser.get();
-        in.scan2 = scans.range2.get();
+        const auto in = sensingInput(robot, pose, scans, TPoint2D(15, 0), k);
         withRange2 += (k % 2 == 1 && in.scan2) ? 1 : 0;
         EXPECT_EQ(in.scan2 != nullptr, k % 2 == 1) << k;
-        in.target = TPoint2D(15, 0);
-        in.time = 100.0 + 0.2 * k;
         last = l->limit(in);
         w.step(0, 0, 0.2);
     }
@@ -467,14 +469,8 @@ TEST(AdaptiveLimiter, ANewTargetIsPlannedToAtItsOwnSensingAlsoBetweenCycles) {
         const TPoint2D far(15, 0), near(2.6, 0);  // near: in the free space seen
         for (int k = 0; k < 15; k++) {
             const auto scans = w.sense();
-            common::TSpeedLimitInput in;
-            in.robot = &robot;
-            in.pose = pose;
-            in.desiredSpeed = 1.1;
-            in.scan = scans.laser.get();
-            in.scan2 = scans.range2.get();
-            in.target = k < 13 ? far : near;  // sensing 13: not a cycle's by the count
-            in.time = 100.0 + 0.2 * k;
+            // sensing 13: not a cycle's by the count
+            const auto in = sensingInput(robot, pose, scans, k < 13 ? far : near, k);
             if (k < 13 || callsLimit) {
                 (void)l->limit(in);
             } else {
