@@ -623,11 +623,8 @@ TEST(NavigateE2E, AStuckRobotIsTurnedToItsTargetAndGoesOn) {
     // the unstick turn (unstick_time 5 s) it completes.
     // Without the guide (guide_lookahead = 0): with it, MRPT is aimed round
     // that turn and the robot does not get stuck there.
-    // With a cycle on every sensing (cycle_decimation = 1, the run this was
-    // found on; the default's other schedule does not stop there).
     const json s = navRun(sourcePath("datasets/office/navigate_m1.ini"), freshDir("m1s9"),
-                          "--seed 9 --set CRiskAwareReactiveNav.guide_lookahead=0 --set "
-                          "CAdaptiveSpeedLimiter.cycle_decimation=1");
+                          "--seed 9 --set CRiskAwareReactiveNav.guide_lookahead=0");
     EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
     EXPECT_EQ(s["waypoints_reached"], 4);
     EXPECT_EQ(s["collisions"], 0);
@@ -749,14 +746,12 @@ TEST(NavigateE2E, UnstickTurnsToOneTargetAreCappedSoMrptsErrorShows) {
     // second destination behind it. Turning it to that target for ever hid
     // MRPT's verdict and ran to the end; after 3 turns MRPT is left to give it
     // (with its shipped 30 s alarm: at the config's 60 s our stall check,
-    // 30 s on one spot, ends the run first). A cycle on every sensing, as
-    // in AStuckRobotIsTurnedToItsTargetAndGoesOn.
+    // 30 s on one spot, ends the run first).
     const std::string out = freshDir("out");
     const json s =
         navRun(roomsM1Config(freshDir("w")), out,
                "--seed 5 --set CRiskAwareReactiveNav.guide_lookahead=0 --set "
-               "CAbstractNavigator.alarm_seems_not_approaching_target_timeout=30 --set "
-               "CAdaptiveSpeedLimiter.cycle_decimation=1");
+               "CAbstractNavigator.alarm_seems_not_approaching_target_timeout=30");
     EXPECT_EQ(s["status"], "navigation_error") << s["navigation_error"];
     EXPECT_EQ(s["waypoints_reached"], 1);
     const auto lines = readLines(out + "/cycles.csv");

@@ -275,13 +275,10 @@ void CAdaptiveSpeedLimiter::sense(const TSpeedLimitInput& in) const {
         return;
     // a cycle's sensing: the cycle before ends (normally long since) and,
     // unless taken already, its decision is taken now
-    waitCycle();
-    if (m_inFlight)
-        adopt();
+    takeCycle();
     m_retargeted = retarget;
     m_cycleIn.pose = in.pose;
     m_cycleIn.target = in.target;
-    m_cycleIn.time = in.time;
     m_cycleIn.radius = m_radius;
     m_cycleIn.laser = std::move(m_keptLaser);
     m_cycleIn.range2 = std::move(m_keptRange2);
@@ -356,6 +353,12 @@ void CAdaptiveSpeedLimiter::waitCycle() const {
     }
 }
 
+void CAdaptiveSpeedLimiter::takeCycle() const {
+    waitCycle();
+    if (m_inFlight)
+        adopt();
+}
+
 void CAdaptiveSpeedLimiter::adopt() const {
     std::swap(m_adopted, m_result);
     m_adopted.valid = true;
@@ -371,11 +374,8 @@ void CAdaptiveSpeedLimiter::impl_observe(const TSpeedLimitInput& in) const {
 void CAdaptiveSpeedLimiter::finishObserved() const {
     // a new target's cycle is taken by the end of its step also when the
     // engine called no limit(): the next step's turn and guide point use it
-    if (options.cycle_decimation != 1 && !m_retargeted)
-        return;
-    waitCycle();
-    if (m_inFlight)
-        adopt();
+    if (options.cycle_decimation == 1 || m_retargeted)
+        takeCycle();
 }
 
 TSpeedLimit CAdaptiveSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const {
@@ -386,11 +386,8 @@ TSpeedLimit CAdaptiveSpeedLimiter::impl_limit(const TSpeedLimitInput& in) const 
     m_observed.reset();
     // the cycle's decision now: always with cycle_decimation = 1, for the
     // first cycle of a run and for a new target's
-    if (m_inFlight &&
-        (options.cycle_decimation == 1 || !m_adopted.valid || m_retargeted)) {
-        waitCycle();
-        adopt();
-    }
+    if (options.cycle_decimation == 1 || !m_adopted.valid || m_retargeted)
+        takeCycle();
     if (!m_adopted.decision)
         return {in.desiredSpeed, ""};
     const speed::TSpeedDecision& d = *m_adopted.decision;

@@ -76,9 +76,10 @@ namespace risknav::nav {
  *    whose target differs from the sensing before (a waypoint reached):
  *    that sensing starts a cycle whatever the count (the next one is n
  *    sensings later), so that no speed or guide point planned to the old
- *    waypoint acts on the way to the new one (with decisions to the old
- *    one for two more sensings, MRPT turned straight at the new waypoint
- *    and stalled against a wall in 3 of 5 hall runs).
+ *    waypoint acts on the way to the new one (with n = 2 and decisions to
+ *    the old one for two more sensings, 3 of 5 M1 hall runs stalled; with
+ *    this rule all 5 reached their goal, though two slowly: see
+ *    cycle_decimation below).
  * The same decisions on the worker and the caller's thread, and for a
  * caller that only calls limit() (each call is then a sensing). A cycle
  * runs on every cycle's sensing, also one in which the engine then
@@ -211,7 +212,7 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
     struct TCycleInput {
         mrpt::math::TPose2D pose;
         std::optional<mrpt::math::TPoint2D> target;
-        double time = 0, radius = 0;
+        double radius = 0;
         std::optional<TKeptScan> laser, range2;
     };
     /** What one cycle decided, and the field it planned on (guidePoint). */
@@ -233,6 +234,7 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
     void runCycle() const;
     void waitCycle() const;  ///< the cycle in flight ends (rethrows its error)
     void adopt() const;      ///< m_result becomes the decision limit() uses
+    void takeCycle() const;  ///< the cycle in flight, if any, ends and is adopted
     speed::CAdaptiveSpeedPipeline::TParams params(double radius, double T) const;
     double cycleTime() const;
     void resetState() const;  ///< the mutable state only
