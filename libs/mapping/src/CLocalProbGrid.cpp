@@ -210,6 +210,10 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
             const double ny = ya > 0 ? ya : (yb < 0 ? yb : 0.0);
             const double rMin2 = nx * nx + ny * ny;
             double tileReach = maxReach;
+            // the nearest free bound of the tile's candidate rays (+inf: not
+            // known, or some candidate is no ray): a tile nearer than it is
+            // read free in every cell, whichever ray the cell falls in
+            double tileFree = -1;
             if (rMin2 > 0) {
                 // the sensor is outside the tile: its bearings span < pi
                 double bLo = 1e9, bHi = -1e9;
@@ -224,16 +228,47 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
                     const long kLo = long(std::floor((bLo + 0.5 * aperture) / step)) - 1;
                     const long kHi = long(std::ceil((bHi + 0.5 * aperture) / step)) + 1;
                     tileReach = -1;  // then at most maxReach (<= reach)
-                    for (long k = kLo; k <= kHi; k++)
-                        if (const long ray = validRay(k); ray >= 0)
-                            tileReach = std::max(
-                                tileReach, std::min(maxReach, m_rayOcc[size_t(ray)]));
+                    tileFree = std::numeric_limits<double>::infinity();
+                    for (long k = kLo; k <= kHi; k++) {
+                        const long ray = validRay(k);
+                        if (ray < 0) {
+                            tileFree = -1;
+                            continue;
+                        }
+                        tileReach = std::max(tileReach,
+                                             std::min(maxReach, m_rayOcc[size_t(ray)]));
+                        if (tileFree >= 0)
+                            tileFree = std::min(tileFree, double(m_rayFree[size_t(ray)]));
+                    }
                     if (tileReach < 0)
                         continue;  // no ray's sector reaches the tile
                 }                  // else across the bearings' wrap: all rays
             }
             if (rMin2 > tileReach * tileReach)
                 continue;
+            // A speed-up giving the same readings: the whole tile nearer than
+            // every candidate ray's free bound (the farthest cell centre's r,
+            // computed as below, is the largest: dx, dy are monotone in i, j)
+            // reads free in every cell without finding its ray. Each of its
+            // cells falls in a candidate ray, all of them rays, so none lies
+            // behind the sensor either.
+            // (and within the tile's reach, beyond which a cell is skipped)
+            if (tileFree > 0) {
+                const double fx = std::max(xa * xa, xb * xb),
+                             fy = std::max(ya * ya, yb * yb);
+                if (std::sqrt(fx + fy) < tileFree && fx + fy <= tileReach * tileReach) {
+                    for (int j = tj; j <= tjEnd; j++)
+                        for (int i = ti; i <= tiEnd; i++) {
+                            const size_t idx = index(i, j);
+                            m_p[idx] =
+                                float(std::clamp(bayesUpdate(m_p[idx], false, m),
+                                                 kProbabilityMin, 1.0 - kProbabilityMin));
+                            if (m_count[idx] < 65535)
+                                m_count[idx]++;
+                        }
+                    continue;
+                }
+            }
             const double tileReach2 = tileReach * tileReach;
             for (int j = tj; j <= tjEnd; j++) {
                 const double dy = idx2y(j) - sy;

@@ -343,6 +343,24 @@ TEST(LocalProbGrid, TiledScanEqualsThePlainSectorModel) {
         }
     }
     EXPECT_GT(updatedCells, 50000);  // the scans did read many cells
+    // Every ray a valid return beyond maxRange (R - delta > maxRange +
+    // delta(maxRange)): cells beyond that reach get no reading, also where
+    // whole tiles lie nearer than every ray's free bound.
+    for (int trial = 0; trial < 4; trial++) {
+        const auto scan = alternatingScan(181, trial < 2 ? M_PI : 2 * M_PI, 2.0f,
+                                          trial % 2 == 0, 3.5f, 3.6f);
+        CLocalProbGrid g(160, 0.05, 0, 0);
+        const mrpt::math::TPose2D robot(0.013, -0.021, 0.3 * trial);
+        std::vector<float> p(g.probabilities());
+        std::vector<uint16_t> count(g.counts());
+        bruteForceScan(p, count, g, robot, scan, m);
+        g.integrateScan(robot, scan, m);
+        for (size_t k = 0; k < p.size(); k++) {
+            ASSERT_EQ(g.counts()[k], count[k])
+                << "beyond trial " << trial << " cell " << k;
+            ASSERT_EQ(g.probabilities()[k], p[k]) << "beyond trial " << trial;
+        }
+    }
     // Cells a hair off a sector boundary (the scan turned so that the
     // boundary between its two rays passes 1e-10-3e-8 rad from a cell's
     // bearing, either side): the fast first guess of the ray can land on the
