@@ -22,6 +22,20 @@
 // navigator built this cycle (its pose, obstacles, scans, target, time),
 // timed by hand (UseManualTime()); the navigator's step runs untimed.
 //
+// The same states (counters bare_same_states_us, ratio_same_states): each
+// step of the risk-aware navigator is paired with a step, just before it,
+// of a bare MRPT navigator (the same config and route) on a twin world kept
+// in lockstep: stepped with the risk-aware navigator's commands (the twin's
+// own are dropped), sensed once a step like it, so the same pose, speeds,
+// time and scans (noise included); a twin found out of step is copied from
+// the world (pair_resyncs). So both engines are timed at the very states
+// of one trajectory, alternately, in one run; the independent bare run
+// above drives its own (faster) trajectory, meeting fewer obstacles per
+// step. The twin's step is timed by hand (steady_clock) outside the
+// benchmark's timing, after the adaptive limiter's worker is idle (a cycle
+// of n >= 2 runs on across steps). pair_restarts: times the twin was not
+// navigating and was given the leg again.
+//
 // Counters: legs = route legs completed, resets = the world reset after a
 // navigation error or a leg over 300 s (0 expected), lim_<name> = share of
 // commanded cycles that limiter limited. RISKNAV_BENCH_NAV_CONFIG (ini text)
@@ -154,6 +168,15 @@ std::string navConfig(const std::string& limiters) {
     return ss.str();
 }
 
+// The twin's robot interface: the world it senses is driven by another
+// navigator's commands, so its own are dropped.
+class CDroppedCommands : public sim::CSimRobotInterface {
+  public:
+    using sim::CSimRobotInterface::CSimRobotInterface;
+    bool changeSpeeds(const mrpt::kinematics::CVehicleVelCmd&) override { return true; }
+    bool stop(bool) override { return true; }
+};
+
 // The risk-aware navigator, with what its generate_vel_cmd() gives its
 // limiters readable from outside (for BM_LimiterCall).
 class CProbeNav : public nav::CRiskAwareReactiveNav {
@@ -178,34 +201,58 @@ struct TNavBench {
     int legCycles = 0;
     long legs = 0, resets = 0, cycles = 0, commanded = 0;
     std::map<std::string, long> wins;  // limiter -> cycles it limited
+    /** The bare twin of a risk-aware navigator (see the header). */
+    struct TTwin {
+        sim::CSimWorld world;  // in lockstep with the risk-aware navigator's
+        std::unique_ptr<sim::CSimRobotInterface> robotIf;
+        std::unique_ptr<mrpt::nav::CReactiveNavigationSystem> nav;
+        double seconds = 0;
+        long steps = 0, restarts = 0, resyncs = 0;
+    };
+    std::unique_ptr<TTwin> twin;
     /** BM_LimiterCall's separate limiter instances (fed every commanded cycle). */
     std::vector<std::pair<std::string, common::CSpeedLimiter::Ptr>> probes;
 
-    // limiters: nullptr = the bare MRPT engine.
-    explicit TNavBench(const char* limiters) {
-        officeWorld(world);
-        world.reset(kStart, 11, clockBase);
-        robotIf = std::make_unique<sim::CSimRobotInterface>(world);
-        robotIf->setMinLoggingLevel(mrpt::system::LVL_ERROR);
+    // MRPT's navigator on `robot`, configured as the benchmark's (limiters:
+    // nullptr = the bare MRPT engine).
+    std::unique_ptr<mrpt::nav::CReactiveNavigationSystem> makeNav(
+        sim::CSimRobotInterface& robot, const char* limiters) {
+        std::unique_ptr<mrpt::nav::CReactiveNavigationSystem> n;
         if (limiters) {
-            auto n = std::make_unique<CProbeNav>(*robotIf);
-            risk = n.get();
-            nav = std::move(n);
+            auto r = std::make_unique<CProbeNav>(robot);
+            risk = r.get();
+            n = std::move(r);
         } else {
-            nav = std::make_unique<mrpt::nav::CReactiveNavigationSystem>(*robotIf);
+            n = std::make_unique<mrpt::nav::CReactiveNavigationSystem>(robot);
         }
-        nav->setMinLoggingLevel(mrpt::system::LVL_ERROR);
-        const_cast<mrpt::system::CTimeLogger&>(nav->getDelaysTimeLogger()).disable();
+        n->setMinLoggingLevel(mrpt::system::LVL_ERROR);
+        const_cast<mrpt::system::CTimeLogger&>(n->getDelaysTimeLogger()).disable();
         mrpt::config::CConfigFileMemory cfg(navConfig(limiters ? limiters : ""));
-        nav->loadConfigFile(cfg);
-        nav->params_abstract_ptg_navigator.ptg_cache_files_directory =
+        n->loadConfigFile(cfg);
+        n->params_abstract_ptg_navigator.ptg_cache_files_directory =
             scratch().dir + "/ptg";
         mrpt::math::CPolygon shape;
         for (int i = 0; i < 16; i++)
             shape.AddVertex(world.robot.radius * std::cos(i * M_PI / 8),
                             world.robot.radius * std::sin(i * M_PI / 8));
-        nav->changeRobotShape(shape);
-        nav->initialize();
+        n->changeRobotShape(shape);
+        n->initialize();
+        return n;
+    }
+
+    explicit TNavBench(const char* limiters) {
+        officeWorld(world);
+        world.reset(kStart, 11, clockBase);
+        robotIf = std::make_unique<sim::CSimRobotInterface>(world);
+        robotIf->setMinLoggingLevel(mrpt::system::LVL_ERROR);
+        nav = makeNav(*robotIf, limiters);
+        if (limiters) {
+            twin = std::make_unique<TTwin>();
+            twin->world = world;
+            twin->robotIf = std::make_unique<CDroppedCommands>(twin->world);
+            twin->robotIf->setMinLoggingLevel(mrpt::system::LVL_ERROR);
+            twin->nav = makeNav(*twin->robotIf, nullptr);
+        }
         startLeg();
         for (int i = 0; i < 10; i++) {  // warm up (first cycles, caches)
             step();
@@ -213,6 +260,8 @@ struct TNavBench {
         }
         legs = resets = cycles = commanded = 0;
         wins.clear();
+        if (twin)
+            twin->seconds = 0, twin->steps = twin->restarts = twin->resyncs = 0;
     }
 
     void syncClock() const { mrpt::Clock::setSimulatedTime(world.timestamp()); }
@@ -229,7 +278,36 @@ struct TNavBench {
         }
         syncClock();
         nav->navigateWaypoints(wps);
+        if (twin)
+            twin->nav->navigateWaypoints(wps);
+        m_wps = wps;
         legCycles = 0;
+    }
+    mrpt::nav::TWaypointSequence m_wps;  ///< the leg's
+
+    // Untimed: the bare twin's step at the state the next step() will see.
+    void twinStep() {
+        for (const auto& l : risk->limiters())
+            if (auto* a = dynamic_cast<nav::CAdaptiveSpeedLimiter*>(l.get()))
+                (void)a->pipeline();  // waits for a cycle in flight
+        const TPose2D p = world.truePose(), q = twin->world.truePose();
+        if (p.x != q.x || p.y != q.y || p.phi != q.phi ||
+            world.time() != twin->world.time() || world.speed() != twin->world.speed()) {
+            twin->world = world;
+            twin->resyncs++;
+        }
+        syncClock();
+        if (twin->nav->getCurrentState() != mrpt::nav::CAbstractNavigator::NAVIGATING) {
+            twin->nav->cancel();
+            twin->nav->navigationStep();
+            twin->nav->navigateWaypoints(m_wps);
+            twin->restarts++;
+        }
+        const auto t0 = std::chrono::steady_clock::now();
+        twin->nav->navigationStep();
+        twin->seconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        twin->steps++;
     }
 
     void resetWorld() {
@@ -241,8 +319,14 @@ struct TNavBench {
         nav->cancel();
         syncClock();
         nav->navigationStep();
+        if (twin) {
+            twin->nav->cancel();
+            twin->nav->navigationStep();
+        }
         clockBase += world.time() + 10;
         world.reset(kStart, 11 + uint64_t(resets), clockBase);
+        if (twin)
+            twin->world = world;
         forward = true;
         resets++;
         if (risk) {
@@ -283,6 +367,11 @@ struct TNavBench {
         }
         for (int k = 0; k < kStepsPerCycle; k++)
             world.step(kSimDt);
+        if (twin) {  // the risk-aware navigator's command, not the twin's
+            twin->world.command(world.commandedSpeed(), world.commandedTurnRate());
+            for (int k = 0; k < kStepsPerCycle; k++)
+                twin->world.step(kSimDt);
+        }
     }
 
     void report(benchmark::State& state) const {
@@ -323,10 +412,20 @@ void runSteps(benchmark::State& state, TNavBench& f) {
     // this run's counts (the fixture goes on across runs)
     f.legs = f.resets = f.commanded = 0;
     f.wins.clear();
-    double cpu = 0;
+    if (f.twin)
+        f.twin->seconds = 0, f.twin->steps = f.twin->restarts = 0;
+    double cpu = 0, wall = 0;
     for (auto _ : state) {
+        if (f.twin) {
+            state.PauseTiming();
+            f.twinStep();
+            state.ResumeTiming();
+        }
         const double c0 = processCpuSeconds();
+        const auto t0 = std::chrono::steady_clock::now();
         f.step();
+        wall +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         cpu += processCpuSeconds() - c0;
         state.PauseTiming();
         f.after();
@@ -334,6 +433,13 @@ void runSteps(benchmark::State& state, TNavBench& f) {
     }
     f.report(state);
     state.counters["cpu_us_all_threads"] = 1e6 * cpu / double(state.iterations());
+    if (f.twin && f.twin->steps > 0) {
+        const double bare = f.twin->seconds / double(f.twin->steps);
+        state.counters["bare_same_states_us"] = 1e6 * bare;
+        state.counters["ratio_same_states"] = wall / double(state.iterations()) / bare;
+        state.counters["pair_restarts"] = double(f.twin->restarts);
+        state.counters["pair_resyncs"] = double(f.twin->resyncs);
+    }
 }
 
 void BM_BareEngineStep(benchmark::State& state) {

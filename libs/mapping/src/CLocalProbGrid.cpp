@@ -196,6 +196,7 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
     // without its atan2 (most cells lie behind walls). A speed-up only: each
     // cell still gets its own ray as above.
     constexpr int kTile = 8;
+    const bool fastCorners = kFastAtan2MaxError < 0.1 * step;
     const double maxReach =
         std::min(reach, *std::max_element(m_rayOcc.begin(), m_rayOcc.end()));
     long rowGuess[kTile];  // per row of a band of tiles: the ray of the cell before
@@ -219,8 +220,11 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
                 double bLo = 1e9, bHi = -1e9;
                 for (const double cx : {xa, xb})
                     for (const double cy : {ya, yb}) {
-                        const double b =
-                            sign * mrpt::math::wrapToPi(std::atan2(cy, cx) - syaw);
+                        // the fast atan2 where it errs far less than the
+                        // ray each side added below
+                        const double a =
+                            fastCorners ? fastAtan2(cy, cx) : std::atan2(cy, cx);
+                        const double b = sign * mrpt::math::wrapToPi(a - syaw);
                         bLo = std::min(bLo, b);
                         bHi = std::max(bHi, b);
                     }

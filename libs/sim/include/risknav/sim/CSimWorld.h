@@ -98,6 +98,8 @@ class CSimWorld {
     double speed() const { return m_v; }
     /** The commanded forward speed (after clamping to max_v). */
     double commandedSpeed() const { return m_vCmd; }
+    /** The commanded turn rate (after clamping to max_w). */
+    double commandedTurnRate() const { return m_wCmd; }
     double turnRate() const { return m_w; }
     /** Global-frame velocity of the robot (MRPT convention). */
     mrpt::math::TTwist2D velocity() const { return m_vehicle.getCurrentGTVel(); }
