@@ -35,8 +35,10 @@ bool staleTemporary(const fs::path& p) {
     return id != long(::getpid()) && !fs::exists("/proc/" + pid);
 }
 
-/** Files of the previous run listed in a manifest; names that could leave
- * the folder (absolute, "..", hidden) are ignored: the manifest is data. */
+/** Files of the previous run listed in a manifest; only plain names of
+ * files in the folder itself count (a run writes no others): a name with a
+ * '/' (absolute, "..", a subfolder, or through a symlinked one) or a hidden
+ * one is ignored: the manifest is data. */
 std::vector<std::string> manifestFiles(const fs::path& manifest) {
     std::vector<std::string> files;
     std::ifstream f(manifest);
@@ -45,8 +47,7 @@ std::vector<std::string> manifestFiles(const fs::path& manifest) {
         if (line.rfind("file ", 0) != 0)
             continue;
         const std::string name = line.substr(5);
-        if (name.empty() || name[0] == '.' || name[0] == '/' ||
-            name.find("/.") != std::string::npos)
+        if (name.empty() || name[0] == '.' || name.find('/') != std::string::npos)
             continue;
         files.push_back(name);
     }
@@ -154,7 +155,9 @@ void COutputDir::commit() {
             bool ours = false;
             for (const auto& s : m_staged)
                 ours = ours || s.second == fin;
-            if (!ours && fs::is_regular_file(fin, ec))
+            // the entry itself a regular file: a symlink (to a file
+            // anywhere) is not the run's
+            if (!ours && fs::is_regular_file(fs::symlink_status(fin, ec)))
                 dropped.push_back(fin);
         }
     }

@@ -244,4 +244,24 @@ TEST(COutputDir, ASecondRunReplacesTheWholeSetOfTheFirst) {
     EXPECT_TRUE(std::filesystem::exists(d + "/.x"));
     EXPECT_TRUE(std::filesystem::exists(outside));
     EXPECT_TRUE(std::filesystem::exists(d + "/zones.csv"));  // not in that manifest
+    // nor through a symlinked folder, a subfolder or a symlink to a file (an
+    // independent tester's forged manifest deleted a file elsewhere)
+    const std::string victims = freshDir("victims");
+    writeFile(victims + "/precious.txt", "precious");
+    writeFile(victims + "/linked.txt", "linked");
+    std::filesystem::create_directory_symlink(victims, d + "/link");
+    std::filesystem::create_symlink(victims + "/linked.txt", d + "/filelink");
+    std::filesystem::create_directory(d + "/sub");
+    writeFile(d + "/sub/keep.txt", "user's");
+    writeFile(d + "/.risknav-run",
+              "file link/precious.txt\nfile sub/keep.txt\nfile filelink\n");
+    {
+        COutputDir out(d);
+        out.writeText("summary.json", "fourth");
+        out.commit();
+    }
+    EXPECT_EQ(readFile(victims + "/precious.txt"), "precious");
+    EXPECT_EQ(readFile(victims + "/linked.txt"), "linked");
+    EXPECT_TRUE(std::filesystem::is_symlink(d + "/filelink"));
+    EXPECT_EQ(readFile(d + "/sub/keep.txt"), "user's");
 }
