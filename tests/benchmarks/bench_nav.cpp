@@ -208,6 +208,7 @@ struct TNavBench {
         std::unique_ptr<mrpt::nav::CReactiveNavigationSystem> nav;
         double seconds = 0;
         long steps = 0, restarts = 0, resyncs = 0;
+        void resetCounts() { seconds = 0, steps = restarts = resyncs = 0; }
     };
     std::unique_ptr<TTwin> twin;
     /** BM_LimiterCall's separate limiter instances (fed every commanded cycle). */
@@ -261,7 +262,7 @@ struct TNavBench {
         legs = resets = cycles = commanded = 0;
         wins.clear();
         if (twin)
-            twin->seconds = 0, twin->steps = twin->restarts = twin->resyncs = 0;
+            twin->resetCounts();
     }
 
     void syncClock() const { mrpt::Clock::setSimulatedTime(world.timestamp()); }
@@ -280,10 +281,10 @@ struct TNavBench {
         nav->navigateWaypoints(wps);
         if (twin)
             twin->nav->navigateWaypoints(wps);
-        m_wps = wps;
+        leg = wps;
         legCycles = 0;
     }
-    mrpt::nav::TWaypointSequence m_wps;  ///< the leg's
+    mrpt::nav::TWaypointSequence leg;  ///< the leg's waypoints
 
     // Untimed: the bare twin's step at the state the next step() will see.
     void twinStep() {
@@ -300,7 +301,7 @@ struct TNavBench {
         if (twin->nav->getCurrentState() != mrpt::nav::CAbstractNavigator::NAVIGATING) {
             twin->nav->cancel();
             twin->nav->navigationStep();
-            twin->nav->navigateWaypoints(m_wps);
+            twin->nav->navigateWaypoints(leg);
             twin->restarts++;
         }
         const auto t0 = std::chrono::steady_clock::now();
@@ -413,7 +414,7 @@ void runSteps(benchmark::State& state, TNavBench& f) {
     f.legs = f.resets = f.commanded = 0;
     f.wins.clear();
     if (f.twin)
-        f.twin->seconds = 0, f.twin->steps = f.twin->restarts = 0;
+        f.twin->resetCounts();
     double cpu = 0, wall = 0;
     for (auto _ : state) {
         if (f.twin) {

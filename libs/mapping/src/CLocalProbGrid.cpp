@@ -199,6 +199,14 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
     const bool fastCorners = kFastAtan2MaxError < 0.1 * step;
     const double maxReach =
         std::min(reach, *std::max_element(m_rayOcc.begin(), m_rayOcc.end()));
+    // one reading of cell (i, j): the Bayes update, its count
+    auto read = [&](int i, int j, bool occupied) {
+        const size_t idx = index(i, j);
+        m_p[idx] = float(std::clamp(bayesUpdate(m_p[idx], occupied, m), kProbabilityMin,
+                                    1.0 - kProbabilityMin));
+        if (m_count[idx] < 65535)
+            m_count[idx]++;
+    };
     long rowGuess[kTile];  // per row of a band of tiles: the ray of the cell before
     for (int tj = j0; tj <= j1; tj += kTile) {
         std::fill(std::begin(rowGuess), std::end(rowGuess), kNoGuess);
@@ -211,7 +219,7 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
             const double ny = ya > 0 ? ya : (yb < 0 ? yb : 0.0);
             const double rMin2 = nx * nx + ny * ny;
             double tileReach = maxReach;
-            // the nearest free bound of the tile's candidate rays (+inf: not
+            // the nearest free bound of the tile's candidate rays (-1: not
             // known, or some candidate is no ray): a tile nearer than it is
             // read free in every cell, whichever ray the cell falls in
             double tileFree = -1;
@@ -250,26 +258,20 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
             }
             if (rMin2 > tileReach * tileReach)
                 continue;
-            // A speed-up giving the same readings: the whole tile nearer than
-            // every candidate ray's free bound (the farthest cell centre's r,
-            // computed as below, is the largest: dx, dy are monotone in i, j)
-            // reads free in every cell without finding its ray. Each of its
-            // cells falls in a candidate ray, all of them rays, so none lies
-            // behind the sensor either.
-            // (and within the tile's reach, beyond which a cell is skipped)
+            // A speed-up giving the same readings: a tile nearer than every
+            // candidate ray's free bound, and within the tile's reach (beyond
+            // it a cell is skipped), reads free in every cell without finding
+            // its ray (the farthest cell centre's r, computed as below, is the
+            // largest: dx, dy are monotone in i, j). Each of its cells falls
+            // in a candidate ray, all of them rays, so none lies behind the
+            // sensor either.
             if (tileFree > 0) {
                 const double fx = std::max(xa * xa, xb * xb),
                              fy = std::max(ya * ya, yb * yb);
                 if (std::sqrt(fx + fy) < tileFree && fx + fy <= tileReach * tileReach) {
                     for (int j = tj; j <= tjEnd; j++)
-                        for (int i = ti; i <= tiEnd; i++) {
-                            const size_t idx = index(i, j);
-                            m_p[idx] =
-                                float(std::clamp(bayesUpdate(m_p[idx], false, m),
-                                                 kProbabilityMin, 1.0 - kProbabilityMin));
-                            if (m_count[idx] < 65535)
-                                m_count[idx]++;
-                        }
+                        for (int i = ti; i <= tiEnd; i++)
+                            read(i, j, false);
                     continue;
                 }
             }
@@ -303,11 +305,7 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
                     } else {
                         continue;
                     }
-                    const size_t idx = index(i, j);
-                    m_p[idx] = float(std::clamp(bayesUpdate(m_p[idx], occupied, m),
-                                                kProbabilityMin, 1.0 - kProbabilityMin));
-                    if (m_count[idx] < 65535)
-                        m_count[idx]++;
+                    read(i, j, occupied);
                 }
             }
         }
