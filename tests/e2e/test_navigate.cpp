@@ -375,6 +375,64 @@ INSTANTIATE_TEST_SUITE_P(
             "[CPointCloudFilterByDistance]\nmax_deletion_ratio = -1\n"
             "[CRiskAwareReactiveNav]",
             "[CPointCloudFilterByDistance] max_deletion_ratio = '-1': must be in [0, 1]"},
+        // a PTG's keys (its saveToConfigFile(), which MRPT's engine's leaves
+        // out): 'abc' was 0, '5abc' 5, '1 2' 1 (exit 0)
+        TBad{"mrpt_ptg_key_text", "\\[CRiskAwareReactiveNav\\]",
+             "[CReactiveNavigationSystem]\nPTG0_K = abc\n[CRiskAwareReactiveNav]",
+             "[CReactiveNavigationSystem] PTG0_K = 'abc': not a number"},
+        TBad{"mrpt_ptg_key_trailing_text", "\\[CRiskAwareReactiveNav\\]",
+             "[CReactiveNavigationSystem]\nPTG1_score_priority = 5abc\n"
+             "[CRiskAwareReactiveNav]",
+             "[CReactiveNavigationSystem] PTG1_score_priority = '5abc': not a number"},
+        TBad{"mrpt_ptg_key_two_numbers", "\\[CRiskAwareReactiveNav\\]",
+             "[CReactiveNavigationSystem]\nPTG0_v_max_mps = 1 2\n[CRiskAwareReactiveNav]",
+             "[CReactiveNavigationSystem] PTG0_v_max_mps = '1 2': not a number"},
+        // CHolonomicFullEval's lists: MRPT failed every cycle, exit 0
+        TBad{"mrpt_phase_factor_negative", "\\[CRiskAwareReactiveNav\\]",
+             "[CHolonomicFullEval]\nPHASE1_FACTORS = -1\n[CRiskAwareReactiveNav]",
+             "[CHolonomicFullEval] PHASE1_FACTORS = '-1': each factor must be an index "
+             "into factorWeights (0..6)"},
+        TBad{"mrpt_phase_factor_beyond", "\\[CRiskAwareReactiveNav\\]",
+             "[CHolonomicFullEval]\nPHASE2_FACTORS = [9]\n[CRiskAwareReactiveNav]",
+             "[CHolonomicFullEval] PHASE2_FACTORS = '[9]': each factor must be"},
+        TBad{"mrpt_phase_factor_nan", "\\[CRiskAwareReactiveNav\\]",
+             "[CHolonomicFullEval]\nPHASE1_FACTORS = 1 nan\n[CRiskAwareReactiveNav]",
+             "[CHolonomicFullEval] PHASE1_FACTORS = '1 nan': not a list of integers "
+             "('nan')"},
+        TBad{"mrpt_phase_threshold_zero", "\\[CRiskAwareReactiveNav\\]",
+             "[CHolonomicFullEval]\nPHASE1_THRESHOLD = 0\n[CRiskAwareReactiveNav]",
+             "[CHolonomicFullEval] PHASE1_THRESHOLD = '0': must be in (0, 1)"},
+        TBad{"mrpt_factor_weight_nan", "\\[CRiskAwareReactiveNav\\]",
+             "[CHolonomicFullEval]\nfactorWeights = 0.1 0.5 0.5 0.01 1 nan 1\n"
+             "[CRiskAwareReactiveNav]",
+             "[CHolonomicFullEval] factorWeights = '0.1 0.5 0.5 0.01 1 nan 1': not a "
+             "list of numbers ('nan')"},
+        TBad{"mrpt_phase_weights_zero", "\\[CRiskAwareReactiveNav\\]",
+             "[CHolonomicFullEval]\nfactorWeights = 0 0 0 0 0 0 0\n"
+             "[CRiskAwareReactiveNav]",
+             "its factors' weights in factorWeights must add up to more than 0"},
+        // MRPT skipped an unknown name / took any word as false
+        TBad{"mrpt_normalize_unknown_score", "\\[CRiskAwareReactiveNav\\]",
+             "[CMultiObjectiveMotionOptimizerBase]\nscores_to_normalize = clearence\n"
+             "[CRiskAwareReactiveNav]",
+             "[CMultiObjectiveMotionOptimizerBase] scores_to_normalize = 'clearence': "
+             "'clearence' is no score (scores: "},
+        TBad{"mrpt_time_profiler_word", "\\[CRiskAwareReactiveNav\\]",
+             "[CAbstractNavigator]\nenable_time_profiler = abc\n[CRiskAwareReactiveNav]",
+             "[CAbstractNavigator] enable_time_profiler = 'abc': must be true or false"},
+        // MRPT dropped every laser point (a blind robot, exit 0)
+        TBad{
+            "mrpt_obstacle_heights_above_the_laser", "\\[CRiskAwareReactiveNav\\]",
+            "[CReactiveNavigationSystem]\nmin_obstacles_height = 5\n"
+            "[CRiskAwareReactiveNav]",
+            "[CReactiveNavigationSystem] min_obstacles_height = '5': the laser is "
+            "mounted below it ([Laser] z = 0.3 m): MRPT would drop every obstacle point"},
+        // the PTGs' build, bounded in all (each key's limits allowed hours)
+        TBad{"mrpt_ptg_build_too_long", "\\[CRiskAwareReactiveNav\\]",
+             "[CReactiveNavigationSystem]\nPTG0_num_paths = 500\nPTG0_resolution = "
+             "0.02\n[CRiskAwareReactiveNav]",
+             "[CReactiveNavigationSystem] PTG0_num_paths = '500': with PTG0_resolution = "
+             "0.02 m, it would take 52 times the build of MRPT's default PTG"},
         // the run's work is bounded before it starts (1e8 world steps here)
         TBad{"risk_route_without_risk_config", "nav_period +=.*",
              "nav_period = 0.2\nrisk_route = worst",
@@ -424,6 +482,27 @@ INSTANTIATE_TEST_SUITE_P(
         TBad{"engine_key_missing", "engine_config +=.*",
              "engine_config =", "MRPT's reactive engine refused the config"}),
     [](const auto& i) { return std::string(i.param.name); });
+
+TEST(NavigateE2E, ABadValueInTheEngineFileIsBlamedOnThatFile) {
+    // (it was reported against the run's config, which does not hold it)
+    const std::string w = freshDir("w");
+    std::string engine =
+        readFile("/usr/share/mrpt/config_files/navigation-ptgs/reactive2d_config.ini");
+    engine = std::regex_replace(engine, std::regex("PTG0_K = 1.0"), "PTG0_K = abc");
+    writeFile(w + "/engine.ini", engine);
+    std::string cfg = officeConfig();
+    cfg = std::regex_replace(cfg, std::regex("engine_config +=.*"),
+                             "engine_config = " + w + "/engine.ini");
+    writeFile(w + "/n.ini", cfg);
+    const std::string out = freshDir("out");
+    const TEarlierOutput earlier{{"summary.json", "{\"earlier\": true}\n"}};
+    writeEarlierOutput(out, earlier);
+    const auto r =
+        run(binPath("risknav-navigate") + " -q -o '" + out + "' '" + w + "/n.ini'");
+    expectBadInput(
+        r, w + "/engine.ini: [CReactiveNavigationSystem] PTG0_K = 'abc': not a number",
+        out, earlier, "risknav-navigate: error: ");
+}
 
 TEST(NavigateE2E, ARawlogBeyondItsBoundIsRefusedBeforeTheRun) {
     // 5e5 cycles of 10,000 ranges: 5e9 ranges, ~17 GB of rawlog

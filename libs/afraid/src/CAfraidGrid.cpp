@@ -1,5 +1,6 @@
 #include <risknav/afraid/CAfraidGrid.h>
 #include <risknav/common/CBadInputError.h>
+#include <risknav/common/config_read.h>
 
 #include <mrpt/io/CFileGZInputStream.h>
 
@@ -333,9 +334,8 @@ void CAfraidGrid::save(const std::string& path) const {
 }
 
 CAfraidGrid CAfraidGrid::load(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-        throw CBadInputError(path + ": .afraid file not found");
+    if (const std::string why = common::fileProblem(path); !why.empty())
+        throw CBadInputError(path + ": .afraid file " + why);
     mrpt::io::CFileGZInputStream f;
     if (!f.open(path))
         throw CBadInputError(path + ": cannot read the .afraid file");

@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 #include <iostream>
+#include <utility>
 
 namespace risknav::common {
 namespace {
@@ -87,6 +88,7 @@ TAppArgs parseAppArgs(const std::vector<std::string>& args, const TAppInfo& info
             throw CBadInputError(opt + " needs a value (see --help)");
         return args[++i];
     };
+    bool outGiven = false;
     for (size_t i = 0; i < args.size(); i++) {
         const std::string& s = args[i];
         if (s == "-h" || s == "--help")
@@ -96,6 +98,9 @@ TAppArgs parseAppArgs(const std::vector<std::string>& args, const TAppInfo& info
         else if (s == "-q" || s == "--quiet")
             a.quiet = true;
         else if (s == "-o" || s == "--out" || s.rfind("--out=", 0) == 0) {
+            // (a second one would silently win: a script's mistake)
+            if (std::exchange(outGiven, true))
+                throw CBadInputError(s + ": the output directory is given twice");
             a.outDir = s.rfind("--out=", 0) == 0 ? s.substr(6) : value(i, s);
             if (a.outDir.empty())
                 throw CBadInputError(s + ": the output directory is empty");
@@ -104,6 +109,8 @@ TAppArgs parseAppArgs(const std::vector<std::string>& args, const TAppInfo& info
         else if (s.rfind("--set=", 0) == 0)
             a.sets.push_back(s.substr(6));
         else if (s == "--seed" || s.rfind("--seed=", 0) == 0) {
+            if (a.seed)
+                throw CBadInputError("--seed is given twice");
             const std::string v = s == "--seed" ? value(i, s) : s.substr(7);
             char* end = nullptr;
             errno = 0;

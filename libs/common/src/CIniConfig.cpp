@@ -23,13 +23,10 @@ std::string lower(std::string s) {
 // accepts a missing file as an empty config, which would turn every key into a
 // silent default.
 const std::string& checkedConfigPath(const std::string& path) {
-    std::error_code ec;
     if (path.empty())
         throw CBadInputError("no config file given");
-    if (!fs::exists(path, ec))
-        throw CBadInputError(path + ": config file not found");
-    if (!fs::is_regular_file(path, ec))
-        throw CBadInputError(path + ": config path is not a regular file");
+    if (const std::string why = fileProblem(path); !why.empty())
+        throw CBadInputError(path + ": config file " + why);
     std::ifstream f(path);
     if (!f.good())
         throw CBadInputError(path + ": config file cannot be read");
@@ -64,6 +61,12 @@ void CIniConfig::checkLines(const std::string& path) {
     size_t n = 0;
     for (std::string raw; std::getline(f, raw);) {
         n++;
+        // MRPT's reader takes the text as a C string: it ends at a NUL byte,
+        // and every section after it was silently gone
+        if (raw.find('\0') != std::string::npos)
+            throw CBadInputError(path + ": line " + std::to_string(n) +
+                                 ": a NUL byte (a binary file? MRPT's reader would "
+                                 "drop everything after it)");
         const bool wasContinued = continued;
         std::string line = trim(raw);
         continued = !line.empty() && line.back() == '\\';
@@ -74,15 +77,15 @@ void CIniConfig::checkLines(const std::string& path) {
         if (line[0] == '[') {
             const auto close = line.find(']');
             if (close == std::string::npos)
-                throw CBadInputError(where + "'" + line +
+                throw CBadInputError(where + "'" + clippedText(line) +
                                      "': a section needs a closing ']'");
             section = trim(line.substr(1, close - 1));
             continue;
         }
         const auto eq = line.find('=');
         if (eq == std::string::npos)
-            throw CBadInputError(where + "'" + line + "' in [" + section +
-                                 "]: expected KEY = VALUE");
+            throw CBadInputError(where + "'" + clippedText(line) + "' in [" +
+                                 clippedText(section) + "]: expected KEY = VALUE");
         const std::string key = trim(line.substr(0, eq));
         const auto [it, fresh] =
             seen.emplace(std::make_pair(lower(section), lower(key)), n);
@@ -107,7 +110,14 @@ void CIniConfig::applyOverride(const std::string& assignment) {
     const auto dot = lhs.rfind('.');
     if (eq == std::string::npos || dot == std::string::npos || dot == 0 ||
         dot + 1 == lhs.size())
-        throw CBadInputError("--set '" + assignment + "': expected SECTION.KEY=VALUE");
+        throw CBadInputError("--set '" + clippedText(assignment) +
+                             "': expected SECTION.KEY=VALUE");
+    // (a line break would end the one-line message, and the config's own
+    // lines cannot hold one either)
+    if (const auto brk = assignment.find_first_of(std::string("\n\r\0", 3));
+        brk != std::string::npos)
+        throw CBadInputError("--set '" + clippedText(assignment.substr(0, brk)) +
+                             "...': a line break or NUL byte in the value");
     // Written into the in-memory config; a key that no code reads is then
     // reported by throwOnUnreadKeys(), so a typo in --set is not ignored.
     write(lhs.substr(0, dot), lhs.substr(dot + 1), assignment.substr(eq + 1));

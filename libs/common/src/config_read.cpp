@@ -101,25 +101,60 @@ void copyConfigKeys(
     }
 }
 
+std::string fileProblem(const std::string& path) {
+    std::error_code ec;
+    const auto st = fs::status(path, ec);
+    if (st.type() == fs::file_type::regular)
+        return "";
+    if (ec || st.type() == fs::file_type::not_found)
+        return "not found";
+    if (st.type() == fs::file_type::directory)
+        return "is a folder, not a file";
+    return "is not a regular file (a device, FIFO or socket)";
+}
+
+std::string clippedText(const std::string& s, size_t max) {
+    if (s.size() <= max)
+        return s;
+    return s.substr(0, max) + "... (" + std::to_string(s.size()) + " bytes)";
+}
+
 std::string configWhere(const CConfigFileBase& c) {
     if (const auto* ini = dynamic_cast<const CIniConfig*>(&c))
         return ini->path() + ": ";
     return "";
 }
 
-std::string configWhere(const CConfigFileBase& c, const std::string& section,
+namespace {
+const CConfigFileBase& holderOf(const CConfigFileBase& c, const std::string& section,
+                                const std::string& key) {
+    const CConfigFileBase* h = &c;
+    // (bounded: a layered config of layered configs is a few deep)
+    for (int depth = 0; depth < 16; depth++) {
+        const auto* o = dynamic_cast<const CConfigOrigins*>(h);
+        if (!o)
+            break;
+        h = &o->holderOf(section, key);
+    }
+    return *h;
+}
+}  // namespace
+
+std::string configWhere(const CConfigFileBase& cfg, const std::string& section,
                         const std::string& key) {
+    const CConfigFileBase& c = holderOf(cfg, section, key);
     if (const auto* ini = dynamic_cast<const CIniConfig*>(&c))
         return ini->path() + (ini->isOverridden(section, key) ? " (--set): " : ": ");
     return "";
 }
 
-void throwBadKey(const CConfigFileBase& c, const std::string& section,
+void throwBadKey(const CConfigFileBase& cfg, const std::string& section,
                  const std::string& key, const std::string& value,
                  const std::string& rule) {
+    const CConfigFileBase& c = holderOf(cfg, section, key);
     throw CBadInputError(
         configWhere(c, section, key) +
-        typedValueMessage(c, CConfigKeyError(section, key, value, rule)));
+        typedValueMessage(c, CConfigKeyError(section, key, clippedText(value), rule)));
 }
 
 double readDouble(const CConfigFileBase& c, const std::string& s, const std::string& k,
@@ -245,11 +280,9 @@ std::string readPath(const CConfigFileBase& c, const std::string& s, const std::
     }
     const std::string p = configRelativePath(c, v);
     std::error_code ec;
-    if (mustExist && !fs::is_regular_file(p, ec))
+    if (const std::string why = mustExist ? fileProblem(p) : ""; !why.empty())
         throwBadKey(c, s, k, v,
-                    std::string(fs::is_directory(p, ec) ? "is a folder, not a file"
-                                                        : "file not found") +
-                        " (" + p + ")");
+                    (why == "not found" ? "file not found" : why) + " (" + p + ")");
     return p;  // absolute: config_effective.ini lives elsewhere
 }
 

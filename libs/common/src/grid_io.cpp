@@ -276,8 +276,8 @@ COccupancyGridMap2D fromRosYaml(const std::string& file) {
     if (mode != "trinary" && mode != "scale")
         throw CBadInputError(file + ": map YAML mode '" + mode +
                              "' is not supported (trinary, scale)");
-    if (!fs::is_regular_file(img))
-        throw CBadInputError(file + ": map image not found: " + img.string());
+    if (const std::string why = fileProblem(img.string()); !why.empty())
+        throw CBadInputError(file + ": map image " + why + ": " + img.string());
     return fromImage(img.string(), res, ox, oy,
                      mode == "scale" ? TPixelModel::RosScale : TPixelModel::RosTrinary,
                      rp);
@@ -379,8 +379,8 @@ COccupancyGridMap2D fromSimplemap(const std::string& file, double res) {
 
 mrpt::maps::COccupancyGridMap2D loadOccupancyGrid(const TMapSourceOptions& src) {
     const std::string& f = src.map_file;
-    if (!fs::is_regular_file(f))
-        throw CBadInputError(f + ": map file not found");
+    if (const std::string why = fileProblem(f); !why.empty())
+        throw CBadInputError(f + ": map file " + why);
     COccupancyGridMap2D g;
     if (endsWith(f, ".gridmap") || endsWith(f, ".gridmap.gz"))
         g = fromGridmap(f);

@@ -1,4 +1,5 @@
 #include <risknav/common/CAllocationBudget.h>
+#include <risknav/common/config_read.h>
 #include <risknav/localization/CRawlogReader.h>
 #include <risknav/localization/rawlog_scan.h>
 
@@ -31,9 +32,8 @@ CRawlogReader::CRawlogReader(const std::string& path, double minStdXY,
       m_progress(progress),
       m_minStdXY(minStdXY),
       m_minStdPhi(minStdPhiDeg * M_PI / 180.0) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-        throw std::runtime_error(path + ": rawlog not found");
+    if (const std::string why = common::fileProblem(path); !why.empty())
+        throw std::runtime_error(path + ": rawlog " + why);
     const TRawlogSize size = rawlogBytes(path);
     m_bytes = size.bytes;
     m_broken = size.broken;

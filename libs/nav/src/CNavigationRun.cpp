@@ -178,6 +178,27 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
                 (m_engine ? m_engine->path() + " (engine_config) + " : "") + c.path() +
                 ": MRPT's reactive engine refused the config: " + firstLine(e.what()));
         }
+        // MRPT keeps only the obstacle points within [min, max] of these
+        // heights: the laser's own height outside them is a blind robot
+        {
+            const auto& pr = probe.params_reactive_nav;
+            const double z = world.laser.options.z;
+            const std::string sec = "CReactiveNavigationSystem";
+            const bool low = z < pr.min_obstacles_height;
+            if (low || z > pr.max_obstacles_height) {
+                const std::string key =
+                    low ? "min_obstacles_height" : "max_obstacles_height";
+                const mrpt::config::CConfigFileBase& holder =
+                    m_engine && !c.keyExists(sec, key)
+                        ? static_cast<const mrpt::config::CConfigFileBase&>(*m_engine)
+                        : c;
+                throwBadKey(holder, sec, key, holder.read_string(sec, key, ""),
+                            std::string("the laser is mounted ") +
+                                (low ? "below" : "above") + " it ([" +
+                                world.laser.options.section + "] z = " + numberText(z) +
+                                " m): MRPT would drop every obstacle point it senses");
+            }
+        }
         // a second sensor the adaptive limiter is to fuse must exist
         for (const auto& l : probe.limiters())
             if (const auto* a = dynamic_cast<const CAdaptiveSpeedLimiter*>(l.get());

@@ -8,16 +8,19 @@
 #include <risknav/sim/CSimRobotInterface.h>
 
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/config/CConfigFilePrefixer.h>
 #include <mrpt/expr/CRuntimeCompiledExpression.h>
 #include <mrpt/kinematics/CVehicleVelCmd_DiffDriven.h>
 #include <mrpt/maps/CPointCloudFilterByDistance.h>
 #include <mrpt/nav/reactive/CLogFileRecord.h>
+#include <mrpt/nav/tpspace/CPTG_DiffDrive_CollisionGridBased.h>
 #include <mrpt/nav/tpspace/CPTG_DiffDrive_alpha.h>
 #include <mrpt/nav/tpspace/CParameterizedTrajectoryGenerator.h>
 
 #include <mrpt/math/TSegment2D.h>
 #include <mrpt/math/wrap2pi.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -104,8 +107,30 @@ void checkEngineValue(const mrpt::config::CConfigFileBase& c,
                       const std::string& sec, const std::string& key, double v,
                       const TRange& r) {
     if (!r.contains(v))
-        throwBadKey(c, sec, key, layered.read_string(sec, key, numberText(v)),
+        throwBadKey(layered, sec, key, layered.read_string(sec, key, numberText(v)),
                     r.describe());
+}
+
+// MRPT's list separators (CConfigFileBase::read_vector): "[1, 2]" is 1 2.
+std::vector<std::string> listTokens(const std::string& t) {
+    std::vector<std::string> out;
+    std::string cur;
+    for (const char ch : t + " ") {
+        if (ch == '[' || ch == ']' || ch == ',' || ch == ' ' || ch == '\t') {
+            if (!cur.empty())
+                out.push_back(std::move(cur));
+            cur.clear();
+        } else
+            cur += ch;
+    }
+    return out;
+}
+
+bool isInteger(const std::string& t, long& v) {
+    char* end = nullptr;
+    errno = 0;
+    v = t.empty() ? 0 : std::strtol(t.c_str(), &end, 10);
+    return !t.empty() && *end == '\0' && errno != ERANGE;
 }
 
 // The variables MRPT 2.5.8 gives its score and assert formulas: the
@@ -159,7 +184,7 @@ void checkEngineFormulas(const mrpt::config::CConfigFileBase& c,
             // MRPT's message holds a stack trace: only exprtk's own words
             const std::string w = ex.what();
             const auto a = w.find("Error: `"), b = w.find('`', a + 8);
-            throwBadKey(c, sec, key, formula,
+            throwBadKey(layered, sec, key, formula,
                         "does not compile in MRPT's expression parser: " +
                             (a != std::string::npos && b != std::string::npos
                                  ? w.substr(a + 8, b - a - 8)
@@ -176,10 +201,29 @@ void checkEngineFormulas(const mrpt::config::CConfigFileBase& c,
         if (name.empty() || formula.empty())
             break;  // MRPT's loader reports a half-given pair itself
         if (vars.count(name))
-            throwBadKey(c, base, nk, name,
+            throwBadKey(layered, base, nk, name,
                         "is one of MRPT's candidate variables; pick another name");
         compiles(base, fk, formula, vars);
         scores[name] = 0;
+    }
+    // MRPT normalizes the scores named here and skips a name it has no
+    // score of without a word
+    if (layered.keyExists(base, "scores_to_normalize")) {
+        const std::string t = layered.read_string(base, "scores_to_normalize", "");
+        // (no scoreN_name given: MRPT 2.5.8's default scores)
+        const std::map<std::string, double> defaults{{"collision_free_distance", 0},
+                                                     {"path_index_near_target", 0},
+                                                     {"euclidean_nearness", 0},
+                                                     {"hysteresis", 0},
+                                                     {"clearance", 0}};
+        const auto& known = scores.empty() ? defaults : scores;
+        std::string names;
+        for (const auto& [n, unused] : known)
+            names += (names.empty() ? "" : ", ") + n;
+        for (const auto& n : listTokens(t))
+            if (!known.count(n))
+                throwBadKey(layered, base, "scores_to_normalize", t,
+                            "'" + n + "' is no score (scores: " + names + ")");
     }
     auto withScores = vars;
     withScores.insert(scores.begin(), scores.end());
@@ -213,11 +257,22 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
         errno = 0;
         const long v = t.empty() ? 0 : std::strtol(t.c_str(), &end, 10);
         if (t.empty() || *end != '\0' || errno == ERANGE)
-            throwBadKey(c, sec, key, t, "not an integer");
+            throwBadKey(layered, sec, key, t, "not an integer");
         if (!r.contains(double(v)))
-            throwBadKey(c, sec, key, t, r.describe());
+            throwBadKey(layered, sec, key, t, r.describe());
     };
     checkEngineFormulas(c, layered);
+    // (MRPT's saveConfigFile() does not write it, so checkEngineTypes()
+    // cannot know it is a bool)
+    if (layered.keyExists("CAbstractNavigator", "enable_time_profiler")) {
+        const std::string t =
+            trim(layered.read_string("CAbstractNavigator", "enable_time_profiler", ""));
+        const std::string l = lowerCase(t);
+        if (!(l == "true" || l == "false" || l == "1" || l == "0" || l == "yes" ||
+              l == "no"))
+            throwBadKey(layered, "CAbstractNavigator", "enable_time_profiler", t,
+                        "must be true or false");
+    }
     strictInt("CReactiveNavigationSystem", "PTG_COUNT", TRange::closed(1, 32, "PTGs"));
     strictInt("CWaypointsNavigator", "multitarget_look_ahead",
               TRange::closed(0, 100, "waypoints"));
@@ -244,6 +299,18 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
     }
 }
 
+// The time MRPT 2.5.8 takes to build a collision-grid PTG (once; then it is
+// read from ptg_cache_dir), in builds of its default one (121 paths, 0.05 m
+// cells: ~1.7 s here). Measured on this machine with one PTG: 1,000 paths
+// 32 s, 0.02 m cells 8 s, both (500 paths) 78 s and 400 MB; refDistance 10
+// -> 20 m +15 %: ~1.4 s x (n / 121)^1.5 x (0.05 / res)^2. Each key's limits
+// alone allow ~6,700 of them (2.6 h); the PTGs together get at most
+// kMaxPtgBuildUnits (~1 min).
+constexpr double kMaxPtgBuildUnits = 40;
+double ptgBuildUnits(double numPaths, double res) {
+    return std::pow(numPaths / 121.0, 1.5) * std::pow(0.05 / res, 2);
+}
+
 // Values MRPT 2.5.8 takes without a check and then fails on at every step
 // (robotMax_V_mps <= 0 or NaN: an assert each cycle, the run "completes"),
 // throws on as a bare assert or bad_alloc in initialize() (a PTG's
@@ -267,7 +334,7 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
     check(abs, "secure_distance_start", ap.secure_distance_start, unit);
     check(abs, "secure_distance_end", ap.secure_distance_end, unit);
     if (!(ap.secure_distance_end > ap.secure_distance_start))
-        throwBadKey(c, abs, "secure_distance_end",
+        throwBadKey(layered, abs, "secure_distance_end",
                     layered.read_string(abs, "secure_distance_end",
                                         numberText(ap.secure_distance_end)),
                     "must be more than secure_distance_start = " +
@@ -287,6 +354,7 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
     check(abs, "max_dist_for_timebased_path_prediction",
           ap.max_dist_for_timebased_path_prediction, TRange::closed(0, 100, "m"));
     const std::string sec = "CReactiveNavigationSystem";
+    double buildUnits = 0;
     for (size_t i = 0; i < nav.getPTG_count(); i++) {
         const auto* ptg = nav.getPTG(i);
         const std::string k = "PTG" + std::to_string(i) + "_";
@@ -298,11 +366,24 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
         const double res = layered.read_double(sec, k + "resolution", 0.05);
         check(sec, k + "resolution", res, TRange::closed(0.005, 1, "m"));
         if (ref / res > 1000)
-            throwBadKey(c, sec, k + "resolution", numberText(res),
+            throwBadKey(layered, sec, k + "resolution", numberText(res),
                         "at most 1000 cells over " + k + "refDistance = " +
                             numberText(ref) + " m (MRPT's collision grid)");
         check(sec, k + "v_max_mps", ptg->getMaxLinVel(), speed);
         check(sec, k + "w_max_dps", ptg->getMaxAngVel() * 180 / M_PI, turn);
+        if (dynamic_cast<const mrpt::nav::CPTG_DiffDrive_CollisionGridBased*>(ptg)) {
+            buildUnits += ptgBuildUnits(ptg->getAlphaValuesCount(), res);
+            if (buildUnits > kMaxPtgBuildUnits)
+                throwBadKey(
+                    layered, sec, k + "num_paths",
+                    std::to_string(ptg->getAlphaValuesCount()),
+                    "with " + k + "resolution = " + numberText(res) + " m, " +
+                        (i == 0 ? std::string("it") : "PTGs 0.." + std::to_string(i)) +
+                        " would take " + numberText(std::round(buildUnits)) +
+                        " times the build of MRPT's default PTG (121 paths, "
+                        "0.05 m), at most " +
+                        numberText(kMaxPtgBuildUnits) + " in all (~1 min)");
+        }
     }
 }
 
@@ -310,15 +391,33 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
 // in: MRPT reads "abc" and "5abc" as 0 and 5 and any word as false, takes NaN
 // and 1e308 (TOO_CLOSE_OBSTACLE = abc ran "completed" with 0; = 1e308 failed
 // the run). The type is that of the value MRPT's own saveConfigFile() writes
-// for the key (a number, or true / false); lists and words are left to MRPT.
-void checkEngineTypes(const mrpt::config::CConfigFileBase& c,
-                      const mrpt::config::CConfigFileBase& layered,
+// for the key, and each PTG's saveToConfigFile() for its PTGn_ keys (which
+// the engine's leaves out): a number, true / false, or a list of numbers
+// (of integers when MRPT writes integers, e.g. PHASE1_FACTORS; `nan`, `-`
+// or `[9` in one was taken as 0 or read on), each within +-1e9. Words are
+// left to MRPT.
+void checkEngineTypes(const mrpt::config::CConfigFileBase& layered,
                       const mrpt::nav::CReactiveNavigationSystem& nav) {
     mrpt::config::CConfigFileMemory raw;
     nav.mrpt::nav::CReactiveNavigationSystem::saveConfigFile(raw);
+    {
+        // MRPT reads a PTG's keys with the prefix PTGn_ from this section
+        // (CParameterizedTrajectoryGenerator::CreatePTG)
+        for (size_t i = 0; i < nav.getPTG_count(); i++) {
+            mrpt::config::CConfigFilePrefixer prefixed;
+            prefixed.bind(raw);
+            prefixed.setPrefixes("", "PTG" + std::to_string(i) + "_");
+            nav.getPTG(i)->saveToConfigFile(prefixed, "CReactiveNavigationSystem");
+        }
+    }
     const mrpt::config::CConfigFileMemory saved = reparsed(raw);
     std::vector<std::string> sections;
     saved.getAllSections(sections);
+    auto isNumber = [](const std::string& t) {
+        char* end = nullptr;
+        // (strtod: MRPT writes what it holds, "nan" and "inf" too)
+        return !t.empty() && (std::strtod(t.c_str(), &end), *end == '\0');
+    };
     for (const auto& sec : sections) {
         std::vector<std::string> keys;
         saved.getAllKeys(sec, keys);
@@ -326,22 +425,93 @@ void checkEngineTypes(const mrpt::config::CConfigFileBase& c,
             if (!layered.keyExists(sec, key))
                 continue;
             const std::string held = lowerCase(trim(saved.read_string(sec, key, "")));
-            const std::string text = trim(layered.read_string(sec, key, ""));
-            double v = 0;
+            const std::string typed = trim(layered.read_string(sec, key, ""));
+            // MRPT's own files end values with "# comments", which its
+            // number parser stops at
+            const std::string text = trim(typed.substr(0, typed.find('#')));
+            const std::vector<std::string> heldList = listTokens(held);
             if (held == "true" || held == "false") {
                 const std::string l = lowerCase(text);
                 if (!(l == "true" || l == "false" || l == "1" || l == "0" || l == "yes" ||
                       l == "no"))
-                    throwBadKey(c, sec, key, text, "must be true or false");
-            } else if (char* end = nullptr;
-                       !held.empty() && (std::strtod(held.c_str(), &end), *end == '\0')) {
-                // (strtod: MRPT writes what it holds, "nan" and "inf" too)
-                if (!parseNumber(text, v))
-                    throwBadKey(c, sec, key, text, "not a number");
-                if (!(std::abs(v) <= 1e9))
-                    throwBadKey(c, sec, key, text, "must be within +-1e9");
+                    throwBadKey(layered, sec, key, text, "must be true or false");
+            } else if (!heldList.empty() &&
+                       std::all_of(heldList.begin(), heldList.end(), isNumber)) {
+                long n = 0;
+                const bool integers =
+                    std::all_of(heldList.begin(), heldList.end(),
+                                [&](const std::string& t) { return isInteger(t, n); });
+                const std::vector<std::string> given = listTokens(text);
+                // (MRPT 2.5.8's list keys that may hold one element)
+                const std::string lk = lowerCase(key);
+                const bool list =
+                    heldList.size() > 1 || lk == "factorweights" ||
+                    lk == "factornormalizeornot" ||
+                    (lk.size() > 8 && lk.compare(lk.size() - 8, 8, "_factors") == 0);
+                if (given.empty() || (!list && given.size() != 1))
+                    throwBadKey(layered, sec, key, text,
+                                list ? "not a list of numbers" : "not a number");
+                for (const auto& t : given) {
+                    double v = 0;
+                    if (integers && !isInteger(t, n))
+                        throwBadKey(layered, sec, key, text,
+                                    list ? "not a list of integers ('" + t + "')"
+                                         : "not an integer");
+                    if (!parseNumber(t, v))
+                        throwBadKey(layered, sec, key, text,
+                                    list ? "not a list of numbers ('" + t + "')"
+                                         : "not a number");
+                    if (!(std::abs(v) <= 1e9))
+                        throwBadKey(layered, sec, key, text, "must be within +-1e9");
+                }
             }
         }
+    }
+}
+
+// CHolonomicFullEval's lists, which MRPT 2.5.8 loads unchecked and then
+// asserts on at every cycle (each an emergency stop: the run ended
+// `navigation_error` with exit 0): each phase's factors must index
+// factorWeights, weigh more than 0 together, and its threshold lie in
+// (0, 1). Checked when the engine uses that method (an unused section may
+// hold anything, as MRPT's own files do). By then the lists are numbers.
+void checkFullEvalLists(const mrpt::config::CConfigFileBase& layered,
+                        const mrpt::nav::CReactiveNavigationSystem& nav) {
+    const std::string method = nav.params_abstract_ptg_navigator.holonomic_method;
+    if (method.find("CHolonomicFullEval") == std::string::npos)
+        return;
+    const std::string sec = "CHolonomicFullEval";
+    std::vector<double> weights;
+    for (const auto& t : listTokens(layered.read_string(sec, "factorWeights", ""))) {
+        double v = 0;
+        if (!parseNumber(t, v) || !(v >= 0))
+            throwBadKey(layered, sec, "factorWeights",
+                        layered.read_string(sec, "factorWeights", ""),
+                        "each weight must be a number >= 0");
+        weights.push_back(v);
+    }
+    const int phases = layered.read_int(sec, "PHASE_COUNT", 0);
+    for (int i = 1; i <= phases; i++) {
+        const std::string fk = "PHASE" + std::to_string(i) + "_FACTORS",
+                          tk = "PHASE" + std::to_string(i) + "_THRESHOLD";
+        const std::string ft = trim(layered.read_string(sec, fk, ""));
+        double sum = 0;
+        for (const auto& t : listTokens(ft)) {
+            long f = -1;
+            if (!isInteger(t, f) || f < 0 || size_t(f) >= weights.size())
+                throwBadKey(layered, sec, fk, ft,
+                            "each factor must be an index into factorWeights (0.." +
+                                std::to_string(long(weights.size()) - 1) + ")");
+            sum += weights[size_t(f)];
+        }
+        if (!(sum > 0))
+            throwBadKey(layered, sec, fk, ft,
+                        "its factors' weights in factorWeights must add up to more "
+                        "than 0");
+        double th = 0;
+        const std::string tt = trim(layered.read_string(sec, tk, ""));
+        if (!parseNumber(tt, th) || !(th > 0 && th < 1))
+            throwBadKey(layered, sec, tk, tt, "must be in (0, 1)");
     }
 }
 
@@ -710,13 +880,15 @@ void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& 
         const CLayeredConfig layered(c, *m_engine);
         checkEngineText(c, layered);
         mrpt::nav::CReactiveNavigationSystem::loadConfigFile(layered);
-        checkEngineTypes(c, layered, *this);
+        checkEngineTypes(layered, *this);
+        checkFullEvalLists(layered, *this);
         checkEngineValues(c, layered, *this);
         keepA0w(layered);
     } else {
         checkEngineText(c, c);
         mrpt::nav::CReactiveNavigationSystem::loadConfigFile(c);
-        checkEngineTypes(c, c, *this);
+        checkEngineTypes(c, *this);
+        checkFullEvalLists(c, *this);
         checkEngineValues(c, c, *this);
         keepA0w(c);
     }

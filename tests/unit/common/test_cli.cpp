@@ -55,6 +55,12 @@ TEST(CommandLine, UsageErrorsAreBadInput) {
     EXPECT_THROW(parse({"w.ini", "-o", ""}), CBadInputError);
     EXPECT_THROW(parse({"--seed", "-3", "w.ini"}), CBadInputError);
     EXPECT_THROW(parse({"--seed", "12x", "w.ini"}), CBadInputError);
+    // a line break would cut every one-line message naming the path
+    EXPECT_THROW(parse({"--out", "a\nb", "w.ini"}), CBadInputError);
+    EXPECT_THROW(parse({"w\n.ini"}), CBadInputError);
+    // given twice, the last would silently win
+    EXPECT_THROW(parse({"-o", "a", "--out=b", "w.ini"}), CBadInputError);
+    EXPECT_THROW(parse({"--seed", "1", "--seed=2", "w.ini"}), CBadInputError);
     EXPECT_THROW(parse({"w.ini", "extra"}),
                  CBadInputError);  // this app takes no extra args
 }

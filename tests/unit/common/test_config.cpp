@@ -6,6 +6,8 @@
 
 #include <filesystem>
 
+#include <sys/stat.h>
+
 #include "test_support.h"
 
 using namespace risknav::common;
@@ -147,8 +149,48 @@ TEST(CIniConfig, MissingOrUnreadableFileIsBadInput) {
         errorOf([] { CIniConfig c("/nonexistent/x.ini"); }).find("config file not found"),
         std::string::npos);
     const std::string dir = freshDir("d");
-    EXPECT_NE(errorOf([&] { CIniConfig c(dir); }).find("not a regular file"),
+    EXPECT_NE(errorOf([&] { CIniConfig c(dir); }).find("config file is a folder"),
               std::string::npos);
+    // a device would never end (was "not found" in the other readers)
+    EXPECT_EQ(errorOf([&] { CIniConfig c("/dev/zero"); }),
+              "/dev/zero: config file is not a regular file (a device, FIFO or socket)");
+}
+
+TEST(ConfigRead, FileProblemTellsMissingFolderAndDevice) {
+    const std::string dir = freshDir("fp");
+    writeFile(dir + "/f", "x");
+    std::filesystem::create_symlink(dir + "/f", dir + "/link");
+    EXPECT_EQ(fileProblem(dir + "/f"), "");
+    EXPECT_EQ(fileProblem(dir + "/link"), "");
+    EXPECT_EQ(fileProblem(dir + "/none"), "not found");
+    EXPECT_EQ(fileProblem(dir), "is a folder, not a file");
+    EXPECT_EQ(fileProblem("/dev/null"),
+              "is not a regular file (a device, FIFO or socket)");
+    ASSERT_EQ(::mkfifo((dir + "/fifo").c_str(), 0600), 0);
+    EXPECT_EQ(fileProblem(dir + "/fifo"),
+              "is not a regular file (a device, FIFO or socket)");
+}
+
+TEST(CIniConfig, ANulByteIsAnErrorNotTheEndOfTheFile) {
+    // MRPT's reader ends the text at the NUL: [B] was silently gone
+    const std::string path =
+        iniFile(std::string("[A]\nx = 1\n") + std::string(1, '\0') + "\n[B]\ny = 2\n");
+    EXPECT_EQ(errorOf([&] { CIniConfig c(path); }),
+              path +
+                  ": line 3: a NUL byte (a binary file? MRPT's reader would drop "
+                  "everything after it)");
+}
+
+TEST(ConfigRead, LongValuesAndLinesAreQuotedClipped) {
+    EXPECT_EQ(clippedText("abc", 3), "abc");
+    EXPECT_EQ(clippedText("abcd", 3), "abc... (4 bytes)");
+    const std::string big(1000000, '9');
+    CIniConfig c(iniFile("[A]\nv = " + big + "\n"));
+    const std::string e = errorOf([&] { readDouble(c, "A", "v", 0, TRange::any()); });
+    EXPECT_LT(e.size(), 400u);
+    EXPECT_NE(e.find("... (1000000 bytes)': not a number"), std::string::npos);
+    const std::string line = iniFile("[A]\n" + std::string(1000000, 'x') + "\n");
+    EXPECT_LT(errorOf([&] { CIniConfig bad(line); }).size(), 400u);
 }
 
 TEST(CIniConfig, ReportsKeysNobodyRead) {
@@ -209,6 +251,9 @@ TEST(CIniConfig, OverridesFromTheCommandLine) {
                   c.applyOverride("Route.speed");
               }).find("expected SECTION.KEY=VALUE"),
               std::string::npos);
+    // a line break would cut the one-line message (the file cannot hold one)
+    EXPECT_EQ(errorOf([&] { c.applyOverride("Route.speed=1\nrest"); }),
+              "--set 'Route.speed=1...': a line break or NUL byte in the value");
     // a bad value from --set is said to come from --set, not from the file
     c.applyOverride("route.SPEED=fast");
     EXPECT_EQ(errorOf([&] { readDouble(c, "Route", "speed", 0, TRange::any()); }),

@@ -49,6 +49,14 @@ bool parseNumber(const std::string& txt, double& out);
 
 /** The text without leading and trailing spaces, tabs, CR and LF. */
 std::string trim(const std::string& s);
+/** Why `path` cannot be read as a file: "" when it is a regular file (or a
+ * link to one), else "not found", "is a folder, not a file" or "is not a
+ * regular file (a device, FIFO or socket)" (/dev/zero, a FIFO: reading one
+ * would not end or would block). */
+std::string fileProblem(const std::string& path);
+/** `s`, or its first `max` bytes and "... (N bytes)" when longer: a message
+ * quotes a 10 MB line in a few hundred bytes. */
+std::string clippedText(const std::string& s, size_t max = 200);
 
 /** @name Strict typed reads.
  * MRPT's read_double() accepts "0.5 ; comment" as a crash (stod) and "5abc" as 5;
@@ -140,8 +148,19 @@ void copyConfigKeys(
 /** A point for messages: "(x.xx, y.yy)" [m]. */
 std::string pointText(double x, double y);
 
+/** A config made of others (a run's config over an MRPT engine file): which
+ * one holds a key, so that a message names the file the value is in. */
+class CConfigOrigins {
+  public:
+    virtual ~CConfigOrigins() = default;
+    /** The config a read of (section, key) is answered from. */
+    virtual const mrpt::config::CConfigFileBase& holderOf(
+        const std::string& section, const std::string& key) const = 0;
+};
+
 /** "file.ini: " for a CIniConfig, "" otherwise: prefix of every message;
- * with the section and key: "file.ini (--set): " when --set gave that key. */
+ * with the section and key: "file.ini (--set): " when --set gave that key,
+ * of the file that holds the key when `c` is a CConfigOrigins. */
 std::string configWhere(const mrpt::config::CConfigFileBase& c);
 std::string configWhere(const mrpt::config::CConfigFileBase& c,
                         const std::string& section, const std::string& key);

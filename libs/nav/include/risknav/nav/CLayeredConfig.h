@@ -1,4 +1,6 @@
 #pragma once
+#include <risknav/common/config_read.h>
+
 #include <mrpt/config/CConfigFileBase.h>
 
 namespace risknav::nav {
@@ -7,7 +9,8 @@ namespace risknav::nav {
  * reactive-navigation file named by [Navigate] engine_config). Reads go to
  * the config that holds the key, so each keeps its own read tracking and
  * error messages. Read-only: writes throw. */
-class CLayeredConfig : public mrpt::config::CConfigFileBase {
+class CLayeredConfig : public mrpt::config::CConfigFileBase,
+                       public common::CConfigOrigins {
   public:
     CLayeredConfig(const mrpt::config::CConfigFileBase& top,
                    const mrpt::config::CConfigFileBase& bottom)
@@ -16,6 +19,11 @@ class CLayeredConfig : public mrpt::config::CConfigFileBase {
     void getAllKeys(const std::string& section,
                     std::vector<std::string>& keys) const override;
     void clear() override;
+    /** `top` when it holds the key, else `bottom`. */
+    const mrpt::config::CConfigFileBase& holderOf(const std::string& section,
+                                                  const std::string& key) const override {
+        return m_top.keyExists(section, key) ? m_top : m_bottom;
+    }
 
   protected:
     void writeString(const std::string& section, const std::string& name,
