@@ -227,18 +227,26 @@ struct TBad {
 
 class NavigateBadInput : public ::testing::TestWithParam<TBad> {};
 
+namespace {
+// A run of `config` into a folder with an earlier run's summary: exit 2,
+// one line holding `expect`, the summary untouched.
+void expectRefused(const std::string& config, const std::string& expect) {
+    const std::string out = freshDir("out");
+    const TEarlierOutput earlier{{"summary.json", "{\"earlier\": true}\n"}};
+    writeEarlierOutput(out, earlier);
+    const auto r =
+        run(binPath("risknav-navigate") + " -q -o '" + out + "' '" + config + "'");
+    expectBadInput(r, expect, out, earlier, "risknav-navigate: error: ");
+}
+}  // namespace
+
 TEST_P(NavigateBadInput, OneLineExit2OutputUntouched) {
     const auto& c = GetParam();
     const std::string w = freshDir("w");
     std::string cfg = officeConfig();
     cfg = std::regex_replace(cfg, std::regex(c.from), c.to);
     writeFile(w + "/n.ini", cfg);
-    const std::string out = freshDir("out");
-    const TEarlierOutput earlier{{"summary.json", "{\"earlier\": true}\n"}};
-    writeEarlierOutput(out, earlier);
-    const auto r =
-        run(binPath("risknav-navigate") + " -q -o '" + out + "' '" + w + "/n.ini'");
-    expectBadInput(r, c.expect, out, earlier, "risknav-navigate: error: ");
+    expectRefused(w + "/n.ini", c.expect);
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -494,14 +502,8 @@ TEST(NavigateE2E, ABadValueInTheEngineFileIsBlamedOnThatFile) {
     cfg = std::regex_replace(cfg, std::regex("engine_config +=.*"),
                              "engine_config = " + w + "/engine.ini");
     writeFile(w + "/n.ini", cfg);
-    const std::string out = freshDir("out");
-    const TEarlierOutput earlier{{"summary.json", "{\"earlier\": true}\n"}};
-    writeEarlierOutput(out, earlier);
-    const auto r =
-        run(binPath("risknav-navigate") + " -q -o '" + out + "' '" + w + "/n.ini'");
-    expectBadInput(
-        r, w + "/engine.ini: [CReactiveNavigationSystem] PTG0_K = 'abc': not a number",
-        out, earlier, "risknav-navigate: error: ");
+    expectRefused(w + "/n.ini", w + "/engine.ini: [CReactiveNavigationSystem] PTG0_K = "
+                                    "'abc': not a number");
 }
 
 TEST(NavigateE2E, ARawlogBeyondItsBoundIsRefusedBeforeTheRun) {
