@@ -409,7 +409,42 @@ INSTANTIATE_TEST_SUITE_P(
              "('nan')"},
         TBad{"mrpt_phase_threshold_zero", "\\[CRiskAwareReactiveNav\\]",
              "[CHolonomicFullEval]\nPHASE1_THRESHOLD = 0\n[CRiskAwareReactiveNav]",
-             "[CHolonomicFullEval] PHASE1_THRESHOLD = '0': must be in (0, 1)"},
+             "[CHolonomicFullEval] PHASE1_THRESHOLD = '0': must be a number in (0, 1)"},
+        TBad{"mrpt_phase_threshold_above_one", "\\[CRiskAwareReactiveNav\\]",
+             "[CHolonomicFullEval]\nPHASE1_THRESHOLD = 1.5 # c\n[CRiskAwareReactiveNav]",
+             "[CHolonomicFullEval] PHASE1_THRESHOLD = '1.5': must be a number in (0, 1)"},
+        // MRPT's list reader failed with the one word "stod" (no key), or
+        // took a list of the wrong length
+        TBad{"mrpt_factor_weight_word", "\\[CRiskAwareReactiveNav\\]",
+             "[CHolonomicFullEval]\nfactorWeights = 0.1 abc 0.5 0.01 1 1 1\n"
+             "[CRiskAwareReactiveNav]",
+             "[CHolonomicFullEval] factorWeights = '0.1 abc 0.5 0.01 1 1 1': not a list "
+             "of numbers ('abc')"},
+        TBad{"mrpt_factor_weights_six", "\\[CRiskAwareReactiveNav\\]",
+             "[CHolonomicFullEval]\nfactorWeights = 0.1 0.5 0.5 0.01 1 1\n"
+             "[CRiskAwareReactiveNav]",
+             "[CHolonomicFullEval] factorWeights = '0.1 0.5 0.5 0.01 1 1': must list 7 "
+             "numbers (MRPT 2.5"},
+        TBad{"mrpt_phase_factors_hash_comment", "\\[CRiskAwareReactiveNav\\]",
+             "[CHolonomicFullEval]\nPHASE1_FACTORS = [6] # c\n[CRiskAwareReactiveNav]",
+             "[CHolonomicFullEval] PHASE1_FACTORS = '[6] # c': not a list of integers "
+             "('#')"},
+        TBad{
+            "mrpt_normalize_or_not_two", "\\[CRiskAwareReactiveNav\\]",
+            "[CHolonomicFullEval]\nfactorNormalizeOrNot = 0 0 0 0 1 2 0\n"
+            "[CRiskAwareReactiveNav]",
+            "[CHolonomicFullEval] factorNormalizeOrNot = '0 0 0 0 1 2 0': each must be 0 "
+            "or 1"},
+        TBad{"mrpt_nd_factor_weight_word", "\\[CRiskAwareReactiveNav\\]",
+             "[CAbstractPTGBasedReactive]\nholonomic_method = CHolonomicND\n"
+             "[CHolonomicND]\nfactorWeights = 1 abc 2 0.4\n[CRiskAwareReactiveNav]",
+             "[CHolonomicND] factorWeights = '1 abc 2 0.4': not a list of numbers "
+             "('abc')"},
+        TBad{"mrpt_holonomic_method_comment", "\\[CRiskAwareReactiveNav\\]",
+             "[CAbstractPTGBasedReactive]\nholonomic_method = CHolonomicFullEval # c\n"
+             "[CRiskAwareReactiveNav]",
+             "[CAbstractPTGBasedReactive] holonomic_method = 'CHolonomicFullEval # c': "
+             "must be CHolonomicFullEval, CHolonomicND or CHolonomicVFF"},
         TBad{"mrpt_factor_weight_nan", "\\[CRiskAwareReactiveNav\\]",
              "[CHolonomicFullEval]\nfactorWeights = 0.1 0.5 0.5 0.01 1 nan 1\n"
              "[CRiskAwareReactiveNav]",
@@ -418,7 +453,8 @@ INSTANTIATE_TEST_SUITE_P(
         TBad{"mrpt_phase_weights_zero", "\\[CRiskAwareReactiveNav\\]",
              "[CHolonomicFullEval]\nfactorWeights = 0 0 0 0 0 0 0\n"
              "[CRiskAwareReactiveNav]",
-             "its factors' weights in factorWeights must add up to more than 0"},
+             "[CHolonomicFullEval] PHASE1_FACTORS = '[6]': its factors weigh 0 together "
+             "in factorWeights = '0 0 0 0 0 0 0' (in "},
         // MRPT skipped an unknown name / took any word as false
         TBad{"mrpt_normalize_unknown_score", "\\[CRiskAwareReactiveNav\\]",
              "[CMultiObjectiveMotionOptimizerBase]\nscores_to_normalize = clearence\n"
@@ -439,8 +475,15 @@ INSTANTIATE_TEST_SUITE_P(
         TBad{"mrpt_ptg_build_too_long", "\\[CRiskAwareReactiveNav\\]",
              "[CReactiveNavigationSystem]\nPTG0_num_paths = 500\nPTG0_resolution = "
              "0.02\n[CRiskAwareReactiveNav]",
-             "[CReactiveNavigationSystem] PTG0_num_paths = '500': with PTG0_resolution = "
-             "0.02 m, it would take 52 times the build of MRPT's default PTG"},
+             "[CReactiveNavigationSystem] PTG0_num_paths = '500': with resolution = 0.02 "
+             "m, refDistance = 10 m, w_max_dps = 60, it would take 52 times the build of "
+             "MRPT's default PTG"},
+        // slow turns make long paths: 5x the default's build here
+        TBad{"mrpt_ptg_build_slow_turns", "\\[CRiskAwareReactiveNav\\]",
+             "[CReactiveNavigationSystem]\nPTG0_num_paths = 500\nPTG0_refDistance = 50\n"
+             "PTG0_w_max_dps = 10\n[CRiskAwareReactiveNav]",
+             "[CReactiveNavigationSystem] PTG0_num_paths = '500': with resolution = 0.05 "
+             "m, refDistance = 50 m, w_max_dps = 10, it would take "},
         // the run's work is bounded before it starts (1e8 world steps here)
         TBad{"risk_route_without_risk_config", "nav_period +=.*",
              "nav_period = 0.2\nrisk_route = worst",
@@ -504,6 +547,25 @@ TEST(NavigateE2E, ABadValueInTheEngineFileIsBlamedOnThatFile) {
     writeFile(w + "/n.ini", cfg);
     expectRefused(w + "/n.ini", w + "/engine.ini: [CReactiveNavigationSystem] PTG0_K = "
                                     "'abc': not a number");
+}
+
+TEST(NavigateE2E, MrptsOwnSpellingsOfEngineValuesAreAccepted) {
+    // '# comments' after numbers (MRPT's own files have them), a score
+    // formula that is a number, the method with its namespace: stop 36's
+    // checks refused these
+    const std::string w = freshDir("w");
+    std::string cfg = officeConfig();
+    cfg = std::regex_replace(cfg, std::regex("PTG_COUNT = 2"),
+                             "PTG_COUNT = 2 # two\nPTG0_num_paths = 121 # paths");
+    cfg = std::regex_replace(
+        cfg, std::regex("\\[CRiskAwareReactiveNav\\]"),
+        "[CAbstractPTGBasedReactive]\nholonomic_method = mrpt::nav::CHolonomicFullEval\n"
+        "[CHolonomicFullEval]\nPHASE_COUNT = 2 # c\nPHASE2_THRESHOLD = 0.6 # c\n"
+        "[CMultiObjectiveMotionOptimizerBase]\nscore6_formula = 1\n"
+        "[CRiskAwareReactiveNav]");
+    writeFile(w + "/n.ini", cfg);
+    const json s = navRun(w + "/n.ini", freshDir("out"), "--set Navigate.duration_max=3");
+    EXPECT_TRUE(s.contains("status")) << s;
 }
 
 TEST(NavigateE2E, ARawlogBeyondItsBoundIsRefusedBeforeTheRun) {

@@ -169,9 +169,9 @@ void CAfraidLearner::loadFromConfigFile(const CIniConfig& c,
     for (const auto& s : c.sections())
         if (s != "AfraidLearn" && s != "Robot" && s != "AfraidDetector" &&
             s != "Localization" && s != "PF_options" && s != "KLD_options")
-            throw CBadInputError(c.path() + ": unknown section [" + s +
-                                 "] (known: AfraidLearn, Robot, AfraidDetector, "
-                                 "Localization, PF_options, KLD_options)");
+            c.throwUnknownSection(s,
+                                  "AfraidLearn, Robot, AfraidDetector, "
+                                  "Localization, PF_options, KLD_options");
     try {
         options.loadFromConfigFile(c, "AfraidLearn");
         // Command-line rawlogs are relative to the working directory: made

@@ -167,6 +167,18 @@ std::vector<std::string> CIniConfig::unreadKeys(
     return out;
 }
 
+void CIniConfig::throwUnknownSection(const std::string& section,
+                                     const std::string& known) const {
+    std::vector<std::string> keys;
+    getAllKeys(section, keys);
+    const bool fromSet =
+        !keys.empty() && std::all_of(keys.begin(), keys.end(), [&](const std::string& k) {
+            return isOverridden(section, k);
+        });
+    throw CBadInputError(m_path + (fromSet ? " (--set)" : "") + ": unknown section [" +
+                         clippedText(section) + "] (known: " + known + ")");
+}
+
 void CIniConfig::throwOnUnreadKeys(const std::vector<std::string>& only) const {
     const auto unknown = unreadKeys(only);
     if (unknown.empty())
@@ -177,7 +189,8 @@ void CIniConfig::throwOnUnreadKeys(const std::vector<std::string>& only) const {
     const bool fromSet =
         close != std::string::npos &&
         isOverridden(first.substr(1, close - 1), first.substr(close + 2));
-    std::string msg = m_path + (fromSet ? " (--set)" : "") + ": unknown key " + first;
+    std::string msg =
+        m_path + (fromSet ? " (--set)" : "") + ": unknown key " + clippedText(first);
     if (unknown.size() > 1)
         msg += " (and " + std::to_string(unknown.size() - 1) + " more)";
     throw CBadInputError(msg + "; see config/ for the documented keys");

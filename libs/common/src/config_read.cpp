@@ -152,9 +152,10 @@ void throwBadKey(const CConfigFileBase& cfg, const std::string& section,
                  const std::string& key, const std::string& value,
                  const std::string& rule) {
     const CConfigFileBase& c = holderOf(cfg, section, key);
-    throw CBadInputError(
-        configWhere(c, section, key) +
-        typedValueMessage(c, CConfigKeyError(section, key, clippedText(value), rule)));
+    throw CBadInputError(configWhere(c, section, key) +
+                         typedValueMessage(c, CConfigKeyError(clippedText(section, 100),
+                                                              clippedText(key, 100),
+                                                              clippedText(value), rule)));
 }
 
 double readDouble(const CConfigFileBase& c, const std::string& s, const std::string& k,

@@ -251,15 +251,14 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
             c.getAllKeys(s, keys);
             const bool readByPlugin = c.unreadKeys({s}).size() < keys.size();
             if (!known.count(s) && !sim::CAgentsSim::ownsSection(s) && !readByPlugin)
-                throw CBadInputError(
-                    c.path() + ": unknown section [" + s +
-                    "] (known: Navigate, World, Robot, Odometry, Laser, RangeSensor2, "
+                c.throwUnknownSection(
+                    s,
+                    "Navigate, World, Robot, Odometry, Laser, RangeSensor2, "
                     "people and clutter, CRiskAwareReactiveNav and the sections of the "
                     "limiters it names, MRPT's engine sections" +
-                    std::string(options.localization == "mcl"
-                                    ? ", Localization, PF_options, KLD_options"
-                                    : "") +
-                    ")");
+                        std::string(options.localization == "mcl"
+                                        ? ", Localization, PF_options, KLD_options"
+                                        : ""));
             if (!kEngineSections.count(s) &&
                 std::find(otherSections.begin(), otherSections.end(), s) ==
                     otherSections.end())

@@ -12,6 +12,8 @@
 #include <mrpt/expr/CRuntimeCompiledExpression.h>
 #include <mrpt/kinematics/CVehicleVelCmd_DiffDriven.h>
 #include <mrpt/maps/CPointCloudFilterByDistance.h>
+#include <mrpt/nav/holonomic/CHolonomicFullEval.h>
+#include <mrpt/nav/holonomic/CHolonomicND.h>
 #include <mrpt/nav/reactive/CLogFileRecord.h>
 #include <mrpt/nav/tpspace/CPTG_DiffDrive_CollisionGridBased.h>
 #include <mrpt/nav/tpspace/CPTG_DiffDrive_alpha.h>
@@ -19,6 +21,7 @@
 
 #include <mrpt/math/TSegment2D.h>
 #include <mrpt/math/wrap2pi.h>
+#include <mrpt/version.h>
 
 #include <algorithm>
 #include <cctype>
@@ -240,6 +243,142 @@ void checkEngineFormulas(const mrpt::config::CConfigFileBase& c,
                  layered.read_string(sc, "scalar_score_formula", ""), scores);
 }
 
+// The class name without its namespace: the limiter's config section.
+std::string shortName(const std::string& n) {
+    const auto p = n.rfind("::");
+    return p == std::string::npos ? n : n.substr(p + 2);
+}
+
+// An MRPT value as its number parsers read it: trimmed, up to a "# comment"
+// (MRPT's own files end values with them; its atof / atoi stop there).
+std::string engineNumberText(const mrpt::config::CConfigFileBase& layered,
+                             const std::string& sec, const std::string& key) {
+    const std::string t = trim(layered.read_string(sec, key, ""));
+    return trim(t.substr(0, t.find('#')));
+}
+
+// " (in <file>[ (--set)])": where a key another key's message quotes was given.
+std::string givenIn(const mrpt::config::CConfigFileBase& layered, const std::string& sec,
+                    const std::string& key) {
+    std::string w = configWhere(layered, sec, key);
+    if (w.size() >= 2 && w.compare(w.size() - 2, 2, ": ") == 0)
+        w.resize(w.size() - 2);
+    return w.empty() ? "" : " (in " + w + ")";
+}
+
+// The holonomic method's keys, checked in the text before MRPT loads them:
+// MRPT's list reader (std::stod on each of "[], \t"-separated words) failed
+// on 'abc', '#' or an empty list with the one word "stod", its asserts on a
+// list's length or a threshold outside [0, 1] without the key, and
+// CHolonomicFullEval's phases that index no factor, weigh 0 together or
+// have a threshold of 0 or 1 passed its load and then failed every cycle
+// (each an emergency stop: the run ended `navigation_error`, exit 0).
+// Only the method in use is checked (an unused section may hold anything,
+// as MRPT's own files do).
+void checkHolonomicText(const mrpt::config::CConfigFileBase& layered) {
+    const std::string abs = "CAbstractPTGBasedReactive";
+    if (!layered.keyExists(abs, "holonomic_method"))
+        return;  // MRPT's loader names the missing key itself
+    const std::string method = trim(layered.read_string(abs, "holonomic_method", ""));
+    const std::string bare = shortName(method);
+    if (!(bare == "CHolonomicFullEval" || bare == "CHolonomicND" ||
+          bare == "CHolonomicVFF") ||
+        !(bare == method || method == "mrpt::nav::" + bare))
+        throwBadKey(layered, abs, "holonomic_method", method,
+                    "must be CHolonomicFullEval, CHolonomicND or CHolonomicVFF (MRPT's "
+                    "methods; no # comment)");
+    // a list of numbers as MRPT reads it, of `count` (> 0 when known) numbers
+    auto list = [&](const std::string& sec, const std::string& key, bool integers,
+                    size_t count) {
+        const std::string t = trim(layered.read_string(sec, key, ""));
+        std::vector<double> out;
+        for (const auto& w : listTokens(t)) {
+            long n = 0;
+            double v = 0;
+            if (integers ? !isInteger(w, n) : !parseNumber(w, v))
+                throwBadKey(layered, sec, key, t,
+                            std::string(integers ? "not a list of integers"
+                                                 : "not a list of numbers") +
+                                " ('" + clippedText(w, 40) + "')");
+            out.push_back(integers ? double(n) : v);
+        }
+        if (out.empty() || (count > 0 && out.size() != count))
+            throwBadKey(
+                layered, sec, key, t,
+                "must list " +
+                    (count > 0 ? std::to_string(count) : std::string("1 or more")) +
+                    (integers ? " integers" : " numbers") + " (" + MRPT_version_str +
+                    "'s " + sec + ")");
+        return out;
+    };
+    if (bare == "CHolonomicND") {
+        const std::string sec = "CHolonomicND";
+        if (layered.keyExists(sec, "factorWeights"))
+            for (const double w :
+                 list(sec, "factorWeights", false,
+                      mrpt::nav::CHolonomicND::TOptions().factorWeights.size()))
+                if (!(w >= 0))
+                    throwBadKey(layered, sec, "factorWeights",
+                                layered.read_string(sec, "factorWeights", ""),
+                                "each weight must be >= 0");
+        return;
+    }
+    if (bare != "CHolonomicFullEval")
+        return;
+    const std::string sec = "CHolonomicFullEval";
+    // (MRPT's defaults when the file leaves them out)
+    std::vector<double> weights = mrpt::nav::CHolonomicFullEval::TOptions().factorWeights;
+    const size_t nFactors = weights.size();
+    if (layered.keyExists(sec, "factorWeights")) {
+        weights = list(sec, "factorWeights", false, nFactors);
+        for (const double w : weights)
+            if (!(w >= 0))
+                throwBadKey(layered, sec, "factorWeights",
+                            layered.read_string(sec, "factorWeights", ""),
+                            "each weight must be >= 0");
+    }
+    if (layered.keyExists(sec, "factorNormalizeOrNot"))
+        for (const double f : list(sec, "factorNormalizeOrNot", true, nFactors))
+            if (!(f == 0 || f == 1))
+                throwBadKey(layered, sec, "factorNormalizeOrNot",
+                            layered.read_string(sec, "factorNormalizeOrNot", ""),
+                            "each must be 0 or 1");
+    if (!layered.keyExists(sec, "PHASE_COUNT"))
+        return;
+    const std::string pc = engineNumberText(layered, sec, "PHASE_COUNT");
+    long phases = 0;
+    if (!isInteger(pc, phases) || phases < 1 || phases > 10)
+        throwBadKey(layered, sec, "PHASE_COUNT", pc, "must be an integer in [1, 10]");
+    for (long i = 1; i <= phases; i++) {
+        const std::string fk = "PHASE" + std::to_string(i) + "_FACTORS",
+                          tk = "PHASE" + std::to_string(i) + "_THRESHOLD";
+        if (layered.keyExists(sec, fk)) {
+            double sum = 0;
+            for (const double f : list(sec, fk, true, 0)) {
+                if (!(f >= 0 && f < double(weights.size())))
+                    throwBadKey(layered, sec, fk, layered.read_string(sec, fk, ""),
+                                "each factor must be an index into factorWeights (0.." +
+                                    std::to_string(long(weights.size()) - 1) + ")");
+                sum += weights[size_t(f)];
+            }
+            if (!(sum > 0))
+                throwBadKey(
+                    layered, sec, fk, layered.read_string(sec, fk, ""),
+                    "its factors weigh 0 together in factorWeights = '" +
+                        clippedText(trim(layered.read_string(sec, "factorWeights", "")),
+                                    80) +
+                        "'" + givenIn(layered, sec, "factorWeights") +
+                        "; MRPT asserts on it every cycle");
+        }
+        if (layered.keyExists(sec, tk)) {
+            const std::string t = engineNumberText(layered, sec, tk);
+            double th = 0;
+            if (!parseNumber(t, th) || !(th > 0 && th < 1))
+                throwBadKey(layered, sec, tk, t, "must be a number in (0, 1)");
+        }
+    }
+}
+
 // Values MRPT crashes or asserts on while it loads them, checked in the
 // text before it does: exit 2 naming the key.
 void checkEngineText(const mrpt::config::CConfigFileBase& c,
@@ -252,11 +391,9 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
                          const TRange& r) {
         if (!layered.keyExists(sec, key))
             return;
-        const std::string t = trim(layered.read_string(sec, key, ""));
-        char* end = nullptr;
-        errno = 0;
-        const long v = t.empty() ? 0 : std::strtol(t.c_str(), &end, 10);
-        if (t.empty() || *end != '\0' || errno == ERANGE)
+        const std::string t = engineNumberText(layered, sec, key);
+        long v = 0;
+        if (!isInteger(t, v))
             throwBadKey(layered, sec, key, t, "not an integer");
         if (!r.contains(double(v)))
             throwBadKey(layered, sec, key, t, r.describe());
@@ -278,7 +415,7 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
               TRange::closed(0, 100, "waypoints"));
     strictInt("CAbstractNavigator", "hysteresis_check_target_is_blocked",
               TRange::closed(1, 1000, "cycles"));
-    strictInt("CHolonomicFullEval", "PHASE_COUNT", TRange::closed(1, 10, "phases"));
+    checkHolonomicText(layered);
     strictInt("CPointCloudFilterByDistance", "previous_keyframes",
               TRange::closed(1, 100, "keyframes"));
     // a speed filter's time constant: NaN or < 0 crashed MRPT
@@ -301,14 +438,24 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
 
 // The time MRPT 2.5.8 takes to build a collision-grid PTG (once; then it is
 // read from ptg_cache_dir), in builds of its default one (121 paths, 0.05 m
-// cells: ~1.7 s here). Measured on this machine with one PTG: 1,000 paths
-// 32 s, 0.02 m cells 8 s, both (500 paths) 78 s and 400 MB; refDistance 10
-// -> 20 m +15 %: ~1.4 s x (n / 121)^1.5 x (0.05 / res)^2. Each key's limits
-// alone allow ~6,700 of them (2.6 h); the PTGs together get at most
-// kMaxPtgBuildUnits (~1 min).
-constexpr double kMaxPtgBuildUnits = 40;
-double ptgBuildUnits(double numPaths, double res) {
-    return std::pow(numPaths / 121.0, 1.5) * std::pow(0.05 / res, 2);
+// cells, refDistance 10 m, v_max / w_max = 1 m/s / 60 deg/s: ~1.7-2.3 s
+// here). Fitted to 18 one-PTG builds measured on this machine (stop 37,
+// C, CCS and alpha PTGs; the model within -9..+20 % of each): paths
+// (n / 121)^1.5 (1,000 paths 32 s), cells (0.05 / res)^2, and the reach
+// r = refDistance / 10 m with the turning radius q = (v_max / w_max) /
+// (1 m/s / 60 deg/s), capped at 6 (slower turns than 10 deg/s cost no
+// more), as e^(0.45 ln r + 0.14 ln q + 0.20 ln r ln q): refDistance 50 m
+// costs 2x, with w_max 10 deg/s 5x. Each key's limits alone allow thousands
+// of builds (hours); the PTGs together get at most kMaxPtgBuildUnits
+// (~1 min).
+constexpr double kMaxPtgBuildUnits = 24;
+double ptgBuildUnits(double numPaths, double res, double refDistance, double vMax,
+                     double wMaxRadps) {
+    const double lr = std::log(refDistance / 10.0),
+                 lq = std::min(std::log((vMax / wMaxRadps) * (60 * M_PI / 180)),
+                               std::log(6.0));
+    return std::pow(numPaths / 121.0, 1.5) * std::pow(0.05 / res, 2) *
+           std::exp(0.45 * lr + 0.14 * lq + 0.20 * lr * lq);
 }
 
 // Values MRPT 2.5.8 takes without a check and then fails on at every step
@@ -372,16 +519,19 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
         check(sec, k + "v_max_mps", ptg->getMaxLinVel(), speed);
         check(sec, k + "w_max_dps", ptg->getMaxAngVel() * 180 / M_PI, turn);
         if (dynamic_cast<const mrpt::nav::CPTG_DiffDrive_CollisionGridBased*>(ptg)) {
-            buildUnits += ptgBuildUnits(ptg->getAlphaValuesCount(), res);
+            const double wDeg = std::round(ptg->getMaxAngVel() * 180 / M_PI * 1e6) / 1e6;
+            buildUnits += ptgBuildUnits(ptg->getAlphaValuesCount(), res, ref,
+                                        ptg->getMaxLinVel(), ptg->getMaxAngVel());
             if (buildUnits > kMaxPtgBuildUnits)
                 throwBadKey(
                     layered, sec, k + "num_paths",
                     std::to_string(ptg->getAlphaValuesCount()),
-                    "with " + k + "resolution = " + numberText(res) + " m, " +
+                    "with resolution = " + numberText(res) + " m, refDistance = " +
+                        numberText(ref) + " m, w_max_dps = " + numberText(wDeg) + ", " +
                         (i == 0 ? std::string("it") : "PTGs 0.." + std::to_string(i)) +
                         " would take " + numberText(std::round(buildUnits)) +
-                        " times the build of MRPT's default PTG (121 paths, "
-                        "0.05 m), at most " +
+                        " times the build of MRPT's default PTG (121 paths, 0.05 m, "
+                        "10 m, 60 deg/s at 1 m/s), at most " +
                         numberText(kMaxPtgBuildUnits) + " in all (~1 min)");
         }
     }
@@ -422,7 +572,12 @@ void checkEngineTypes(const mrpt::config::CConfigFileBase& layered,
         std::vector<std::string> keys;
         saved.getAllKeys(sec, keys);
         for (const auto& key : keys) {
-            if (!layered.keyExists(sec, key))
+            // MRPT saves its scores in the order of their names, not as
+            // numbered in the config: a scoreN key's saved value is another
+            // score's (the formulas are compiled by checkEngineFormulas())
+            const std::string lk = lowerCase(key);
+            if (!layered.keyExists(sec, key) || lk.rfind("score", 0) == 0 ||
+                lk.rfind("movement_assert", 0) == 0 || lk == "scalar_score_formula")
                 continue;
             const std::string held = lowerCase(trim(saved.read_string(sec, key, "")));
             const std::string typed = trim(layered.read_string(sec, key, ""));
@@ -443,7 +598,6 @@ void checkEngineTypes(const mrpt::config::CConfigFileBase& layered,
                                 [&](const std::string& t) { return isInteger(t, n); });
                 const std::vector<std::string> given = listTokens(text);
                 // (MRPT 2.5.8's list keys that may hold one element)
-                const std::string lk = lowerCase(key);
                 const bool list =
                     heldList.size() > 1 || lk == "factorweights" ||
                     lk == "factornormalizeornot" ||
@@ -469,57 +623,6 @@ void checkEngineTypes(const mrpt::config::CConfigFileBase& layered,
     }
 }
 
-// CHolonomicFullEval's lists, which MRPT 2.5.8 loads unchecked and then
-// asserts on at every cycle (each an emergency stop: the run ended
-// `navigation_error` with exit 0): each phase's factors must index
-// factorWeights, weigh more than 0 together, and its threshold lie in
-// (0, 1). Checked when the engine uses that method (an unused section may
-// hold anything, as MRPT's own files do). By then the lists are numbers.
-void checkFullEvalLists(const mrpt::config::CConfigFileBase& layered,
-                        const mrpt::nav::CReactiveNavigationSystem& nav) {
-    const std::string method = nav.params_abstract_ptg_navigator.holonomic_method;
-    if (method.find("CHolonomicFullEval") == std::string::npos)
-        return;
-    const std::string sec = "CHolonomicFullEval";
-    std::vector<double> weights;
-    for (const auto& t : listTokens(layered.read_string(sec, "factorWeights", ""))) {
-        double v = 0;
-        if (!parseNumber(t, v) || !(v >= 0))
-            throwBadKey(layered, sec, "factorWeights",
-                        layered.read_string(sec, "factorWeights", ""),
-                        "each weight must be a number >= 0");
-        weights.push_back(v);
-    }
-    const int phases = layered.read_int(sec, "PHASE_COUNT", 0);
-    for (int i = 1; i <= phases; i++) {
-        const std::string fk = "PHASE" + std::to_string(i) + "_FACTORS",
-                          tk = "PHASE" + std::to_string(i) + "_THRESHOLD";
-        const std::string ft = trim(layered.read_string(sec, fk, ""));
-        double sum = 0;
-        for (const auto& t : listTokens(ft)) {
-            long f = -1;
-            if (!isInteger(t, f) || f < 0 || size_t(f) >= weights.size())
-                throwBadKey(layered, sec, fk, ft,
-                            "each factor must be an index into factorWeights (0.." +
-                                std::to_string(long(weights.size()) - 1) + ")");
-            sum += weights[size_t(f)];
-        }
-        if (!(sum > 0))
-            throwBadKey(layered, sec, fk, ft,
-                        "its factors' weights in factorWeights must add up to more "
-                        "than 0");
-        double th = 0;
-        const std::string tt = trim(layered.read_string(sec, tk, ""));
-        if (!parseNumber(tt, th) || !(th > 0 && th < 1))
-            throwBadKey(layered, sec, tk, tt, "must be in (0, 1)");
-    }
-}
-
-// The class name without its namespace: the limiter's config section.
-std::string shortName(const std::string& n) {
-    const auto p = n.rfind("::");
-    return p == std::string::npos ? n : n.substr(p + 2);
-}
 }  // namespace
 
 void CRiskAwareReactiveNav::TOptions::loadFromConfigFile(
@@ -881,14 +984,12 @@ void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& 
         checkEngineText(c, layered);
         mrpt::nav::CReactiveNavigationSystem::loadConfigFile(layered);
         checkEngineTypes(layered, *this);
-        checkFullEvalLists(layered, *this);
         checkEngineValues(c, layered, *this);
         keepA0w(layered);
     } else {
         checkEngineText(c, c);
         mrpt::nav::CReactiveNavigationSystem::loadConfigFile(c);
         checkEngineTypes(c, *this);
-        checkFullEvalLists(c, *this);
         checkEngineValues(c, c, *this);
         keepA0w(c);
     }

@@ -91,9 +91,7 @@ void CRiskEvaluator::loadFromConfigFile(const CIniConfig& c) {
     for (const auto& s : c.sections())
         if (s != "RiskEval" && s != "Robot" && s != "Odometry" && !numbered(s, "Route") &&
             !numbered(s, "SensingPoint"))
-            throw CBadInputError(
-                c.path() + ": unknown section [" + s +
-                "] (known: RiskEval, Robot, Odometry, RouteN, SensingPointN)");
+            c.throwUnknownSection(s, "RiskEval, Robot, Odometry, RouteN, SensingPointN");
     if (!c.sectionExists("RiskEval"))
         throw CBadInputError(c.path() + ": missing section [RiskEval]");
     options.loadFromConfigFile(c, "RiskEval");

@@ -77,10 +77,10 @@ void CWorldSimulator::loadFromConfigFile(const CIniConfig& c,
         "Route",      "StoppingRule", "Laser", "RangeSensor2"};
     for (const auto& s : c.sections())
         if (!known.count(s) && !CAgentsSim::ownsSection(s))
-            throw CBadInputError(c.path() + ": unknown section [" + s +
-                                 "] (known: Simulation, World, Robot, Odometry, Route, "
-                                 "StoppingRule, Laser, RangeSensor2, "
-                                 "DoorPedestrianN, CorridorWalkerN, ClutterN)");
+            c.throwUnknownSection(s,
+                                  "Simulation, World, Robot, Odometry, Route, "
+                                  "StoppingRule, Laser, RangeSensor2, "
+                                  "DoorPedestrianN, CorridorWalkerN, ClutterN");
     if (!c.sectionExists("World"))
         throw CBadInputError(c.path() + ": missing section [World] (map_file)");
     if (!c.sectionExists("Route"))

@@ -35,11 +35,11 @@ void CExplorer::loadFromConfigFile(const CIniConfig& c, std::optional<uint64_t> 
         "World",   "Robot",        "Odometry", "Laser",     "RangeSensor2"};
     for (const auto& s : c.sections())
         if (!known.count(s) && !sim::CAgentsSim::ownsSection(s))
-            throw CBadInputError(
-                c.path() + ": unknown section [" + s +
-                "] (known: Explore, SpeedControl, MapLaser, MapRange2, "
+            c.throwUnknownSection(
+                s,
+                "Explore, SpeedControl, MapLaser, MapRange2, "
                 "StoppingRule, World, Robot, Odometry, Laser, RangeSensor2, "
-                "CorridorWalkerN, DoorPedestrianN, ClutterN)");
+                "CorridorWalkerN, DoorPedestrianN, ClutterN");
     for (const char* s : {"Explore", "World"})
         if (!c.sectionExists(s))
             throw CBadInputError(c.path() + ": missing section [" + s + "]");

@@ -25,8 +25,7 @@ void CViewpointPlanner::loadFromConfigFile(const CIniConfig& c) {
     m_where = c.path();
     for (const auto& s : c.sections())
         if (s != "ViewpointPlan" && s != "Camera" && s != "Robot")
-            throw CBadInputError(c.path() + ": unknown section [" + s +
-                                 "] (known: ViewpointPlan, Camera, Robot)");
+            c.throwUnknownSection(s, "ViewpointPlan, Camera, Robot");
     if (!c.sectionExists("ViewpointPlan"))
         throw CBadInputError(c.path() + ": missing section [ViewpointPlan]");
     loadOptions(options, c, "ViewpointPlan");

@@ -260,6 +260,29 @@ TEST(CIniConfig, OverridesFromTheCommandLine) {
               c.path() + " (--set): [Route] speed = 'fast': not a number");
 }
 
+TEST(CIniConfig, AnUnknownSectionSaysWhetherOnlyTheCommandLineGaveIt) {
+    CIniConfig c(iniFile("[Route]\nspeed = 0.2\n[Routes]\nk = 1\n"));
+    EXPECT_EQ(errorOf([&] { c.throwUnknownSection("Routes", "Route"); }),
+              c.path() + ": unknown section [Routes] (known: Route)");
+    c.applyOverride("Rout.speed=1");
+    EXPECT_EQ(errorOf([&] { c.throwUnknownSection("Rout", "Route"); }),
+              c.path() + " (--set): unknown section [Rout] (known: Route)");
+    // a section the file has, given one more key by --set, is the file's
+    c.applyOverride("Routes.j=1");
+    EXPECT_EQ(errorOf([&] { c.throwUnknownSection("Routes", "Route"); }),
+              c.path() + ": unknown section [Routes] (known: Route)");
+}
+
+TEST(ConfigRead, LongSectionAndKeyNamesAreClippedInMessages) {
+    const std::string longKey(5000, 'k');
+    CIniConfig c(iniFile("[Route]\n" + longKey + " = abc\n"));
+    const std::string e =
+        errorOf([&] { readDouble(c, "Route", longKey, 0, TRange::any()); });
+    EXPECT_LT(e.size(), 400u) << e;
+    EXPECT_NE(e.find("(5000 bytes)"), std::string::npos) << e;
+    EXPECT_NE(e.find("not a number"), std::string::npos) << e;
+}
+
 namespace {
 struct TDemoOptions {
     double a = 1, b = 2;

@@ -42,6 +42,10 @@ class CIniConfig : public mrpt::config::CConfigFile {
         const std::vector<std::string>& sections = {}) const;
     /** Throws CBadInputError naming the first unread key, if any. */
     void throwOnUnreadKeys(const std::vector<std::string>& sections = {}) const;
+    /** Throws CBadInputError "<file>[ (--set)]: unknown section [s] (known:
+     * <known>)", "(--set)" when only --set gave the section. */
+    [[noreturn]] void throwUnknownSection(const std::string& section,
+                                          const std::string& known) const;
 
     /** Whether a key exists in the file (does not count as a read). */
     bool hasKey(const std::string& section, const std::string& key) const;
