@@ -495,6 +495,10 @@ INSTANTIATE_TEST_SUITE_P(
         TBad{"navlog_too_long", "duration_max +=.*", "duration_max = 1e5\nnavlog = true",
              "[Navigate] duration_max = '1e5': is 500000 navigation cycles with navlog "
              "= true, at most 36000"},
+        // MRPT's atoi reads '1e2' as 1
+        TBad{"mrpt_ptg_paths_exponent", "PTG_COUNT +=[^\\n]*",
+             "PTG_COUNT = 2\nPTG0_num_paths = 1e2",
+             "[CReactiveNavigationSystem] PTG0_num_paths = '1e2': not an integer"},
         TBad{"mrpt_ptg_count_fraction", "PTG_COUNT +=[^\\n]*", "PTG_COUNT = 2.7",
              "[CReactiveNavigationSystem] PTG_COUNT = '2.7': not an integer"},
         TBad{"spawned_on_clutter", "start +=.*", "start = 8.0 4.5 90",
@@ -550,13 +554,15 @@ TEST(NavigateE2E, ABadValueInTheEngineFileIsBlamedOnThatFile) {
 }
 
 TEST(NavigateE2E, MrptsOwnSpellingsOfEngineValuesAreAccepted) {
-    // '# comments' after numbers (MRPT's own files have them), a score
+    // '# comments' after numbers (MRPT's own files have them), 121.0 for an
+    // integer (MRPT reads 121), a score
     // formula that is a number, the method with its namespace: stop 36's
     // checks refused these
     const std::string w = freshDir("w");
     std::string cfg = officeConfig();
     cfg = std::regex_replace(cfg, std::regex("PTG_COUNT = 2"),
-                             "PTG_COUNT = 2 # two\nPTG0_num_paths = 121 # paths");
+                             "PTG_COUNT = 2 # two\nPTG0_num_paths = 121 # paths\n"
+                             "PTG1_num_paths = 121.0");
     cfg = std::regex_replace(
         cfg, std::regex("\\[CRiskAwareReactiveNav\\]"),
         "[CAbstractPTGBasedReactive]\nholonomic_method = mrpt::nav::CHolonomicFullEval\n"

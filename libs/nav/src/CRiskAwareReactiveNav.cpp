@@ -136,6 +136,16 @@ bool isInteger(const std::string& t, long& v) {
     return !t.empty() && *end == '\0' && errno != ERANGE;
 }
 
+// An integer as a user may write one for MRPT: also "121.0" (MRPT's atoi /
+// stod-and-cast read it as 121), never "2.7" or "1e2" (read as 2 and 1).
+bool isIntegerText(const std::string& t, long& v) {
+    const auto dot = t.find('.');
+    if (dot == std::string::npos)
+        return isInteger(t, v);
+    return dot > 0 && t.find_first_not_of('0', dot + 1) == std::string::npos &&
+           isInteger(t.substr(0, dot), v);
+}
+
 // The variables MRPT 2.5.8 gives its score and assert formulas: the
 // properties CAbstractPTGBasedReactive::calc_move_candidate_scores() sets on
 // each candidate movement (and, for asserts, the scores' names).
@@ -295,7 +305,7 @@ void checkHolonomicText(const mrpt::config::CConfigFileBase& layered) {
         for (const auto& w : listTokens(t)) {
             long n = 0;
             double v = 0;
-            if (integers ? !isInteger(w, n) : !parseNumber(w, v))
+            if (integers ? !isIntegerText(w, n) : !parseNumber(w, v))
                 throwBadKey(layered, sec, key, t,
                             std::string(integers ? "not a list of integers"
                                                  : "not a list of numbers") +
@@ -347,7 +357,7 @@ void checkHolonomicText(const mrpt::config::CConfigFileBase& layered) {
         return;
     const std::string pc = engineNumberText(layered, sec, "PHASE_COUNT");
     long phases = 0;
-    if (!isInteger(pc, phases) || phases < 1 || phases > 10)
+    if (!isIntegerText(pc, phases) || phases < 1 || phases > 10)
         throwBadKey(layered, sec, "PHASE_COUNT", pc, "must be an integer in [1, 10]");
     for (long i = 1; i <= phases; i++) {
         const std::string fk = "PHASE" + std::to_string(i) + "_FACTORS",
@@ -393,7 +403,7 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
             return;
         const std::string t = engineNumberText(layered, sec, key);
         long v = 0;
-        if (!isInteger(t, v))
+        if (!isIntegerText(t, v))
             throwBadKey(layered, sec, key, t, "not an integer");
         if (!r.contains(double(v)))
             throwBadKey(layered, sec, key, t, r.describe());
@@ -607,7 +617,7 @@ void checkEngineTypes(const mrpt::config::CConfigFileBase& layered,
                                 list ? "not a list of numbers" : "not a number");
                 for (const auto& t : given) {
                     double v = 0;
-                    if (integers && !isInteger(t, n))
+                    if (integers && !isIntegerText(t, n))
                         throwBadKey(layered, sec, key, text,
                                     list ? "not a list of integers ('" + t + "')"
                                          : "not an integer");
