@@ -495,6 +495,14 @@ INSTANTIATE_TEST_SUITE_P(
         TBad{"navlog_too_long", "duration_max +=.*", "duration_max = 1e5\nnavlog = true",
              "[Navigate] duration_max = '1e5': is 500000 navigation cycles with navlog "
              "= true, at most 36000"},
+        // normalized distances beyond [0, 1]: the robot held still all run, exit 0
+        TBad{"mrpt_too_close_beyond_one", "\\[CRiskAwareReactiveNav\\]",
+             "[CHolonomicFullEval]\nTOO_CLOSE_OBSTACLE = 1.5\n[CRiskAwareReactiveNav]",
+             "[CHolonomicFullEval] TOO_CLOSE_OBSTACLE = '1.5': must be in [0, 1]"},
+        TBad{"mrpt_nd_risk_distance_negative", "\\[CRiskAwareReactiveNav\\]",
+             "[CAbstractPTGBasedReactive]\nholonomic_method = CHolonomicND\n"
+             "[CHolonomicND]\nRISK_EVALUATION_DISTANCE = -1\n[CRiskAwareReactiveNav]",
+             "[CHolonomicND] RISK_EVALUATION_DISTANCE = '-1': must be in [0, 1]"},
         // MRPT's atoi reads '1e2' as 1
         TBad{"mrpt_ptg_paths_exponent", "PTG_COUNT +=[^\\n]*",
              "PTG_COUNT = 2\nPTG0_num_paths = 1e2",

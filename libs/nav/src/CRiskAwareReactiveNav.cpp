@@ -508,6 +508,36 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
                                  {"CHolonomicFullEval", "gap_width_ratio_threshold"}})
         if (layered.keyExists(rs, rk))
             check(rs, rk, layered.read_double(rs, rk, 0), TRange::closed(0, 1));
+    // the holonomic method's normalized distances and sector fractions, [0, 1]
+    // in MRPT's documentation (TOO_CLOSE_OBSTACLE = 1.5 held the robot still
+    // for the whole run, RISK_EVALUATION_DISTANCE = -1 too: exit 0); only the
+    // method in use (an unused section may hold anything, as MRPT's files do)
+    const std::string method = shortName(trim(ap.holonomic_method));
+    std::vector<const char*> unitKeys;
+    if (method == "CHolonomicFullEval")
+        unitKeys = {"TOO_CLOSE_OBSTACLE", "TARGET_SLOW_APPROACHING_DISTANCE",
+                    "OBSTACLE_SLOW_DOWN_DISTANCE"};
+    else if (method == "CHolonomicND")
+        unitKeys = {"WIDE_GAP_SIZE_PERCENT",
+                    "MAX_SECTOR_DIST_FOR_D2_PERCENT",
+                    "RISK_EVALUATION_SECTORS_PERCENT",
+                    "RISK_EVALUATION_DISTANCE",
+                    "TOO_CLOSE_OBSTACLE",
+                    "TARGET_SLOW_APPROACHING_DISTANCE"};
+    else if (method == "CHolonomicVFF")
+        unitKeys = {"TARGET_SLOW_APPROACHING_DISTANCE"};
+    for (const char* key : unitKeys)
+        if (layered.keyExists(method, key))
+            check(method, key, layered.read_double(method, key, 0), unit);
+    if (method == "CHolonomicFullEval" &&
+        layered.keyExists(method, "HYSTERESIS_SECTOR_COUNT"))
+        check(method, "HYSTERESIS_SECTOR_COUNT",
+              layered.read_double(method, "HYSTERESIS_SECTOR_COUNT", 0),
+              TRange::closed(0, 1000, "sectors"));
+    if (method == "CHolonomicVFF" && layered.keyExists(method, "TARGET_ATTRACTIVE_FORCE"))
+        check(method, "TARGET_ATTRACTIVE_FORCE",
+              layered.read_double(method, "TARGET_ATTRACTIVE_FORCE", 0),
+              TRange{0, 1e6, true, false, "(MRPT's dimension-less force)"});
     check(abs, "max_dist_for_timebased_path_prediction",
           ap.max_dist_for_timebased_path_prediction, TRange::closed(0, 100, "m"));
     const std::string sec = "CReactiveNavigationSystem";
