@@ -476,14 +476,22 @@ INSTANTIATE_TEST_SUITE_P(
              "[CReactiveNavigationSystem]\nPTG0_num_paths = 500\nPTG0_resolution = "
              "0.02\n[CRiskAwareReactiveNav]",
              "[CReactiveNavigationSystem] PTG0_num_paths = '500': with resolution = 0.02 "
-             "m, refDistance = 10 m, w_max_dps = 60, it would take 52 times the build of "
-             "MRPT's default PTG"},
+             "m, refDistance = 10 m, w_max_dps = 60 and a robot shape of radius 0.353 m "
+             "([Robot] radius + [Navigate] shape_margin), it would take 53 times the "
+             "build of MRPT's default PTG"},
         // slow turns make long paths: 5x the default's build here
         TBad{"mrpt_ptg_build_slow_turns", "\\[CRiskAwareReactiveNav\\]",
              "[CReactiveNavigationSystem]\nPTG0_num_paths = 500\nPTG0_refDistance = 50\n"
              "PTG0_w_max_dps = 10\n[CRiskAwareReactiveNav]",
              "[CReactiveNavigationSystem] PTG0_num_paths = '500': with resolution = 0.05 "
-             "m, refDistance = 50 m, w_max_dps = 10, it would take "},
+             "m, refDistance = 50 m, w_max_dps = 10 and a robot shape of radius 0.353 m "
+             "([Robot] radius + [Navigate] shape_margin), it would take "},
+        // the robot's area: 37x the default's build for a 2.27 m shape (127 s)
+        TBad{"mrpt_ptg_build_big_robot", "nav_period +=.*",
+             "nav_period = 0.2\nshape_margin = 2",
+             "[CReactiveNavigationSystem] PTG0_num_paths = '121': with resolution = 0.05 "
+             "m, refDistance = 10 m, w_max_dps = 60 and a robot shape of radius 2.269 m "
+             "([Robot] radius + [Navigate] shape_margin), it would take 42 times"},
         // the run's work is bounded before it starts (1e8 world steps here)
         TBad{"risk_route_without_risk_config", "nav_period +=.*",
              "nav_period = 0.2\nrisk_route = worst",
@@ -503,6 +511,64 @@ INSTANTIATE_TEST_SUITE_P(
              "[CAbstractPTGBasedReactive]\nholonomic_method = CHolonomicND\n"
              "[CHolonomicND]\nRISK_EVALUATION_DISTANCE = -1\n[CRiskAwareReactiveNav]",
              "[CHolonomicND] RISK_EVALUATION_DISTANCE = '-1': must be in [0, 1]"},
+        // PTGs MRPT cannot make, or that never move the robot
+        TBad{
+            "mrpt_ptg_type_abstract", "\\[CRiskAwareReactiveNav\\]",
+            "[CReactiveNavigationSystem]\nPTG0_Type = CParameterizedTrajectoryGenerator\n"
+            "[CRiskAwareReactiveNav]",
+            "[CReactiveNavigationSystem] PTG0_Type = "
+            "'CParameterizedTrajectoryGenerator': "
+            "not one of MRPT's PTG classes"},
+        TBad{"mrpt_ptg_k_zero", "\\[CRiskAwareReactiveNav\\]",
+             "[CReactiveNavigationSystem]\nPTG0_K = 0\n[CRiskAwareReactiveNav]",
+             "[CReactiveNavigationSystem] PTG0_K = '0': must be 1 (forward) or -1"},
+        TBad{"mrpt_ptg_priority_negative", "\\[CRiskAwareReactiveNav\\]",
+             "[CReactiveNavigationSystem]\nPTG1_score_priority = -1\n"
+             "[CRiskAwareReactiveNav]",
+             "[CReactiveNavigationSystem] PTG1_score_priority = '-1': must be in [0, "},
+        TBad{"mrpt_ptg_priorities_all_zero", "\\[CRiskAwareReactiveNav\\]",
+             "[CReactiveNavigationSystem]\nPTG0_score_priority = 0\nPTG1_score_priority "
+             "= 0\n[CRiskAwareReactiveNav]",
+             "every PTG's score_priority is 0: MRPT would never choose a motion"},
+        TBad{"mrpt_clearance_points_huge", "\\[CRiskAwareReactiveNav\\]",
+             "[CReactiveNavigationSystem]\nPTG0_clearance_num_points = 100000000\n"
+             "[CRiskAwareReactiveNav]",
+             "[CReactiveNavigationSystem] PTG0_clearance_num_points = '100000000': must "
+             "be "
+             "in [1, 100]"},
+        TBad{
+            "mrpt_clearance_paths_beyond", "\\[CRiskAwareReactiveNav\\]",
+            "[CReactiveNavigationSystem]\nPTG0_clearance_decimated_paths = 200\n"
+            "[CRiskAwareReactiveNav]",
+            "[CReactiveNavigationSystem] PTG0_clearance_decimated_paths = '200': at most "
+            "PTG0_num_paths = 121"},
+        // MRPT's read_bool() reads "true # c" as false
+        TBad{"mrpt_bool_true_hash_comment", "\\[CRiskAwareReactiveNav\\]",
+             "[CAbstractPTGBasedReactive]\nevaluate_clearance = true # c\n"
+             "[CRiskAwareReactiveNav]",
+             "[CAbstractPTGBasedReactive] evaluate_clearance = 'true # c': MRPT reads "
+             "this "
+             "as false"},
+        TBad{"mrpt_nd_weights_zero", "\\[CRiskAwareReactiveNav\\]",
+             "[CAbstractPTGBasedReactive]\nholonomic_method = CHolonomicND\n"
+             "[CHolonomicND]\nfactorWeights = 0 0 0 0\n[CRiskAwareReactiveNav]",
+             "[CHolonomicND] factorWeights = '0 0 0 0': the weights must add up to more "
+             "than 0"},
+        // turning slowly: 108 s for this one PTG (stop 37's tester)
+        TBad{"mrpt_ptg_build_turning_slowly", "\\[CRiskAwareReactiveNav\\]",
+             "[CReactiveNavigationSystem]\nPTG0_num_paths = 350\nPTG0_refDistance = 50\n"
+             "PTG0_w_max_dps = 0.001\n[CRiskAwareReactiveNav]",
+             "[CReactiveNavigationSystem] PTG0_num_paths = '350': with resolution = 0.05 "
+             "m, refDistance = 50 m, w_max_dps = 0.001 and a robot shape of radius "
+             "0.353 m ([Robot] radius + [Navigate] shape_margin), it would take "},
+        // MRPT's runtime asserts on values it takes without a check: its
+        // score formula reads a variable the CC PTG never sets (every cycle
+        // an error, the robot still, exit 0)
+        TBad{
+            "mrpt_fails_on_every_cycle", "PTG_COUNT +=[^\\n]*",
+            "PTG_COUNT = 1\nPTG0_Type = CPTG_DiffDrive_CC",
+            "MRPT's reactive engine failed on each of its first 5 cycles (a value of its "
+            "config it takes without a check): Error compiling expression"},
         // MRPT's atoi reads '1e2' as 1
         TBad{"mrpt_ptg_paths_exponent", "PTG_COUNT +=[^\\n]*",
              "PTG_COUNT = 2\nPTG0_num_paths = 1e2",

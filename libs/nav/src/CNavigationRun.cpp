@@ -171,6 +171,9 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
             probe.loadConfigFile(c);
             m_navigatorConfig = mrpt::config::CConfigFileMemory();
             probe.saveConfigFile(m_navigatorConfig);
+            // the PTGs' build time grows with the robot's area
+            probe.changeRobotShape(robotShape());
+            probe.checkPtgBuildTime(c, "[Robot] radius + [Navigate] shape_margin");
         } catch (const CBadInputError&) {
             throw;
         } catch (const std::exception& e) {
@@ -477,6 +480,20 @@ std::string CNavigationRun::ptgCacheDir() const {
     return (fs::temp_directory_path() / "risknav-ptg-cache").string();
 }
 
+mrpt::math::CPolygon CNavigationRun::robotShape() const {
+    // the 24-gon around the world's robot disc grown by shape_margin (vertices
+    // at (R + margin) / cos(pi / 24)), so that MRPT's collision checks cover
+    // the disc the safety monitor measures
+    mrpt::math::CPolygon shape;
+    const double rv = (world.robot.radius + options.shape_margin) / std::cos(M_PI / 24);
+    for (int i = 0; i < 24; i++)
+        shape.AddVertex(rv * std::cos(i * M_PI / 12), rv * std::sin(i * M_PI / 12));
+    return shape;
+}
+
+// MRPT failing on each of this many first cycles of a run: a config error.
+constexpr int kFailedCyclesForBadConfig = 5;
+
 TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     const auto wall0 = std::chrono::steady_clock::now();
     if (!m_cfg)
@@ -525,15 +542,10 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     nav.loadConfigFile(c);
     if (setup.maxSpeed)
         nav.changeCurrentRobotSpeedLimits().robotMax_V_mps = *setup.maxSpeed;
-    // The world's robot is a disc: MRPT gets the 24-gon around it grown by
-    // shape_margin (vertices at (R + margin) / cos(pi / 24)), so that MRPT's
-    // collision checks cover the disc the safety monitor measures.
-    mrpt::math::CPolygon shape;
-    const double rv = (world.robot.radius + options.shape_margin) / std::cos(M_PI / 24);
-    for (int i = 0; i < 24; i++)
-        shape.AddVertex(rv * std::cos(i * M_PI / 12), rv * std::sin(i * M_PI / 12));
+    // The world's robot is a disc: MRPT gets the 24-gon around it.
+    const mrpt::math::CPolygon shape = robotShape();
     const std::string cacheDir =
-        (fs::path(ptgCacheDir()) / ptgSetName(m_navigatorConfig, rv)).string();
+        (fs::path(ptgCacheDir()) / ptgSetName(m_navigatorConfig, shape[0].x)).string();
     nav.params_abstract_ptg_navigator.ptg_cache_files_directory = cacheDir;
     {
         // MRPT writes its PTG grids there: a file, or a folder that cannot
@@ -643,6 +655,7 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     // where and when the robot last moved stall_distance away (stall_timeout)
     mrpt::math::TPoint2D stallSpot(world.truePose().x, world.truePose().y);
     double stallSince = world.time();
+    bool everyCycleFailed = true;
     for (int cycle = 0;; cycle++) {
         const double t = world.time();
         const auto& scans = robotIf.senseNow();
@@ -735,9 +748,24 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
             }
             r.events.push_back(te);
         }
+        // MRPT failing on each of the run's first cycles (exceptions it
+        // catches inside navigationStep(), e.g. its asserts on a PTG's
+        // clearance_num_points, a v_max_mps of 1e-9 or a score formula
+        // whose variable its PTG never sets: the robot never moved, exit 0)
+        // is a value of its config that MRPT takes without a check
+        const bool failedNow = r.mrptErrors > mrptErrorsSeen;
+        everyCycleFailed = everyCycleFailed && failedNow;
+        if (everyCycleFailed && cycle + 1 == kFailedCyclesForBadConfig)
+            throw CBadInputError(
+                m_cfg->path() +
+                (m_engine ? " (engine_config " + m_engine->path() + ")" : "") +
+                ": MRPT's reactive engine failed on each of its first " +
+                std::to_string(kFailedCyclesForBadConfig) +
+                " cycles (a value of its config it takes without a check): " +
+                clippedText(r.firstMrptError));
         // MRPT's errors of this step (caught inside navigationStep()): one
         // event with their count and the last one's message
-        if (r.mrptErrors > mrptErrorsSeen) {
+        if (failedNow) {
             r.events.push_back(TNavRunEvent{
                 t, "mrpt_error", nav.getWaypointNavStatus().waypoint_index_current_goal,
                 truth.x, truth.y,

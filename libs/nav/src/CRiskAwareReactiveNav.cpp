@@ -323,14 +323,23 @@ void checkHolonomicText(const mrpt::config::CConfigFileBase& layered) {
     };
     if (bare == "CHolonomicND") {
         const std::string sec = "CHolonomicND";
-        if (layered.keyExists(sec, "factorWeights"))
+        if (layered.keyExists(sec, "factorWeights")) {
+            double sum = 0;
             for (const double w :
                  list(sec, "factorWeights", false,
-                      mrpt::nav::CHolonomicND::TOptions().factorWeights.size()))
+                      mrpt::nav::CHolonomicND::TOptions().factorWeights.size())) {
                 if (!(w >= 0))
                     throwBadKey(layered, sec, "factorWeights",
                                 layered.read_string(sec, "factorWeights", ""),
                                 "each weight must be >= 0");
+                sum += w;
+            }
+            // (all 0 drove the office robot 3.3 m in 20 s, against 8.7 m)
+            if (!(sum > 0))
+                throwBadKey(layered, sec, "factorWeights",
+                            layered.read_string(sec, "factorWeights", ""),
+                            "the weights must add up to more than 0");
+        }
         return;
     }
     if (bare != "CHolonomicFullEval")
@@ -436,7 +445,25 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
     const int n = layered.read_int(sec, "PTG_COUNT", 0);
     for (int i = 0; i < n; i++) {
         const std::string k = "PTG" + std::to_string(i) + "_";
+        // a class MRPT's factory can make a PTG of (the abstract base made
+        // MRPT print its own line to stderr before it failed)
+        if (layered.keyExists(sec, k + "Type")) {
+            const std::string type = trim(layered.read_string(sec, k + "Type", ""));
+            const auto* cls = mrpt::rtti::findRegisteredClass(type);
+            if (!cls ||
+                !cls->derivedFrom(
+                    CLASS_ID(mrpt::nav::CParameterizedTrajectoryGenerator)) ||
+                !cls->ptrCreateObject)
+                throwBadKey(layered, sec, k + "Type", type,
+                            "not one of MRPT's PTG classes (CPTG_DiffDrive_C, "
+                            "CPTG_DiffDrive_CC, CPTG_DiffDrive_CCS, CPTG_DiffDrive_CS, "
+                            "CPTG_DiffDrive_alpha, CPTG_Holo_Blend)");
+        }
         strictInt(sec, k + "num_paths", TRange::closed(2, 2000, "paths"));
+        // MRPT's clearance sampling (evaluate_clearance): 0 or past a path's
+        // end asserted every cycle
+        strictInt(sec, k + "clearance_num_points", TRange::closed(1, 100, "points"));
+        strictInt(sec, k + "clearance_decimated_paths", TRange::closed(1, 2000, "paths"));
         // CPTG_DiffDrive_alpha's exp(-(alpha / cte)^2): NaN crashed MRPT, 0
         // failed its asserts every cycle
         for (const char* cte : {"cte_a0v_deg", "cte_a0w_deg"})
@@ -448,24 +475,26 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
 
 // The time MRPT 2.5.8 takes to build a collision-grid PTG (once; then it is
 // read from ptg_cache_dir), in builds of its default one (121 paths, 0.05 m
-// cells, refDistance 10 m, v_max / w_max = 1 m/s / 60 deg/s: ~1.7-2.3 s
-// here). Fitted to 18 one-PTG builds measured on this machine (stop 37,
-// C, CCS and alpha PTGs; the model within -9..+20 % of each): paths
+// cells, refDistance 10 m, v_max / w_max = 1 m/s / 60 deg/s: ~1.7-2.9 s
+// here). Fitted to 22 one-PTG builds measured on this machine (stop 37,
+// C, CCS and alpha PTGs; the model within -13..+20 % of each): paths
 // (n / 121)^1.5 (1,000 paths 32 s), cells (0.05 / res)^2, and the reach
 // r = refDistance / 10 m with the turning radius q = (v_max / w_max) /
-// (1 m/s / 60 deg/s), capped at 6 (slower turns than 10 deg/s cost no
-// more), as e^(0.45 ln r + 0.14 ln q + 0.20 ln r ln q): refDistance 50 m
-// costs 2x, with w_max 10 deg/s 5x. Each key's limits alone allow thousands
-// of builds (hours); the PTGs together get at most kMaxPtgBuildUnits
-// (~1 min).
-constexpr double kMaxPtgBuildUnits = 24;
+// (1 m/s / 60 deg/s) as e^(0.45 ln r + 0.14 ln q6 + 0.20 ln r ln q6 +
+// 0.07 ln(q / q6)), q6 = min(q, 6) (slower turns than 10 deg/s add little:
+// refDistance 50 m costs 2x, with w_max 10 deg/s 5x, 1 deg/s 5x, 0.001
+// deg/s 8x), and the robot's area (shape radius / 0.35 m)^2 (0.5 m 2x,
+// 1 m 8x). Each key's limits alone allow thousands of builds (hours); the
+// PTGs together get at most kMaxPtgBuildUnits (~1 min).
+constexpr double kMaxPtgBuildUnits = 32;
 double ptgBuildUnits(double numPaths, double res, double refDistance, double vMax,
-                     double wMaxRadps) {
+                     double wMaxRadps, double shapeRadius) {
     const double lr = std::log(refDistance / 10.0),
-                 lq = std::min(std::log((vMax / wMaxRadps) * (60 * M_PI / 180)),
-                               std::log(6.0));
+                 lqAll = std::log((vMax / wMaxRadps) * (60 * M_PI / 180)),
+                 lq = std::min(lqAll, std::log(6.0));
     return std::pow(numPaths / 121.0, 1.5) * std::pow(0.05 / res, 2) *
-           std::exp(0.45 * lr + 0.14 * lq + 0.20 * lr * lq);
+           std::pow(std::max(shapeRadius, 0.1) / 0.35, 2) *
+           std::exp(0.45 * lr + 0.14 * lq + 0.20 * lr * lq + 0.07 * (lqAll - lq));
 }
 
 // Values MRPT 2.5.8 takes without a check and then fails on at every step
@@ -541,7 +570,7 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
     check(abs, "max_dist_for_timebased_path_prediction",
           ap.max_dist_for_timebased_path_prediction, TRange::closed(0, 100, "m"));
     const std::string sec = "CReactiveNavigationSystem";
-    double buildUnits = 0;
+    bool anyPriority = false;
     for (size_t i = 0; i < nav.getPTG_count(); i++) {
         const auto* ptg = nav.getPTG(i);
         const std::string k = "PTG" + std::to_string(i) + "_";
@@ -558,23 +587,31 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
                             numberText(ref) + " m (MRPT's collision grid)");
         check(sec, k + "v_max_mps", ptg->getMaxLinVel(), speed);
         check(sec, k + "w_max_dps", ptg->getMaxAngVel() * 180 / M_PI, turn);
-        if (dynamic_cast<const mrpt::nav::CPTG_DiffDrive_CollisionGridBased*>(ptg)) {
-            const double wDeg = std::round(ptg->getMaxAngVel() * 180 / M_PI * 1e6) / 1e6;
-            buildUnits += ptgBuildUnits(ptg->getAlphaValuesCount(), res, ref,
-                                        ptg->getMaxLinVel(), ptg->getMaxAngVel());
-            if (buildUnits > kMaxPtgBuildUnits)
-                throwBadKey(
-                    layered, sec, k + "num_paths",
-                    std::to_string(ptg->getAlphaValuesCount()),
-                    "with resolution = " + numberText(res) + " m, refDistance = " +
-                        numberText(ref) + " m, w_max_dps = " + numberText(wDeg) + ", " +
-                        (i == 0 ? std::string("it") : "PTGs 0.." + std::to_string(i)) +
-                        " would take " + numberText(std::round(buildUnits)) +
-                        " times the build of MRPT's default PTG (121 paths, 0.05 m, "
-                        "10 m, 60 deg/s at 1 m/s), at most " +
-                        numberText(kMaxPtgBuildUnits) + " in all (~1 min)");
-        }
+        // MRPT's C, CC, CCS and CS PTGs drive at V_MAX sign(K): K = 0 is a
+        // PTG that never moves
+        const std::string cls = ptg->GetRuntimeClass()->className;
+        if (cls.find("CPTG_DiffDrive_C") != std::string::npos &&
+            layered.keyExists(sec, k + "K") && layered.read_double(sec, k + "K", 1) == 0)
+            throwBadKey(layered, sec, k + "K", layered.read_string(sec, k + "K", ""),
+                        "must be 1 (forward) or -1 (backward): MRPT drives at v_max "
+                        "sign(K)");
+        // a negative priority inverts the PTG's scores; all 0: no motion is
+        // ever chosen (the robot stood still all run, exit 0)
+        check(sec, k + "score_priority", ptg->getScorePriority(),
+              TRange::closed(0, 1e6, "(MRPT's factor on the PTG's scores)"));
+        anyPriority = anyPriority || ptg->getScorePriority() > 0;
+        if (layered.keyExists(sec, k + "clearance_decimated_paths") &&
+            layered.read_int(sec, k + "clearance_decimated_paths", 1) >
+                int(ptg->getAlphaValuesCount()))
+            throwBadKey(layered, sec, k + "clearance_decimated_paths",
+                        layered.read_string(sec, k + "clearance_decimated_paths", ""),
+                        "at most " + k +
+                            "num_paths = " + std::to_string(ptg->getAlphaValuesCount()));
     }
+    if (!anyPriority && nav.getPTG_count() > 0)
+        throwBadKey(layered, sec, "PTG0_score_priority",
+                    layered.read_string(sec, "PTG0_score_priority", "0"),
+                    "every PTG's score_priority is 0: MRPT would never choose a motion");
 }
 
 // Every engine key the config gives, checked against the type MRPT holds it
@@ -630,6 +667,12 @@ void checkEngineTypes(const mrpt::config::CConfigFileBase& layered,
                 if (!(l == "true" || l == "false" || l == "1" || l == "0" || l == "yes" ||
                       l == "no"))
                     throwBadKey(layered, sec, key, text, "must be true or false");
+                // MRPT's read_bool() takes the words whole, else atoi(): it
+                // reads "true # c" as false
+                if ((l == "true" || l == "yes") && text != trim(typed))
+                    throwBadKey(layered, sec, key, trim(typed),
+                                "MRPT reads this as false: its true / yes take no # "
+                                "comment (1 # comment does)");
             } else if (!heldList.empty() &&
                        std::all_of(heldList.begin(), heldList.end(), isNumber)) {
                 long n = 0;
@@ -1008,6 +1051,49 @@ void CRiskAwareReactiveNav::performNavigationStep() {
     restore();
 }
 
+void CRiskAwareReactiveNav::checkPtgBuildTime(const mrpt::config::CConfigFileBase& c,
+                                              const std::string& shapeFrom) const {
+    const auto check = [&](const mrpt::config::CConfigFileBase& layered) {
+        // (the diff-drive PTGs take the polygon; MRPT's file also gives a
+        // circle, for holonomic ones)
+        double shapeRadius = m_robotShape.empty() ? m_robotShapeCircularRadius : 0.0;
+        for (size_t v = 0; v < m_robotShape.size(); v++)
+            shapeRadius =
+                std::max(shapeRadius, std::hypot(m_robotShape[v].x, m_robotShape[v].y));
+        const std::string sec = "CReactiveNavigationSystem";
+        double units = 0;
+        for (size_t i = 0; i < getPTG_count(); i++) {
+            const auto* ptg = getPTG(i);
+            if (!dynamic_cast<const mrpt::nav::CPTG_DiffDrive_CollisionGridBased*>(ptg))
+                continue;
+            const std::string k = "PTG" + std::to_string(i) + "_";
+            const double res = layered.read_double(sec, k + "resolution", 0.05),
+                         ref = ptg->getRefDistance(),
+                         wDeg = std::round(ptg->getMaxAngVel() * 180 / M_PI * 1e6) / 1e6;
+            units += ptgBuildUnits(ptg->getAlphaValuesCount(), res, ref,
+                                   ptg->getMaxLinVel(), ptg->getMaxAngVel(), shapeRadius);
+            if (units > kMaxPtgBuildUnits)
+                throwBadKey(
+                    layered, sec, k + "num_paths",
+                    std::to_string(ptg->getAlphaValuesCount()),
+                    "with resolution = " + numberText(res) + " m, refDistance = " +
+                        numberText(ref) + " m, w_max_dps = " + numberText(wDeg) +
+                        " and a robot shape of radius " +
+                        numberText(std::round(shapeRadius * 1000) / 1000) + " m" +
+                        (shapeFrom.empty() ? "" : " (" + shapeFrom + ")") + ", " +
+                        (i == 0 ? std::string("it") : "PTGs 0.." + std::to_string(i)) +
+                        " would take " + numberText(std::round(units)) +
+                        " times the build of MRPT's default PTG (121 paths, 0.05 m, "
+                        "10 m, 60 deg/s at 1 m/s, 0.35 m), at most " +
+                        numberText(kMaxPtgBuildUnits) + " in all (~1 min)");
+        }
+    };
+    if (m_engine)
+        check(CLayeredConfig(c, *m_engine));
+    else
+        check(c);
+}
+
 void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& c) {
     // MRPT 2.5.8's CPTG_DiffDrive_alpha::saveToConfigFile() writes cte_a0v
     // as cte_a0w_deg: the text read is kept for saveConfigFile()
@@ -1033,6 +1119,9 @@ void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& 
         checkEngineValues(c, c, *this);
         keepA0w(c);
     }
+    // (with the config's robot shape; CNavigationRun checks again with the
+    // shape it gives MRPT)
+    checkPtgBuildTime(c);
     loadOptions(riskOptions, c, kSection);
     loadOptions(robot, c, "Robot");
     std::vector<CSpeedLimiter::Ptr> made;

@@ -9,6 +9,7 @@
 #include <risknav/sim/CSimWorld.h>
 
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/math/CPolygon.h>
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/nav/reactive/TWaypoint.h>
 
@@ -135,6 +136,8 @@ class CNavigationRun {
     mrpt::config::CConfigFileMemory m_navigatorConfig;
     void loadRoute(common::CIniConfig& c);
     void checkAgainstMap(const common::CIniConfig& c) const;
+    /** The robot shape MRPT gets: [Robot] radius grown by shape_margin. */
+    mrpt::math::CPolygon robotShape() const;
 };
 
 }  // namespace risknav::nav

@@ -98,6 +98,15 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
      * num_paths not in [2, 2000], resolution not in [5 mm, 1 m] or more than
      * 1000 cells over refDistance, v_max / w_max as the robot's. */
     void loadConfigFile(const mrpt::config::CConfigFileBase& c) override;
+    /** Throws CBadInputError naming a PTG's num_paths when MRPT's
+     * collision-grid PTGs, as loaded from `c` (with the engine config),
+     * would take it over ~1 min to build for the robot shape set now (a
+     * model fitted to builds measured here: paths, cells, reach, turning
+     * radius, robot area; `shapeFrom`: where the shape came from, for the
+     * message). loadConfigFile() calls it; call it again after
+     * changeRobotShape(). */
+    void checkPtgBuildTime(const mrpt::config::CConfigFileBase& c,
+                           const std::string& shapeFrom = "") const;
     void saveConfigFile(mrpt::config::CConfigFileBase& c) const override;
     /** MRPT's engine sections from `engine` (e.g. the user's MRPT
      * reactive-navigation file), keys of the config given to loadConfigFile()
