@@ -569,6 +569,19 @@ INSTANTIATE_TEST_SUITE_P(
             "PTG_COUNT = 1\nPTG0_Type = CPTG_DiffDrive_CC",
             "MRPT's reactive engine failed on each of its first 5 cycles (a value of its "
             "config it takes without a check): Error compiling expression"},
+        // MRPT asserts on fewer than 4 paths every cycle
+        TBad{"mrpt_ptg_paths_three", "PTG_COUNT +=[^\\n]*",
+             "PTG_COUNT = 2\nPTG0_num_paths = 3",
+             "[CReactiveNavigationSystem] PTG0_num_paths = '3': must be in [4, 2000]"},
+        // an alpha PTG's key given to a C PTG (it was read by the check, so
+        // no longer unknown)
+        TBad{"mrpt_alpha_key_for_a_c_ptg", "PTG_COUNT +=[^\\n]*",
+             "PTG_COUNT = 2\nPTG0_cte_a0v_deg = 57",
+             "unknown key [CReactiveNavigationSystem] PTG0_cte_a0v_deg"},
+        TBad{"mrpt_robot_radius_word", "PTG_COUNT +=[^\\n]*",
+             "PTG_COUNT = 2\nRobotModel_circular_shape_radius = abc",
+             "[CReactiveNavigationSystem] RobotModel_circular_shape_radius = 'abc': must "
+             "be a number"},
         // MRPT's atoi reads '1e2' as 1
         TBad{"mrpt_ptg_paths_exponent", "PTG_COUNT +=[^\\n]*",
              "PTG_COUNT = 2\nPTG0_num_paths = 1e2",

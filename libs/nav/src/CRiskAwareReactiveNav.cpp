@@ -442,6 +442,25 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
           layered.read_double("CAbstractPTGBasedReactive", "speedfilter_tau", 0),
           TRange::closed(0, 10, "s"));
     const std::string sec = "CReactiveNavigationSystem";
+    // MRPT's robot shape ('abc' was a radius of 0); risknav-navigate then
+    // gives MRPT its own robot's shape
+    if (layered.keyExists(sec, "RobotModel_circular_shape_radius")) {
+        const std::string t =
+            engineNumberText(layered, sec, "RobotModel_circular_shape_radius");
+        double r = 0;
+        if (!parseNumber(t, r) || !(r >= 0 && r <= 100))
+            throwBadKey(layered, sec, "RobotModel_circular_shape_radius", t,
+                        "must be a number in [0, 100] m");
+    }
+    for (const char* xy : {"RobotModel_shape2D_xs", "RobotModel_shape2D_ys"})
+        if (layered.keyExists(sec, xy))
+            for (const auto& w : listTokens(trim(layered.read_string(sec, xy, "")))) {
+                double v = 0;
+                if (!parseNumber(w, v) || !(std::abs(v) <= 100))
+                    throwBadKey(layered, sec, xy, trim(layered.read_string(sec, xy, "")),
+                                "not a list of numbers in [-100, 100] m ('" +
+                                    clippedText(w, 40) + "')");
+            }
     const int n = layered.read_int(sec, "PTG_COUNT", 0);
     for (int i = 0; i < n; i++) {
         const std::string k = "PTG" + std::to_string(i) + "_";
@@ -459,15 +478,19 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
                             "CPTG_DiffDrive_CC, CPTG_DiffDrive_CCS, CPTG_DiffDrive_CS, "
                             "CPTG_DiffDrive_alpha, CPTG_Holo_Blend)");
         }
-        strictInt(sec, k + "num_paths", TRange::closed(2, 2000, "paths"));
+        // (MRPT asserts on fewer than 4 every cycle)
+        strictInt(sec, k + "num_paths", TRange::closed(4, 2000, "paths"));
         // MRPT's clearance sampling (evaluate_clearance): 0 or past a path's
         // end asserted every cycle
         strictInt(sec, k + "clearance_num_points", TRange::closed(1, 100, "points"));
         strictInt(sec, k + "clearance_decimated_paths", TRange::closed(1, 2000, "paths"));
         // CPTG_DiffDrive_alpha's exp(-(alpha / cte)^2): NaN crashed MRPT, 0
-        // failed its asserts every cycle
+        // failed its asserts every cycle (only its own keys: read for
+        // another PTG, they would no longer be unknown keys)
+        const bool alpha = shortName(trim(layered.read_string(sec, k + "Type", ""))) ==
+                           "CPTG_DiffDrive_alpha";
         for (const char* cte : {"cte_a0v_deg", "cte_a0w_deg"})
-            if (layered.keyExists(sec, k + cte))
+            if (alpha && layered.keyExists(sec, k + cte))
                 check(sec, k + cte, layered.read_double(sec, k + cte, 1),
                       TRange{0, 180, true, false, "deg"});
     }
@@ -577,7 +600,7 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
         const double ref = ptg->getRefDistance();
         check(sec, k + "refDistance", ref, reach);
         check(sec, k + "num_paths", ptg->getAlphaValuesCount(),
-              TRange::closed(2, 2000, "paths"));
+              TRange::closed(4, 2000, "paths"));
         // the cell size of MRPT's collision grid (CPTG_DiffDrive_*)
         const double res = layered.read_double(sec, k + "resolution", 0.05);
         check(sec, k + "resolution", res, TRange::closed(0.005, 1, "m"));
