@@ -554,13 +554,46 @@ INSTANTIATE_TEST_SUITE_P(
              "[CHolonomicND]\nfactorWeights = 0 0 0 0\n[CRiskAwareReactiveNav]",
              "[CHolonomicND] factorWeights = '0 0 0 0': the weights must add up to more "
              "than 0"},
-        // turning slowly: 108 s for this one PTG (stop 37's tester)
+        // turning slowly: 350 paths at 0.1 deg/s built 76-82 s, at 0.001 108 s
+        // (stop 37's tester)
         TBad{"mrpt_ptg_build_turning_slowly", "\\[CRiskAwareReactiveNav\\]",
-             "[CReactiveNavigationSystem]\nPTG0_num_paths = 350\nPTG0_refDistance = 50\n"
-             "PTG0_w_max_dps = 0.001\n[CRiskAwareReactiveNav]",
-             "[CReactiveNavigationSystem] PTG0_num_paths = '350': with resolution = 0.05 "
-             "m, refDistance = 50 m, w_max_dps = 0.001 and a robot shape of radius "
+             "[CReactiveNavigationSystem]\nPTG0_num_paths = 400\nPTG0_refDistance = 50\n"
+             "PTG0_w_max_dps = 0.1\n[CRiskAwareReactiveNav]",
+             "[CReactiveNavigationSystem] PTG0_num_paths = '400': with resolution = 0.05 "
+             "m, refDistance = 50 m, w_max_dps = 0.1 and a robot shape of radius "
              "0.353 m ([Robot] radius + [Navigate] shape_margin), it would take "},
+        // a robot that never moved (exit 0)
+        TBad{"mrpt_speed_tiny", "\\[CRiskAwareReactiveNav\\]",
+             "[CAbstractPTGBasedReactive]\nrobotMax_V_mps = "
+             "1e-12\n[CRiskAwareReactiveNav]",
+             "[CAbstractPTGBasedReactive] robotMax_V_mps = '1e-12': must be in [0.01, "
+             "100] "
+             "m/s"},
+        // MRPT evaluates formulas for every candidate, every cycle: a loop
+        // ran for minutes, a vector of 1e9 took 8 GB
+        TBad{"mrpt_formula_loop", "\\[CRiskAwareReactiveNav\\]",
+             "[CMultiObjectiveMotionOptimizerBase]\nscore3_formula = var s:=0; "
+             "for(var i:=0;i<1e10;i+=1){s+=i}; s\n[CRiskAwareReactiveNav]",
+             "[CMultiObjectiveMotionOptimizerBase] score3_formula = 'var s:=0; for(var "
+             "i:=0;i<1e10;i+=1){s+=i}; s': no loops"},
+        TBad{"mrpt_formula_huge_vector", "\\[CRiskAwareReactiveNav\\]",
+             "[CMultiObjectiveMotionOptimizerBase]\nscore3_formula = var "
+             "v[1000000000]:={0}; "
+             "v[0]\n[CRiskAwareReactiveNav]",
+             "[CMultiObjectiveMotionOptimizerBase] score3_formula = 'var "
+             "v[1000000000]:={0}; "
+             "v[0]': a vector of 1 to 1000 elements at most (v)"},
+        TBad{"mrpt_motion_decider_unknown", "\\[CRiskAwareReactiveNav\\]",
+             "[CAbstractPTGBasedReactive]\nmotion_decider_method = CFoo\n"
+             "[CRiskAwareReactiveNav]",
+             "[CAbstractPTGBasedReactive] motion_decider_method = 'CFoo': not one of "
+             "MRPT's "
+             "motion deciders"},
+        // values MRPT checks only as it builds its PTGs (was exit 1)
+        TBad{"mrpt_holo_ramp_zero", "PTG_COUNT +=[^\\n]*",
+             "PTG_COUNT = 1\nPTG0_Type = CPTG_Holo_Blend\nPTG0_T_ramp_max = 0",
+             "MRPT's reactive engine refused the config as it built its PTGs: Assert "
+             "condition failed: T_ramp_max > 0"},
         // MRPT's runtime asserts on values it takes without a check: its
         // score formula reads a variable the CC PTG never sets (every cycle
         // an error, the robot still, exit 0)
@@ -653,10 +686,11 @@ TEST(NavigateE2E, MrptsOwnSpellingsOfEngineValuesAreAccepted) {
     cfg = std::regex_replace(
         cfg, std::regex("\\[CRiskAwareReactiveNav\\]"),
         "[CAbstractPTGBasedReactive]\nholonomic_method = mrpt::nav::CHolonomicFullEval\n"
-        "[CHolonomicFullEval]\nPHASE_COUNT = 2 # c\nPHASE2_THRESHOLD = 0.6 # c\n"
+        "[CHolonomicFullEval]\nPHASE_COUNT = 2 # c\nPHASE2_THRESHOLD = 0.6// c\n"
         "[CMultiObjectiveMotionOptimizerBase]\nscore6_formula = 1\n"
         "[CRiskAwareReactiveNav]");
-    writeFile(w + "/n.ini", cfg);
+    // a UTF-8 byte order mark (MRPT's reader skips it)
+    writeFile(w + "/n.ini", "\xEF\xBB\xBF" + cfg);
     const json s = navRun(w + "/n.ini", freshDir("out"), "--set Navigate.duration_max=3");
     EXPECT_TRUE(s.contains("status")) << s;
 }

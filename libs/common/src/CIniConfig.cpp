@@ -67,6 +67,10 @@ void CIniConfig::checkLines(const std::string& path) {
             throw CBadInputError(path + ": line " + std::to_string(n) +
                                  ": a NUL byte (a binary file? MRPT's reader would "
                                  "drop everything after it)");
+        // a UTF-8 byte order mark (editors on Windows write one), as MRPT's
+        // reader skips it
+        if (n == 1 && raw.rfind("\xEF\xBB\xBF", 0) == 0)
+            raw.erase(0, 3);
         const bool wasContinued = continued;
         std::string line = trim(raw);
         continued = !line.empty() && line.back() == '\\';

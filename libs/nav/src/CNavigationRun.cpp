@@ -578,9 +578,17 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
             explicit TCerrTo(std::ostream& o) : old(std::cerr.rdbuf(o.rdbuf())) {}
             ~TCerrTo() { std::cerr.rdbuf(old); }
         };
-        {
+        try {
             const TCerrTo redirect(mrptSaid);
             nav.initialize();
+        } catch (const std::exception& e) {
+            // values MRPT checks only as it builds its PTGs (e.g.
+            // CPTG_Holo_Blend's T_ramp_max or expr_V): its refusal of the config
+            throw CBadInputError(
+                (m_engine ? m_engine->path() + " (engine_config) + " : "") +
+                m_cfg->path() +
+                ": MRPT's reactive engine refused the config as it built its PTGs: " +
+                clippedText(firstLine(e.what())));
         }
         if (!mrptSaid.str().empty() && !setup.quiet)
             std::cerr << "risknav-navigate: note: MRPT rebuilt a PTG grid of " << cacheDir

@@ -15,6 +15,7 @@
 #include <mrpt/nav/holonomic/CHolonomicFullEval.h>
 #include <mrpt/nav/holonomic/CHolonomicND.h>
 #include <mrpt/nav/reactive/CLogFileRecord.h>
+#include <mrpt/nav/reactive/CMultiObjectiveMotionOptimizerBase.h>
 #include <mrpt/nav/tpspace/CPTG_DiffDrive_CollisionGridBased.h>
 #include <mrpt/nav/tpspace/CPTG_DiffDrive_alpha.h>
 #include <mrpt/nav/tpspace/CParameterizedTrajectoryGenerator.h>
@@ -177,6 +178,30 @@ const char* const kMrptCandidateVars[] = {"WS_target_x",
                                           "target_dir",
                                           "target_k"};
 
+// The identifiers of a formula with their offsets.
+std::vector<std::pair<std::string, size_t>> identifiers(const std::string& f) {
+    std::vector<std::pair<std::string, size_t>> out;
+    for (size_t i = 0; i < f.size();) {
+        const auto c = static_cast<unsigned char>(f[i]);
+        if (!(std::isalpha(c) || c == '_')) {
+            // (a number's exponent or digits are no identifier)
+            if (std::isdigit(c) || c == '.')
+                while (i < f.size() && (std::isalnum(static_cast<unsigned char>(f[i])) ||
+                                        f[i] == '.' || f[i] == '_'))
+                    i++;
+            else
+                i++;
+            continue;
+        }
+        const size_t start = i;
+        while (i < f.size() &&
+               (std::isalnum(static_cast<unsigned char>(f[i])) || f[i] == '_'))
+            i++;
+        out.emplace_back(f.substr(start, i - start), start);
+    }
+    return out;
+}
+
 // MRPT compiles its formulas in the first navigation step and, on an error,
 // stops the robot with it on every cycle of the run: they are compiled here
 // first, with MRPT's own compiler and the variables it would give them, and a
@@ -190,6 +215,33 @@ void checkEngineFormulas(const mrpt::config::CConfigFileBase& c,
     auto compiles = [&](const std::string& sec, const std::string& key,
                         const std::string& formula,
                         const std::map<std::string, double>& with) {
+        // MRPT evaluates each formula for every candidate motion of every
+        // cycle: a loop ran for minutes, `var v[1000000000]` took 8 GB
+        const auto words = identifiers(formula);
+        for (size_t w = 0; w < words.size(); w++) {
+            const std::string& id = words[w].first;
+            if (id == "for" || id == "while" || id == "repeat")
+                throwBadKey(layered, sec, key, formula,
+                            "no loops (MRPT evaluates it for every candidate motion, "
+                            "every cycle)");
+            // var NAME[SIZE]
+            if (id != "var" || w + 1 >= words.size())
+                continue;
+            size_t p = words[w + 1].second + words[w + 1].first.size();
+            while (p < formula.size() &&
+                   std::isspace(static_cast<unsigned char>(formula[p])))
+                p++;
+            if (p >= formula.size() || formula[p] != '[')
+                continue;
+            const size_t close = formula.find(']', p);
+            double size = 0;
+            if (close == std::string::npos ||
+                !parseNumber(trim(formula.substr(p + 1, close - p - 1)), size) ||
+                !(size >= 1 && size <= 1000))
+                throwBadKey(layered, sec, key, formula,
+                            "a vector of 1 to 1000 elements at most (" +
+                                words[w + 1].first + ")");
+        }
         mrpt::expr::CRuntimeCompiledExpression e;
         try {
             e.compile(formula, with, key);
@@ -259,12 +311,18 @@ std::string shortName(const std::string& n) {
     return p == std::string::npos ? n : n.substr(p + 2);
 }
 
+// A value up to a "# comment" or "// comment" (MRPT's files end values
+// with both; its atof / atoi stop there), trimmed.
+std::string uncommented(const std::string& t) {
+    return trim(t.substr(0, std::min(t.find('#'), t.find("//"))));
+}
+
 // An MRPT value as its number parsers read it: trimmed, up to a "# comment"
 // (MRPT's own files end values with them; its atof / atoi stop there).
 std::string engineNumberText(const mrpt::config::CConfigFileBase& layered,
                              const std::string& sec, const std::string& key) {
     const std::string t = trim(layered.read_string(sec, key, ""));
-    return trim(t.substr(0, t.find('#')));
+    return uncommented(t);
 }
 
 // " (in <file>[ (--set)])": where a key another key's message quotes was given.
@@ -435,6 +493,18 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
     strictInt("CAbstractNavigator", "hysteresis_check_target_is_blocked",
               TRange::closed(1, 1000, "cycles"));
     checkHolonomicText(layered);
+    // (an unknown class: MRPT's factory failed naming no key)
+    const std::string abs = "CAbstractPTGBasedReactive";
+    if (layered.keyExists(abs, "motion_decider_method")) {
+        const std::string m = trim(layered.read_string(abs, "motion_decider_method", ""));
+        const auto* cls = mrpt::rtti::findRegisteredClass(m);
+        if (!cls ||
+            !cls->derivedFrom(CLASS_ID(mrpt::nav::CMultiObjectiveMotionOptimizerBase)) ||
+            !cls->ptrCreateObject)
+            throwBadKey(layered, abs, "motion_decider_method", m,
+                        "not one of MRPT's motion deciders "
+                        "(CMultiObjMotionOpt_Scalarization)");
+    }
     strictInt("CPointCloudFilterByDistance", "previous_keyframes",
               TRange::closed(1, 100, "keyframes"));
     // a speed filter's time constant: NaN or < 0 crashed MRPT
@@ -530,8 +600,10 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
                        const mrpt::nav::CReactiveNavigationSystem& nav) {
     auto check = [&](const std::string& sec, const std::string& key, double v,
                      const TRange& r) { checkEngineValue(c, layered, sec, key, v, r); };
-    const TRange speed{0, 100, true, false, "m/s"}, turn{0, 3600, true, false, "deg/s"},
-        reach = TRange::closed(0.1, 100, "m");
+    // (1e-12 m/s or deg/s: a robot that never moved, exit 0)
+    const TRange speed = TRange::closed(0.01, 100, "m/s"),
+                 turn = TRange::closed(0.1, 3600, "deg/s"),
+                 reach = TRange::closed(0.1, 100, "m");
     const std::string abs = "CAbstractPTGBasedReactive";
     const auto& p = nav.getCurrentRobotSpeedLimits();
     check(abs, "robotMax_V_mps", p.robotMax_V_mps, speed);
@@ -601,13 +673,16 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& c,
         check(sec, k + "refDistance", ref, reach);
         check(sec, k + "num_paths", ptg->getAlphaValuesCount(),
               TRange::closed(4, 2000, "paths"));
-        // the cell size of MRPT's collision grid (CPTG_DiffDrive_*)
-        const double res = layered.read_double(sec, k + "resolution", 0.05);
-        check(sec, k + "resolution", res, TRange::closed(0.005, 1, "m"));
-        if (ref / res > 1000)
-            throwBadKey(layered, sec, k + "resolution", numberText(res),
-                        "at most 1000 cells over " + k + "refDistance = " +
-                            numberText(ref) + " m (MRPT's collision grid)");
+        // the cell size of MRPT's collision grid (CPTG_DiffDrive_*; a
+        // CPTG_Holo_Blend has none)
+        if (dynamic_cast<const mrpt::nav::CPTG_DiffDrive_CollisionGridBased*>(ptg)) {
+            const double res = layered.read_double(sec, k + "resolution", 0.05);
+            check(sec, k + "resolution", res, TRange::closed(0.005, 1, "m"));
+            if (ref / res > 1000)
+                throwBadKey(layered, sec, k + "resolution", numberText(res),
+                            "at most 1000 cells over " + k + "refDistance = " +
+                                numberText(ref) + " m (MRPT's collision grid)");
+        }
         check(sec, k + "v_max_mps", ptg->getMaxLinVel(), speed);
         check(sec, k + "w_max_dps", ptg->getMaxAngVel() * 180 / M_PI, turn);
         // MRPT's C, CC, CCS and CS PTGs drive at V_MAX sign(K): K = 0 is a
@@ -683,7 +758,7 @@ void checkEngineTypes(const mrpt::config::CConfigFileBase& layered,
             const std::string typed = trim(layered.read_string(sec, key, ""));
             // MRPT's own files end values with "# comments", which its
             // number parser stops at
-            const std::string text = trim(typed.substr(0, typed.find('#')));
+            const std::string text = uncommented(typed);
             const std::vector<std::string> heldList = listTokens(held);
             if (held == "true" || held == "false") {
                 const std::string l = lowerCase(text);
