@@ -94,9 +94,13 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
      * limiter's section. An unknown limiter name throws CBadInputError
      * naming the known ones. Values MRPT 2.5.8 takes unchecked throw
      * CBadInputError naming the key: robotMax_V_mps / robotMax_W_degps not in
-     * (0, 100] m/s / (0, 3600] deg/s; a PTG's refDistance not in (0, 100] m,
-     * num_paths not in [2, 2000], resolution not in [5 mm, 1 m] or more than
-     * 1000 cells over refDistance, v_max / w_max as the robot's. */
+     * [0.01, 100] m/s / [0.1, 3600] deg/s; a PTG's refDistance not in
+     * [0.1, 100] m, num_paths not in [4, 2000], resolution not in [5 mm, 1 m]
+     * or more than 1000 cells over refDistance, v_max / w_max as the
+     * robot's, K = 0, score_priority < 0 or all 0; the PTGs' build over ~1
+     * min (checkPtgBuildTime()); the holonomic method's lists, phases and
+     * normalized distances; score formulas that do not compile or loop.
+     * The checks and what MRPT did without them: README, Reliability. */
     void loadConfigFile(const mrpt::config::CConfigFileBase& c) override;
     /** Throws CBadInputError naming a PTG's num_paths when MRPT's
      * collision-grid PTGs, as loaded from `c` (with the engine config),
