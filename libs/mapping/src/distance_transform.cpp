@@ -116,9 +116,9 @@ namespace {
  * are never nearer than it) or none (kFar). T = int16_t for reach <= 127
  * (kFar + reach^2 < 2^15: eight lanes a vector, and SSE2 has their min),
  * else int32_t. */
-template <typename T>
+template <typename T, typename TOut, typename TEmit>
 void boundedRows(const std::vector<int32_t>& col, int w, int h, bool borderIsSource,
-                 int reach, std::vector<int32_t>& out) {
+                 int reach, std::vector<TOut>& out, TEmit emit) {
     const T kFar = T(sizeof(T) == 2 ? 1 << 14 : 1 << 28);
     const int32_t reach2 = reach * reach;
     std::vector<T> sq(size_t(w) + 2 * size_t(reach)), best(static_cast<size_t>(w));
@@ -139,21 +139,23 @@ void boundedRows(const std::vector<int32_t>& col, int w, int h, bool borderIsSou
             for (int i = 0; i < w; i++)
                 b[i] = std::min(b[i], T(std::min(left[i], right[i]) + d2));
         }
-        int32_t* o = &out[size_t(j) * w];
+        TOut* o = &out[size_t(j) * w];
         for (int i = 0; i < w; i++)
-            o[i] = b[i] <= reach2 ? int32_t(b[i]) : kNoSource;
+            o[i] = emit(int32_t(b[i]) <= reach2 ? int32_t(b[i]) : kNoSource);
     }
 }
-}  // namespace
 
-void boundedSquaredDistanceTransform(const std::vector<uint8_t>& source, int w, int h,
-                                     bool borderIsSource, int reach,
-                                     std::vector<int32_t>& out) {
+/** The checks and the column pass both bounded transforms share; then the
+ * rows' pass, each cell's squared distance (or kNoSource) through `emit`. */
+template <typename TOut, typename TEmit>
+void boundedTransform(const std::vector<uint8_t>& source, int w, int h,
+                      bool borderIsSource, int reach, std::vector<TOut>& out, TOut none,
+                      TEmit emit) {
     if (w < 0 || h < 0 || source.size() != size_t(w) * size_t(h))
         throw std::invalid_argument("distance transform: source is not w x h");
     if (reach < 0 || reach > 4096)
         throw std::invalid_argument("bounded distance transform: reach must be 0..4096");
-    out.assign(source.size(), kNoSource);
+    out.assign(source.size(), none);
     if (source.empty())
         return;
     // Column distances as in squaredDistanceTransform(), capped at reach + 1
@@ -161,8 +163,29 @@ void boundedSquaredDistanceTransform(const std::vector<uint8_t>& source, int w, 
     std::vector<int32_t> col;
     columnDistances(source, w, h, borderIsSource, reach + 1, col);
     if (reach <= 127)
-        boundedRows<int16_t>(col, w, h, borderIsSource, reach, out);
+        boundedRows<int16_t>(col, w, h, borderIsSource, reach, out, emit);
     else
-        boundedRows<int32_t>(col, w, h, borderIsSource, reach, out);
+        boundedRows<int32_t>(col, w, h, borderIsSource, reach, out, emit);
+}
+}  // namespace
+
+void boundedSquaredDistanceTransform(const std::vector<uint8_t>& source, int w, int h,
+                                     bool borderIsSource, int reach,
+                                     std::vector<int32_t>& out) {
+    boundedTransform(source, w, h, borderIsSource, reach, out, kNoSource,
+                     [](int32_t d2) { return d2; });
+}
+
+void boundedDistanceTransform(const std::vector<uint8_t>& source, int w, int h,
+                              bool borderIsSource, int reach,
+                              const std::vector<float>& valueOf, float none,
+                              std::vector<float>& out) {
+    if (reach >= 0 && reach <= 4096 && valueOf.size() != size_t(reach) * reach + 1)
+        throw std::invalid_argument(
+            "bounded distance transform: the value table needs reach^2 + 1 entries");
+    boundedTransform(source, w, h, borderIsSource, reach, out, none,
+                     [&valueOf, none](int32_t d2) {
+                         return d2 == kNoSource ? none : valueOf[size_t(d2)];
+                     });
 }
 }  // namespace risknav::mapping

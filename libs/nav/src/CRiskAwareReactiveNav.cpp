@@ -1058,14 +1058,32 @@ void CRiskAwareReactiveNav::STEP3_WSpaceToTPSpace(
     const size_t ptg_idx, std::vector<double>& out_TPObstacles,
     mrpt::nav::ClearanceDiagram& out_clearance,
     const mrpt::math::TPose2D& rel_pose_PTG_origin_wrt_sense, const bool eval_clearance) {
-    if (std::exchange(m_observeDue, false)) {
-        const TSpeedLimitInput in = limiterInput(nullptr, 0.0);
-        for (const auto& l : m_limiters)
-            l->observe(in);
-    }
+    observeNow(false);
     mrpt::nav::CReactiveNavigationSystem::STEP3_WSpaceToTPSpace(
         ptg_idx, out_TPObstacles, out_clearance, rel_pose_PTG_origin_wrt_sense,
         eval_clearance);
+}
+
+void CRiskAwareReactiveNav::observeNow(bool beforeSensing) {
+    if (!m_observeDue)
+        return;
+    if (beforeSensing) {
+        // A risknav world senses now the scans MRPT's sensing then takes
+        // (the same scans: CSimRobotInterface::senseAhead()), so the
+        // limiters start ~0.2-0.3 ms of MRPT's step earlier (its sensing
+        // and its work up to the first PTG); another robot's scans exist
+        // only once MRPT sensed (STEP3_WSpaceToTPSpace()).
+        auto* sim = dynamic_cast<sim::CSimRobotInterface*>(&m_robot);
+        if (!sim)
+            return;
+        sim->senseAhead();
+    }
+    m_observeDue = false;
+    TSpeedLimitInput in = limiterInput(nullptr, 0.0);
+    if (beforeSensing)
+        in.obstacles = nullptr;  // MRPT's point map is still the last step's
+    for (const auto& l : m_limiters)
+        l->observe(in);
 }
 
 void CRiskAwareReactiveNav::finishObserved(bool quiet) {
@@ -1115,6 +1133,7 @@ void CRiskAwareReactiveNav::performNavigationStep() {
         guide = guidePoint(m_curPoseVel.pose, mrpt::math::TPoint2D(t.x, t.y));
     }
     if (!guide) {
+        observeNow(true);
         mrpt::nav::CReactiveNavigationSystem::performNavigationStep();
         return;
     }
@@ -1141,6 +1160,7 @@ void CRiskAwareReactiveNav::performNavigationStep() {
             w->multiple_targets = savedMultiple;
     };
     try {
+        observeNow(true);  // the waypoint as the target (m_realTarget)
         mrpt::nav::CReactiveNavigationSystem::performNavigationStep();
     } catch (...) {
         restore();

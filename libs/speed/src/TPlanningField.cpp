@@ -56,18 +56,29 @@ double TPlanningField::clearanceAt(double x, double y) const {
 }
 
 namespace {
-/** The squared distances to `source`, exact for every cell whose measured
- * distance (toMetres) is <= `reach` [m] (bounded where that saves time). */
-void squaredDistancesUpTo(const std::vector<uint8_t>& source, int n, bool borderIsSource,
-                          double res, double reach, std::vector<int32_t>& d2) {
+/** The measured distances [m] (toMetres()) to `source`, exact for every cell
+ * whose distance is <= `reach` [m]; the bounded transform where that saves
+ * time, read through a table of the same floats toMetres() gives (a
+ * speed-up: no pass over the squared distances). */
+void distancesUpTo(const std::vector<uint8_t>& source, int n, bool borderIsSource,
+                   double res, double reach, std::vector<int32_t>& d2,
+                   std::vector<float>& out) {
     // every cell whose measured distance is <= reach has a centre distance
     // <= reach / res + 0.5 cells (one more for rounding)
     const double reachCells = std::max(0.0, reach / res + 1.5);
-    if (reachCells < std::min(n, 4096))
-        mapping::boundedSquaredDistanceTransform(source, n, n, borderIsSource,
-                                                 int(std::ceil(reachCells)), d2);
-    else
-        mapping::squaredDistanceTransform(source, n, n, borderIsSource, d2);
+    if (reachCells < std::min(n, 4096)) {
+        const int r = int(std::ceil(reachCells));
+        std::vector<int32_t> all(size_t(r) * r + 1);
+        for (size_t k = 0; k < all.size(); k++)
+            all[k] = int32_t(k);
+        std::vector<float> metres;
+        toMetres(all, res, metres);
+        mapping::boundedDistanceTransform(source, n, n, borderIsSource, r, metres,
+                                          std::numeric_limits<float>::infinity(), out);
+        return;
+    }
+    mapping::squaredDistanceTransform(source, n, n, borderIsSource, d2);
+    toMetres(d2, res, out);
 }
 }  // namespace
 
@@ -80,9 +91,13 @@ TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map, double mi
     const int n = map.size;
     // wayOn: the frontier cells, then (below) only the open ones and the ring
     std::vector<uint8_t> blocked(map.cells.size()), wayOn(map.cells.size(), 0);
-    for (size_t k = 0; k < map.cells.size(); k++)
-        blocked[k] = map.cells[k] != TFusedCell::Free;
     const TFusedCell* cells = map.cells.data();
+    {
+        // through local pointers: the loop vectorizes (a speed-up; the same)
+        uint8_t* b = blocked.data();
+        for (size_t k = 0, nk = map.cells.size(); k < nk; k++)
+            b[k] = cells[k] != TFusedCell::Free;
+    }
     auto frontierAt = [&](int i, int j) {
         const size_t k = map.index(i, j);
         auto freeAt = [&](size_t nk) { return cells[nk] == TFusedCell::Free; };
@@ -111,8 +126,7 @@ TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map, double mi
                                              (up[i] == kFree) | (down[i] == kFree)));
     }
     std::vector<int32_t> d2;
-    squaredDistancesUpTo(blocked, n, true, map.resolution, clearanceReach, d2);
-    toMetres(d2, map.resolution, f.clearance);
+    distancesUpTo(blocked, n, true, map.resolution, clearanceReach, d2, f.clearance);
     // The ways on, for the choice of a temporary destination: open frontier
     // cells, and the grid's outer ring, whose free cells lead on into what the
     // robot-centred grid no longer (or not yet) holds
@@ -146,20 +160,25 @@ TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map, double mi
     std::vector<int32_t> colNear;
     if (reach >= 0) {
         colNear.resize(map.cells.size());
-        const TFusedCell* c = cells;
+        // row by row through local pointers: the loops vectorize (a
+        // speed-up; the same values)
+        const auto* c = reinterpret_cast<const uint8_t*>(cells);
+        constexpr uint8_t kObst = uint8_t(TFusedCell::Obstacle);
+        int32_t* cn = colNear.data();
         for (int i = 0; i < n; i++)
-            colNear[size_t(i)] = c[i] == TFusedCell::Obstacle ? 0 : kFar;
+            cn[i] = c[i] == kObst ? 0 : kFar;
         for (int j = 1; j < n; j++) {
-            const size_t row = size_t(j) * n;
+            const uint8_t* cr = c + size_t(j) * n;
+            const int32_t* up = cn + size_t(j - 1) * n;
+            int32_t* o = cn + size_t(j) * n;
             for (int i = 0; i < n; i++)
-                colNear[row + i] = c[row + i] == TFusedCell::Obstacle
-                                       ? 0
-                                       : std::min(colNear[row - n + i] + 1, kFar);
+                o[i] = cr[i] == kObst ? 0 : std::min(up[i] + 1, kFar);
         }
         for (int j = n - 2; j >= 0; j--) {
-            const size_t row = size_t(j) * n;
+            const int32_t* down = cn + size_t(j + 1) * n;
+            int32_t* o = cn + size_t(j) * n;
             for (int i = 0; i < n; i++)
-                colNear[row + i] = std::min(colNear[row + i], colNear[row + n + i] + 1);
+                o[i] = std::min(o[i], down[i] + 1);
         }
     }
     auto nearObstacle = [&](int i, int j) {
@@ -187,8 +206,7 @@ TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map, double mi
                 wayOn[k] = 1;
         }
     }
-    squaredDistancesUpTo(wayOn, n, false, map.resolution, wayOnReach, d2);
-    toMetres(d2, map.resolution, f.wayOnDist);
+    distancesUpTo(wayOn, n, false, map.resolution, wayOnReach, d2, f.wayOnDist);
     return f;
 }
 }  // namespace risknav::speed

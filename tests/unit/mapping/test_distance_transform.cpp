@@ -99,3 +99,38 @@ TEST(BoundedSquaredDistanceTransform, IsTheFullTransformWithinReachAndNoneBeyond
         boundedSquaredDistanceTransform(std::vector<uint8_t>(15), 4, 4, false, 2, d),
         std::invalid_argument);
 }
+
+TEST(BoundedDistanceTransform, ReadsEachSquaredDistanceThroughTheTable) {
+    // a table that tells the squared distances apart (2 d2 + 0.5) and a
+    // value for none no entry has: the emitted floats must be the table's
+    // entry for the brute-force squared distance within reach, `none` beyond
+    std::mt19937 rng(12);
+    int cases = 0;
+    for (const auto& [w, h] : {std::pair{1, 1}, {9, 1}, {17, 23}, {40, 40}})
+        for (const double density : {0.0, 0.03, 0.3})
+            for (const bool border : {false, true})
+                for (const int reach : {0, 3, 9, 128}) {
+                    std::vector<uint8_t> src(size_t(w) * h);
+                    std::bernoulli_distribution on(density);
+                    for (auto& s : src)
+                        s = on(rng);
+                    std::vector<float> table(size_t(reach) * reach + 1);
+                    for (size_t k = 0; k < table.size(); k++)
+                        table[k] = 2.0f * float(k) + 0.5f;
+                    const auto brute = bruteForce(src, w, h, border);
+                    std::vector<float> out;
+                    boundedDistanceTransform(src, w, h, border, reach, table, -1.0f, out);
+                    ASSERT_EQ(out.size(), brute.size());
+                    for (size_t k = 0; k < out.size(); k++)
+                        ASSERT_EQ(out[k], brute[k] <= reach * reach
+                                              ? table[size_t(brute[k])]
+                                              : -1.0f)
+                            << w << " x " << h << " reach " << reach << " cell " << k;
+                    cases++;
+                }
+    EXPECT_EQ(cases, 96);
+    std::vector<float> d;
+    EXPECT_THROW(boundedDistanceTransform(std::vector<uint8_t>(16), 4, 4, false, 2,
+                                          std::vector<float>(4), 0.0f, d),
+                 std::invalid_argument);
+}

@@ -24,6 +24,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -45,9 +46,27 @@ struct TRun {
     int limitedCycles = 0, cycles = 0;
     double maxOverLimit = -1e9;  // max over cycles of |v sent| - limit
     std::string reasonSeen;
+    int sensingChecks = 0, sensedOtherScans = 0;  // checkSensing
 };
 
-TRun driveOffice(const std::string& extra) {
+bool sameRanges(const mrpt::obs::CObservation2DRangeScan& a,
+                const mrpt::obs::CObservation2DRangeScan& b) {
+    if (a.getScanSize() != b.getScanSize())
+        return false;
+    for (size_t i = 0; i < a.getScanSize(); i++)
+        if (a.getScanRange(i) != b.getScanRange(i) ||
+            a.getScanRangeValidity(i) != b.getScanRangeValidity(i))
+            return false;
+    return true;
+}
+
+// checkSensing: the first 60 steps only, and whether the scans MRPT sensed in a
+// step (sensingChecks) are the first the world gives from the state before
+// it (a copy of the world senses once): the world was sensed once a step.
+// senseFirst: each step begins with the robot's senseNow(), as
+// risknav-navigate's loop does (for its localizer).
+TRun driveOffice(const std::string& extra, bool checkSensing = false,
+                 bool senseFirst = false) {
     common::CIniConfig cfg(test::sourcePath("datasets/office/world.ini"));
     sim::CSimWorld world;
     world.loadFromConfigFile(cfg);
@@ -77,7 +96,22 @@ TRun driveOffice(const std::string& extra) {
     mrpt::Clock::setActiveClock(mrpt::Clock::Simulated);
     TRun r;
     for (int step = 0; step < 1500; step++) {
+        if (checkSensing && step == 60)
+            break;
+        std::optional<sim::CSimWorld> before;
+        if (checkSensing)
+            before = world;
+        if (senseFirst)
+            robotIf.senseNow();
         nav.navigationStep();
+        // (a step in which MRPT sensed nothing, e.g. the one that ends the
+        // navigation, leaves the last step's scans: not checked)
+        const auto& sensed = robotIf.lastScans().laser;
+        if (before && sensed && sensed->timestamp == before->timestamp()) {
+            r.sensingChecks++;
+            if (!sameRanges(*before->sense().laser, *sensed))
+                r.sensedOtherScans++;
+        }
         const auto st = nav.getCurrentState();
         if (st == mrpt::nav::CAbstractNavigator::IDLE ||
             st == mrpt::nav::CAbstractNavigator::NAV_ERROR)
@@ -127,6 +161,24 @@ TEST(RiskAwareNav, TheStoppingLimiterWinsAndIsRecorded) {
               std::string::npos)
         << r.reasonSeen;
     EXPECT_LE(r.maxOverLimit, 1e-9);
+}
+
+TEST(RiskAwareNav, TheAdaptiveLimiterObservesTheScansMrptSensesAndTheWorldSensesOnce) {
+    // On a risknav world the limiters observe() before MRPT's step senses
+    // (CSimRobotInterface::senseAhead()): MRPT must then get those very
+    // scans, the world sensed once a step (sensing again would hand MRPT a
+    // second noise draw, and the limiter a scan MRPT never saw). After the
+    // robot's own senseNow() (risknav-navigate's loop) those scans are the
+    // step's (checked: a senseAhead() that always senses fails here).
+    for (const auto& [limiters, senseFirst] : std::vector<std::pair<std::string, bool>>{
+             {"CAdaptiveSpeedLimiter", false}, {"CAdaptiveSpeedLimiter", true}}) {
+        const TRun r = driveOffice(
+            "[CRiskAwareReactiveNav]\nspeed_limiters = " + limiters +
+                "\n[CAdaptiveSpeedLimiter]\n[Robot]\nradius = 0.25\nmax_v = 1.1\n",
+            true, senseFirst);
+        EXPECT_GE(r.sensingChecks, 55) << limiters << senseFirst;
+        EXPECT_EQ(r.sensedOtherScans, 0) << limiters << senseFirst;
+    }
 }
 
 TEST(RiskAwareNav, UnknownLimiterIsAClearError) {

@@ -35,4 +35,14 @@ void squaredDistanceTransform(const std::vector<uint8_t>& source, int w, int h,
 void boundedSquaredDistanceTransform(const std::vector<uint8_t>& source, int w, int h,
                                      bool borderIsSource, int reach,
                                      std::vector<int32_t>& out);
+
+/** boundedSquaredDistanceTransform() read through a table: each cell's
+ * `valueOf[d2]` for its squared distance d2 <= reach^2, `none` beyond (e.g.
+ * a distance in metres, one look-up instead of a pass over the squared
+ * distances). `valueOf` must hold reach^2 + 1 entries (else, and as
+ * boundedSquaredDistanceTransform(), std::invalid_argument). */
+void boundedDistanceTransform(const std::vector<uint8_t>& source, int w, int h,
+                              bool borderIsSource, int reach,
+                              const std::vector<float>& valueOf, float none,
+                              std::vector<float>& out);
 }  // namespace risknav::mapping

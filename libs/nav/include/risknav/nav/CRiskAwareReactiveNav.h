@@ -148,12 +148,16 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     double generate_vel_cmd(const mrpt::nav::TCandidateMovementPTG& in_movement,
                             mrpt::kinematics::CVehicleVelCmd::Ptr& new_vel_cmd) override;
     /** MRPT's step, aimed at the guide point (guide_lookahead) when a
-     * limiter gives one; the waypoint is put back after it. */
+     * limiter gives one; the waypoint is put back after it. On a risknav
+     * world (CSimRobotInterface) the limiters observe() the step's scans
+     * before it starts (observeNow()). */
     void performNavigationStep() override;
     /** MRPT's mapping of the sensed obstacles into a PTG's TP-space; its
      * first call in a step (MRPT has sensed, and evaluates its motions from
-     * here on) first gives every limiter observe() on what was sensed (the
-     * adaptive limiter starts its cycle beside the engine's evaluation). */
+     * here on) first gives every limiter observe() on what was sensed, if
+     * they have not observed this step yet (another robot than a risknav
+     * world: the adaptive limiter starts its cycle beside the engine's
+     * evaluation). */
     void STEP3_WSpaceToTPSpace(const size_t ptg_idx, std::vector<double>& out_TPObstacles,
                                mrpt::nav::ClearanceDiagram& out_clearance,
                                const mrpt::math::TPose2D& rel_pose_PTG_origin_wrt_sense,
@@ -166,6 +170,10 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
      * ended with stops the navigation as MRPT stops it for an error in its
      * step (NAV_ERROR with the message), or is dropped (`quiet`). */
     void finishObserved(bool quiet);
+    /** The limiters' observe() of this step, once. `beforeSensing`: only on
+     * a risknav world, whose scans it senses ahead of MRPT (the same scans
+     * MRPT then gets; the input has no MRPT point map yet). */
+    void observeNow(bool beforeSensing);
     /** currentTarget() from a copy of MRPT's waypoint status. */
     std::optional<TCurrentTarget> currentTarget(
         const mrpt::nav::TWaypointStatusSequence& st) const;

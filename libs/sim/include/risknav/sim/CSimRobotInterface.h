@@ -60,6 +60,11 @@ class CSimRobotInterface : public mrpt::nav::CRobot2NavInterfaceForSimulator_Dif
      * instead of sensing again (so a localizer can use the scan the navigator
      * will see, before the navigator asks for the pose). */
     const CSimWorld::TScans& senseNow();
+    /** The scans the next senseObstacles() returns: those of a senseNow()
+     * not handed out yet, else sensed now (senseNow()). Lets a navigator
+     * start work on the scans before MRPT's step senses, without sensing
+     * twice. */
+    const CSimWorld::TScans& senseAhead() { return m_fresh ? m_last : senseNow(); }
     /** The scans of the latest senseNow() / senseObstacles() call. */
     const CSimWorld::TScans& lastScans() const { return m_last; }
 
