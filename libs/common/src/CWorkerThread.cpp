@@ -1,5 +1,6 @@
 #include <risknav/common/CWorkerThread.h>
 
+#include <algorithm>
 #include <utility>
 
 namespace risknav::common {
@@ -30,10 +31,57 @@ void CWorkerThread::wait() {
     if (!m_pending)
         return;
     std::unique_lock<std::mutex> lock(m_mutex);
-    m_cv.wait(lock, [&] { return !m_job && !m_running; });
+    // the job's queued parts are run here while it runs
+    while (m_job || m_running)
+        if (!runQueuedPart(lock))
+            m_cv.wait(lock);
     m_pending = false;
     if (auto e = std::exchange(m_error, nullptr))
         std::rethrow_exception(e);
+}
+
+void CWorkerThread::runPart(std::unique_lock<std::mutex>& lock, TGroup& g, size_t i) {
+    if (g.next == g.n)
+        m_groups.erase(std::find(m_groups.begin(), m_groups.end(), &g));
+    lock.unlock();
+    std::exception_ptr error;
+    try {
+        (*g.body)(i);
+    } catch (...) {
+        error = std::current_exception();
+    }
+    lock.lock();
+    if (error && !g.error)
+        g.error = error;
+    g.done++;
+    m_cv.notify_all();
+}
+
+bool CWorkerThread::runQueuedPart(std::unique_lock<std::mutex>& lock) {
+    if (m_groups.empty())
+        return false;
+    TGroup& g = *m_groups.front();
+    runPart(lock, g, g.next++);
+    return true;
+}
+
+void CWorkerThread::parallelFor(size_t n, const std::function<void(size_t)>& body) {
+    if (n == 0)
+        return;
+    TGroup g;
+    g.body = &body;
+    g.n = n;
+    std::unique_lock<std::mutex> lock(m_mutex);
+    m_groups.push_back(&g);
+    m_cv.notify_all();
+    while (g.done < g.n) {
+        if (g.next < g.n)
+            runPart(lock, g, g.next++);  // its own parts first
+        else if (!runQueuedPart(lock))
+            m_cv.wait(lock);  // its last parts run on the other thread
+    }
+    if (g.error)
+        std::rethrow_exception(g.error);
 }
 
 void CWorkerThread::loop() {

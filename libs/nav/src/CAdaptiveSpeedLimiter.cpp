@@ -313,9 +313,17 @@ void CAdaptiveSpeedLimiter::runCycle() const {
     measure(in.laser, m_lastLaser, m_dtLaser);
     measure(in.range2, m_lastRange2, m_dtRange2);
     const double T = cycleTime();
-    if (!m_pipeline)
+    if (!m_pipeline) {
         m_pipeline = std::make_unique<speed::CAdaptiveSpeedPipeline>(params(in.radius, T),
                                                                      in.pose);
+        // on the worker, the navigator's thread takes parts of the cycle
+        // while it waits for it in limit() (CWorkerThread::parallelFor())
+        if (common::CWorkerThread* w = m_worker.get())
+            m_pipeline->setParallelFor(
+                [w](size_t n, const std::function<void(size_t)>& body) {
+                    w->parallelFor(n, body);
+                });
+    }
     m_pipeline->setCycleTime(T);
     TCycleResult& r = m_result;
     r.T = T;

@@ -224,11 +224,13 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
     }
 
     std::vector<double> costs(nSpeeds);
-    for (size_t k = 0; k < nSpeeds; k++) {
-        d.perSpeed.push_back(m_planner->plan(field, start, d.target, inflation(k),
-                                             tolerance(k), k == slowest));
+    d.perSpeed.assign(nSpeeds, TPlannedPath{});
+    common::parallelFor(m_parallel, nSpeeds, [&](size_t k) {
+        d.perSpeed[k] = m_planner->plan(field, start, d.target, inflation(k),
+                                        tolerance(k), k == slowest);
+    });
+    for (size_t k = 0; k < nSpeeds; k++)
         costs[k] = d.perSpeed[k].costToGo;
-    }
     d.safeByGap = safeSpeedsByGap(costs, m_o.gap_threshold);
     const size_t owner = d.safeByGap.front();  // the fastest safe speed owns the path
     d.pathIndex = int(owner);

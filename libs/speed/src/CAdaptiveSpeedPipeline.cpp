@@ -52,12 +52,15 @@ void CAdaptiveSpeedPipeline::update(const TPose2D& ego,
                                     const mrpt::obs::CObservation2DRangeScan* range2,
                                     const TPose2D& range2Pose) {
     // (000) section 2: the grids follow the ego-motion, then take the scans
-    m_laser.recenter(ego.x, ego.y);
-    m_range2.recenter(ego.x, ego.y);
-    if (laser)
-        m_laser.integrateScan(laserPose, *laser, m_p.laserModel);
-    if (range2)
-        m_range2.integrateScan(range2Pose, *range2, m_p.range2Model);
+    // (each sensor's grid its own part)
+    common::parallelFor(m_parallel, 2, [&](size_t s) {
+        mapping::CLocalProbGrid& g = s == 0 ? m_laser : m_range2;
+        const mrpt::obs::CObservation2DRangeScan* scan = s == 0 ? laser : range2;
+        g.recenter(ego.x, ego.y);
+        if (scan)
+            g.integrateScan(s == 0 ? laserPose : range2Pose, *scan,
+                            s == 0 ? m_p.laserModel : m_p.range2Model);
+    });
     // classification and two-sensor fusion (section 2)
     m_fused = mapping::fuseGrids(m_laser, m_p.useRange2 ? m_range2 : m_laser,
                                  m_p.speed.occupied_threshold, m_p.speed.free_threshold);
@@ -68,11 +71,15 @@ void CAdaptiveSpeedPipeline::update(const TPose2D& ego,
     // the clearance is read only against the widest inflation (the fastest
     // speed's margin) and, by CExplorer and the limiter's guide point, the
     // radius + 0.1 m and the radius: 0.5 m beyond the widest covers them all
-    m_field = computePlanningField(m_fused, m_p.robotRadius,
-                                   m_ctrl.wayOnBand(m_p.localMapResolution),
-                                   m_p.robotRadius + m_p.speed.margins.front() + 0.5);
-    if (m_memory)
-        m_memory->update(m_fused);
+    // the field and the memory's update both only read the fused map
+    common::parallelFor(m_parallel, 2, [&](size_t part) {
+        if (part == 0)
+            m_field = computePlanningField(
+                m_fused, m_p.robotRadius, m_ctrl.wayOnBand(m_p.localMapResolution),
+                m_p.robotRadius + m_p.speed.margins.front() + 0.5, m_parallel);
+        else if (m_memory)
+            m_memory->update(m_fused);
+    });
 }
 
 TSpeedDecision CAdaptiveSpeedPipeline::decide(
@@ -112,6 +119,12 @@ void CAdaptiveSpeedPipeline::setCycleTime(double T) {
     m_p.speed.cycle_time = T;
     m_ctrl =
         CAdaptiveSpeedController(m_p.speed, m_p.robotRadius, necessaryObservations(m_p));
+    m_ctrl.setParallelFor(m_parallel);
+}
+
+void CAdaptiveSpeedPipeline::setParallelFor(common::TParallelFor parallel) {
+    m_parallel = std::move(parallel);
+    m_ctrl.setParallelFor(m_parallel);
 }
 
 bool CAdaptiveSpeedPipeline::heldLongEnough(bool held) {

@@ -82,22 +82,27 @@ void distancesUpTo(const std::vector<uint8_t>& source, int n, bool borderIsSourc
 }
 }  // namespace
 
-TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map, double minOpening,
-                                    double wayOnReach, double clearanceReach) {
-    TPlanningField f;
-    f.map = map;
-    f.wayOnReach = wayOnReach;
-    f.clearanceReach = clearanceReach;
+namespace {
+/** TPlanningField::clearance of `map`, exact up to `reach` [m]. */
+void clearanceOf(const mapping::TFreeSpaceMap& map, double reach,
+                 std::vector<float>& out) {
+    std::vector<uint8_t> blocked(map.cells.size());
+    const TFusedCell* cells = map.cells.data();
+    // through local pointers: the loop vectorizes (a speed-up; the same)
+    uint8_t* b = blocked.data();
+    for (size_t k = 0, nk = map.cells.size(); k < nk; k++)
+        b[k] = cells[k] != TFusedCell::Free;
+    std::vector<int32_t> d2;
+    distancesUpTo(blocked, map.size, true, map.resolution, reach, d2, out);
+}
+
+/** TPlanningField::wayOnDist of `map`, exact up to `wayOnReach` [m]. */
+void wayOnDistOf(const mapping::TFreeSpaceMap& map, double minOpening, double wayOnReach,
+                 std::vector<float>& out) {
     const int n = map.size;
     // wayOn: the frontier cells, then (below) only the open ones and the ring
-    std::vector<uint8_t> blocked(map.cells.size()), wayOn(map.cells.size(), 0);
+    std::vector<uint8_t> wayOn(map.cells.size(), 0);
     const TFusedCell* cells = map.cells.data();
-    {
-        // through local pointers: the loop vectorizes (a speed-up; the same)
-        uint8_t* b = blocked.data();
-        for (size_t k = 0, nk = map.cells.size(); k < nk; k++)
-            b[k] = cells[k] != TFusedCell::Free;
-    }
     auto frontierAt = [&](int i, int j) {
         const size_t k = map.index(i, j);
         auto freeAt = [&](size_t nk) { return cells[nk] == TFusedCell::Free; };
@@ -125,8 +130,6 @@ TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map, double mi
             w[i] = uint8_t((r[i] == kUnd) & ((r[i + 1] == kFree) | (r[i - 1] == kFree) |
                                              (up[i] == kFree) | (down[i] == kFree)));
     }
-    std::vector<int32_t> d2;
-    distancesUpTo(blocked, n, true, map.resolution, clearanceReach, d2, f.clearance);
     // The ways on, for the choice of a temporary destination: open frontier
     // cells, and the grid's outer ring, whose free cells lead on into what the
     // robot-centred grid no longer (or not yet) holds
@@ -206,7 +209,25 @@ TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map, double mi
                 wayOn[k] = 1;
         }
     }
-    distancesUpTo(wayOn, n, false, map.resolution, wayOnReach, d2, f.wayOnDist);
+    std::vector<int32_t> d2;
+    distancesUpTo(wayOn, n, false, map.resolution, wayOnReach, d2, out);
+}
+}  // namespace
+
+TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map, double minOpening,
+                                    double wayOnReach, double clearanceReach,
+                                    const common::TParallelFor& parallel) {
+    TPlanningField f;
+    f.map = map;
+    f.wayOnReach = wayOnReach;
+    f.clearanceReach = clearanceReach;
+    // the two parts read only the map and each writes its own field
+    common::parallelFor(parallel, 2, [&](size_t part) {
+        if (part == 0)
+            clearanceOf(map, clearanceReach, f.clearance);
+        else
+            wayOnDistOf(map, minOpening, wayOnReach, f.wayOnDist);
+    });
     return f;
 }
 }  // namespace risknav::speed

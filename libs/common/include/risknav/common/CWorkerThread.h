@@ -4,13 +4,18 @@
 #include <functional>
 #include <mutex>
 #include <thread>
+#include <vector>
 
 namespace risknav::common {
 /** One persistent worker thread that runs one job at a time: start() hands
  * it a job (waiting for the one before), wait() blocks until that job is
  * done and rethrows the exception it ended with. The thread is created at
  * the first start() and joined by the destructor. A job must not call
- * start() or wait() on its own worker. Not copyable. */
+ * start() or wait() on its own worker. Not copyable.
+ * The job may split work with parallelFor(): a caller blocked in wait()
+ * meanwhile runs some of its parts, so the time it would spend waiting does
+ * the job's work (on 2 cores, the navigator's thread idle at the end of its
+ * step). */
 class CWorkerThread {
   public:
     CWorkerThread() = default;
@@ -26,9 +31,27 @@ class CWorkerThread {
     void wait();
     /** A started job has not been waited for. */
     bool pending() const { return m_pending; }
+    /** From the running job (or a part of it, nested): body(0..n-1), each
+     * once, by this thread and by a thread in wait(); returns when all have
+     * run, rethrowing the first exception a part ended with (after all have
+     * ended). While its parts run on the other thread it helps with any
+     * other parts queued (so nested calls cannot deadlock). */
+    void parallelFor(size_t n, const std::function<void(size_t)>& body);
 
   private:
     void loop();
+    /** A parallelFor() call's parts (under m_mutex). */
+    struct TGroup {
+        const std::function<void(size_t)>* body = nullptr;
+        size_t n = 0, next = 0, done = 0;
+        std::exception_ptr error;
+    };
+    /** Runs one queued part if there is one (m_mutex held by `lock`, which
+     * it unlocks while the part runs); false if none is queued. */
+    bool runQueuedPart(std::unique_lock<std::mutex>& lock);
+    /** Part `i` of `g` (taken under the lock), run with the lock released. */
+    void runPart(std::unique_lock<std::mutex>& lock, TGroup& g, size_t i);
+    std::vector<TGroup*> m_groups;  ///< groups with parts not yet taken
 
     std::thread m_thread;
     std::mutex m_mutex;

@@ -80,6 +80,12 @@ namespace risknav::nav {
  *    the old one for two more sensings, 3 of 5 M1 hall runs stalled; with
  *    this rule all 5 reached their goal, though two slowly: see
  *    cycle_decimation below).
+ * On the worker, a caller that waits for the cycle (limit(), the end of
+ * the navigator's cycle) meanwhile runs some of its independent parts
+ * itself (the two sensors' grids, the planning field's two distance fields
+ * beside the memory's update, the per-speed plans:
+ * common::CWorkerThread::parallelFor()), so the navigator's thread, idle
+ * once MRPT has evaluated its motions, shortens the cycle.
  * The same decisions on the worker and the caller's thread, and for a
  * caller that only calls limit() (each call is then a sensing). A cycle
  * runs on every cycle's sensing, also one in which the engine then

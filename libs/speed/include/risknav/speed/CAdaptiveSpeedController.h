@@ -1,4 +1,5 @@
 #pragma once
+#include <risknav/common/parallel_for.h>
 #include <risknav/speed/IPathPlanner.h>
 #include <risknav/speed/TSpeedControlOptions.h>
 
@@ -85,6 +86,13 @@ class CAdaptiveSpeedController {
                           const TTargetHints& hints = {}) const;
     const TSpeedControlOptions& options() const { return m_o; }
     int necessaryObservations() const { return m_N; }
+    /** How decide() runs its per-speed plans (independent of each other):
+     * empty (the default) one after the other; the planner must then be
+     * safe to call from several threads (CGridPathPlanner is). The same
+     * decisions either way. */
+    void setParallelFor(common::TParallelFor parallel) {
+        m_parallel = std::move(parallel);
+    }
     /** [m] How near a way on (TPlanningField::wayOnDist) a candidate for a
      * temporary destination lies: the slowest speed's inflation + 2 cells of
      * a map of resolution `res`. A field for decide() needs wayOnReach >= it
@@ -102,5 +110,6 @@ class CAdaptiveSpeedController {
     double m_radius;
     int m_N;
     std::shared_ptr<const IPathPlanner> m_planner;
+    common::TParallelFor m_parallel;
 };
 }  // namespace risknav::speed

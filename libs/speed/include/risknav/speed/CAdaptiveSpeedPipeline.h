@@ -92,6 +92,12 @@ class CAdaptiveSpeedPipeline {
      * stay. Throws std::invalid_argument unless 0 < T <= 10 s. */
     void setCycleTime(double T);
 
+    /** How a cycle runs its independent parts (the two sensors' grids; the
+     * planning field's two distance fields beside the memory's update; the
+     * per-speed plans): empty (the default) one after the other, or e.g. a
+     * worker's CWorkerThread::parallelFor(). The same results either way. */
+    void setParallelFor(common::TParallelFor parallel);
+
     /** Beyond the paper: a robot held (speed 0) has, after N held cycles in
      * place, observed what it sees N times; what is still undecided then (a
      * gap in a wall seen edge-on) will not be decided from there, so the
@@ -122,5 +128,6 @@ class CAdaptiveSpeedPipeline {
     mapping::TFreeSpaceMap m_fused;
     TPlanningField m_field;
     int m_held = 0;
+    common::TParallelFor m_parallel;
 };
 }  // namespace risknav::speed

@@ -1,4 +1,5 @@
 #pragma once
+#include <risknav/common/parallel_for.h>
 #include <risknav/mapping/free_space.h>
 
 #include <limits>
@@ -40,9 +41,12 @@ struct TPlanningField {
 
 /** `minOpening` [m]: see wayOnDist (0: every frontier cell is open);
  * `wayOnReach` [m]: wayOnDist is exact up to it (+inf: everywhere);
- * `clearanceReach` [m]: clearance is exact up to it (+inf: everywhere). */
+ * `clearanceReach` [m]: clearance is exact up to it (+inf: everywhere);
+ * `parallel`: how the clearance and the ways on (independent) are computed
+ * (empty: one after the other; the same field either way). */
 TPlanningField computePlanningField(
     const mapping::TFreeSpaceMap& map, double minOpening = 0.0,
     double wayOnReach = std::numeric_limits<double>::infinity(),
-    double clearanceReach = std::numeric_limits<double>::infinity());
+    double clearanceReach = std::numeric_limits<double>::infinity(),
+    const common::TParallelFor& parallel = {});
 }  // namespace risknav::speed
