@@ -172,14 +172,38 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
         throw std::invalid_argument(
             "speed controller: the planning field's clearance ends before the widest "
             "inflation");
-    if (!chooseTarget(field, start, goal, d.target, d.temporaryTarget, hints)) {
+    const double res = field.map.resolution;
+    auto inflation = [&](size_t k) { return m_radius + m_o.margins[k]; };
+    const size_t slowest = nSpeeds - 1;
+    // Beyond the paper, a speed-up with the same decisions: with a second
+    // thread (setParallelFor) and the goal in known free space, where the
+    // target is most often the goal itself, the plans to the goal are made
+    // beside the choice of the target and kept if it is the goal
+    const int gi = field.map.x2idx(goal.x), gj = field.map.y2idx(goal.y);
+    const bool speculate =
+        m_parallel && fixedIndex < 0 && field.map.inside(gi, gj) &&
+        field.map.cells[field.map.index(gi, gj)] == mapping::TFusedCell::Free;
+    std::vector<TPlannedPath> toGoal;
+    bool chosen = false;
+    common::parallelFor(speculate ? m_parallel : common::TParallelFor{},
+                        speculate ? 2 : 1, [&](size_t part) {
+                            if (part == 0) {
+                                chosen = chooseTarget(field, start, goal, d.target,
+                                                      d.temporaryTarget, hints);
+                                return;
+                            }
+                            toGoal.assign(nSpeeds, TPlannedPath{});
+                            common::parallelFor(m_parallel, nSpeeds, [&](size_t k) {
+                                toGoal[k] = m_planner->plan(
+                                    field, start, goal, inflation(k), 0.0, k == slowest);
+                            });
+                        });
+    if (!chosen) {
         d.reason = TSpeedReason::Unreachable;
         return d;
     }
     d.nearestToGoal =
         !d.temporaryTarget && std::hypot(d.target.x - goal.x, d.target.y - goal.y) > 1e-9;
-    const double res = field.map.resolution;
-    auto inflation = [&](size_t k) { return m_radius + m_o.margins[k]; };
     // d for speed k on path p: its margin disc's front meets the unknown; a
     // path to a temporary target ends at the unknown anyway
     auto undecidedDistance = [&](const TPlannedPath& p, size_t k) {
@@ -188,7 +212,6 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
             du = std::min(du, p.length);
         return du;
     };
-    const size_t slowest = nSpeeds - 1;
     // a faster speed ends where its larger margin lets it near a temporary
     // target (placed on the frontier for the slowest one); a destination is
     // planned to exactly
@@ -224,11 +247,16 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
     }
 
     std::vector<double> costs(nSpeeds);
-    d.perSpeed.assign(nSpeeds, TPlannedPath{});
-    common::parallelFor(m_parallel, nSpeeds, [&](size_t k) {
-        d.perSpeed[k] = m_planner->plan(field, start, d.target, inflation(k),
-                                        tolerance(k), k == slowest);
-    });
+    if (!toGoal.empty() && !d.temporaryTarget && d.target.x == goal.x &&
+        d.target.y == goal.y) {
+        d.perSpeed = std::move(toGoal);  // planned to the goal, tolerance 0
+    } else {
+        d.perSpeed.assign(nSpeeds, TPlannedPath{});
+        common::parallelFor(m_parallel, nSpeeds, [&](size_t k) {
+            d.perSpeed[k] = m_planner->plan(field, start, d.target, inflation(k),
+                                            tolerance(k), k == slowest);
+        });
+    }
     for (size_t k = 0; k < nSpeeds; k++)
         costs[k] = d.perSpeed[k].costToGo;
     d.safeByGap = safeSpeedsByGap(costs, m_o.gap_threshold);

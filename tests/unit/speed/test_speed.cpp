@@ -10,9 +10,11 @@
 #include "free_space_fixtures.h"
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <queue>
 #include <random>
+#include <thread>
 
 using namespace risknav::speed;
 using mrpt::math::TPoint2D;
@@ -552,4 +554,96 @@ TEST(AdaptiveSpeedPipeline, TakeFieldMovesTheCycleFieldOutAndDecideThenRefuses) 
     EXPECT_THROW(pipe.decide(ego, {3.0, 2.0}, -1, std::nullopt), std::logic_error);
     pipe.update(ego, nullptr, ego, nullptr, ego);  // the next cycle has its own
     EXPECT_EQ(pipe.field().clearance, copy.clearance);
+}
+
+namespace {
+bool samePath(const TPlannedPath& a, const TPlannedPath& b) {
+    if (a.points.size() != b.points.size() || a.reached != b.reached ||
+        !(a.length == b.length) ||
+        !(a.costToGo == b.costToGo || (std::isinf(a.costToGo) && std::isinf(b.costToGo))))
+        return false;
+    for (size_t k = 0; k < a.points.size(); k++)
+        if (a.points[k].x != b.points[k].x || a.points[k].y != b.points[k].y)
+            return false;
+    return true;
+}
+}  // namespace
+
+TEST(SpeedController, ItsPartsInAnyOrderOrOnThreadsGiveTheSerialDecision) {
+    // decide() with a parallel executor: the per-speed plans as parts, and
+    // with the goal in known free space the plans to the goal made beside the
+    // target's choice (kept only when the target is the goal). Each scene
+    // against the serial decision, with the parts run backwards (the plans to
+    // the goal before the target is chosen) and each on its own thread.
+    const risknav::common::TParallelFor backwards =
+        [](size_t n, const std::function<void(size_t)>& body) {
+            for (size_t i = n; i-- > 0;)
+                body(i);
+        };
+    const risknav::common::TParallelFor threads =
+        [](size_t n, const std::function<void(size_t)>& body) {
+            std::vector<std::thread> ts;
+            for (size_t i = 0; i < n; i++)
+                ts.emplace_back([&body, i] { body(i); });
+            for (auto& t : ts)
+                t.join();
+        };
+    auto unknownBeyond = openMap();
+    fillRect(unknownBeyond, 1.0, -10, 10, 10, TFusedCell::Undecided);
+    auto walledIn = openMap();
+    fillRect(walledIn, -1, -1, 1, -0.9, TFusedCell::Obstacle);
+    fillRect(walledIn, -1, 0.9, 1, 1, TFusedCell::Obstacle);
+    fillRect(walledIn, -1, -1, -0.9, 1, TFusedCell::Obstacle);
+    fillRect(walledIn, 0.9, -1, 1, 1, TFusedCell::Obstacle);
+    struct TScene {
+        TFreeSpaceMap map;
+        mrpt::math::TPose2D robot;
+        TPoint2D goal;
+        const char* what;
+    };
+    const std::vector<TScene> scenes = {
+        {wallWithGap(0.8), {-0.4, 0, 0}, {2.0, 0.0}, "the goal, narrow gap"},
+        {wallWithGap(2.0), {-3.0, 1, 0}, {2.0, -2.0}, "the goal, wide gap"},
+        {wallWithGap(0.8), {-2.0, 0, 0}, {0.2, 2.0}, "free goal by the wall"},
+        {unknownBeyond, {-2.0, 0, 0}, {4.0, 0.0}, "goal in the unknown"},
+        {walledIn, {0, 0, 0}, {3.0, 3.0}, "free goal walled off"},
+    };
+    int speculatedToTheGoal = 0, speculatedElsewhere = 0;
+    for (const auto& s : scenes) {
+        CAdaptiveSpeedController serial(TSpeedControlOptions{}, 0.25, 5);
+        const auto field =
+            computePlanningField(s.map, 0.25, serial.wayOnBand(0.05), 1.05);
+        const auto expect = serial.decide(field, s.robot, s.goal);
+        const int gi = s.map.x2idx(s.goal.x), gj = s.map.y2idx(s.goal.y);
+        if (s.map.inside(gi, gj) && s.map.cells[s.map.index(gi, gj)] == TFusedCell::Free)
+            (!expect.temporaryTarget && !expect.nearestToGoal &&
+                     expect.reason != TSpeedReason::Unreachable
+                 ? speculatedToTheGoal
+                 : speculatedElsewhere)++;
+        for (const auto& exec : {backwards, threads}) {
+            const auto f =
+                computePlanningField(s.map, 0.25, serial.wayOnBand(0.05), 1.05, exec);
+            EXPECT_EQ(f.clearance, field.clearance) << s.what;
+            EXPECT_EQ(f.wayOnDist, field.wayOnDist) << s.what;
+            CAdaptiveSpeedController c(TSpeedControlOptions{}, 0.25, 5);
+            c.setParallelFor(exec);
+            const auto d = c.decide(field, s.robot, s.goal);
+            EXPECT_EQ(d.speedIndex, expect.speedIndex) << s.what;
+            EXPECT_EQ(d.reason, expect.reason) << s.what;
+            EXPECT_EQ(d.target.x, expect.target.x) << s.what;
+            EXPECT_EQ(d.target.y, expect.target.y) << s.what;
+            EXPECT_EQ(d.temporaryTarget, expect.temporaryTarget) << s.what;
+            EXPECT_EQ(d.nearestToGoal, expect.nearestToGoal) << s.what;
+            EXPECT_EQ(d.pathIndex, expect.pathIndex) << s.what;
+            EXPECT_EQ(d.safeByGap, expect.safeByGap) << s.what;
+            EXPECT_EQ(d.allowed, expect.allowed) << s.what;
+            EXPECT_TRUE(samePath(d.path, expect.path)) << s.what;
+            ASSERT_EQ(d.perSpeed.size(), expect.perSpeed.size()) << s.what;
+            for (size_t k = 0; k < d.perSpeed.size(); k++)
+                EXPECT_TRUE(samePath(d.perSpeed[k], expect.perSpeed[k])) << s.what << k;
+        }
+    }
+    // both sides of the speculation were exercised
+    EXPECT_GE(speculatedToTheGoal, 2);
+    EXPECT_GE(speculatedElsewhere, 2);
 }
