@@ -1,3 +1,4 @@
+#include <risknav/common/CQuadHeap.h>
 #include <risknav/speed/CAdaptiveSpeedController.h>
 #include <risknav/speed/speed_rules.h>
 
@@ -51,7 +52,9 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
     const double inf = std::numeric_limits<double>::infinity();
     std::vector<double> g(m.cells.size(), inf);
     using TEntry = std::pair<double, size_t>;
-    std::priority_queue<TEntry, std::vector<TEntry>, std::greater<TEntry>> open;
+    // (g, cell) pairs are all distinct (a cell is pushed again only with a
+    // lower g), so any exact min-heap pops the same sequence
+    common::CQuadHeap<TEntry, std::greater<TEntry>> open;
     g[m.index(si, sj)] = 0;
     open.emplace(0.0, m.index(si, sj));
     const int gi = m.x2idx(goal.x), gj = m.y2idx(goal.y);
