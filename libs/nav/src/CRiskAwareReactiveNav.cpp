@@ -311,6 +311,12 @@ std::string shortName(const std::string& n) {
     return p == std::string::npos ? n : n.substr(p + 2);
 }
 
+// `name` is a class MRPT's factory can make, derived from `base`.
+bool creatableClass(const std::string& name, const mrpt::rtti::TRuntimeClassId* base) {
+    const auto* cls = mrpt::rtti::findRegisteredClass(name);
+    return cls && cls->derivedFrom(base) && cls->ptrCreateObject;
+}
+
 // A value up to a "# comment" or "// comment" (MRPT's files end values
 // with both; its atof / atoi stop there), trimmed.
 std::string uncommented(const std::string& t) {
@@ -497,10 +503,7 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
     const std::string abs = "CAbstractPTGBasedReactive";
     if (layered.keyExists(abs, "motion_decider_method")) {
         const std::string m = trim(layered.read_string(abs, "motion_decider_method", ""));
-        const auto* cls = mrpt::rtti::findRegisteredClass(m);
-        if (!cls ||
-            !cls->derivedFrom(CLASS_ID(mrpt::nav::CMultiObjectiveMotionOptimizerBase)) ||
-            !cls->ptrCreateObject)
+        if (!creatableClass(m, CLASS_ID(mrpt::nav::CMultiObjectiveMotionOptimizerBase)))
             throwBadKey(layered, abs, "motion_decider_method", m,
                         "not one of MRPT's motion deciders "
                         "(CMultiObjMotionOpt_Scalarization)");
@@ -538,11 +541,8 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
         // MRPT print its own line to stderr before it failed)
         if (layered.keyExists(sec, k + "Type")) {
             const std::string type = trim(layered.read_string(sec, k + "Type", ""));
-            const auto* cls = mrpt::rtti::findRegisteredClass(type);
-            if (!cls ||
-                !cls->derivedFrom(
-                    CLASS_ID(mrpt::nav::CParameterizedTrajectoryGenerator)) ||
-                !cls->ptrCreateObject)
+            if (!creatableClass(type,
+                                CLASS_ID(mrpt::nav::CParameterizedTrajectoryGenerator)))
                 throwBadKey(layered, sec, k + "Type", type,
                             "not one of MRPT's PTG classes (CPTG_DiffDrive_C, "
                             "CPTG_DiffDrive_CC, CPTG_DiffDrive_CCS, CPTG_DiffDrive_CS, "

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <queue>
 #include <stdexcept>
 
 namespace risknav::speed {

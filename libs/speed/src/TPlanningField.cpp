@@ -61,8 +61,7 @@ namespace {
  * time, read through a table of the same floats toMetres() gives (a
  * speed-up: no pass over the squared distances). */
 void distancesUpTo(const std::vector<uint8_t>& source, int n, bool borderIsSource,
-                   double res, double reach, std::vector<int32_t>& d2,
-                   std::vector<float>& out) {
+                   double res, double reach, std::vector<float>& out) {
     // every cell whose measured distance is <= reach has a centre distance
     // <= reach / res + 0.5 cells (one more for rounding)
     const double reachCells = std::max(0.0, reach / res + 1.5);
@@ -77,12 +76,11 @@ void distancesUpTo(const std::vector<uint8_t>& source, int n, bool borderIsSourc
                                           std::numeric_limits<float>::infinity(), out);
         return;
     }
+    std::vector<int32_t> d2;
     mapping::squaredDistanceTransform(source, n, n, borderIsSource, d2);
     toMetres(d2, res, out);
 }
-}  // namespace
 
-namespace {
 /** TPlanningField::clearance of `map`, exact up to `reach` [m]. */
 void clearanceOf(const mapping::TFreeSpaceMap& map, double reach,
                  std::vector<float>& out) {
@@ -92,8 +90,7 @@ void clearanceOf(const mapping::TFreeSpaceMap& map, double reach,
     uint8_t* b = blocked.data();
     for (size_t k = 0, nk = map.cells.size(); k < nk; k++)
         b[k] = cells[k] != TFusedCell::Free;
-    std::vector<int32_t> d2;
-    distancesUpTo(blocked, map.size, true, map.resolution, reach, d2, out);
+    distancesUpTo(blocked, map.size, true, map.resolution, reach, out);
 }
 
 /** TPlanningField::wayOnDist of `map`, exact up to `wayOnReach` [m]. */
@@ -209,8 +206,7 @@ void wayOnDistOf(const mapping::TFreeSpaceMap& map, double minOpening, double wa
                 wayOn[k] = 1;
         }
     }
-    std::vector<int32_t> d2;
-    distancesUpTo(wayOn, n, false, map.resolution, wayOnReach, d2, out);
+    distancesUpTo(wayOn, n, false, map.resolution, wayOnReach, out);
 }
 }  // namespace
 

@@ -5,7 +5,8 @@
 namespace risknav::common {
 /** Runs body(0), ..., body(n - 1), in any order and possibly on several
  * threads, and returns when all have run (rethrowing the first exception
- * one ended with). An empty TParallelFor means serialFor(). Each body must
+ * one ended with). An empty TParallelFor: parallelFor() below runs the bodies
+ * in order on the calling thread. Each body must
  * write only its own outputs, so the result is the same on any thread. */
 using TParallelFor =
     std::function<void(size_t n, const std::function<void(size_t)>& body)>;

@@ -83,8 +83,9 @@ namespace risknav::nav {
  * On the worker, a caller that waits for the cycle (limit(), the end of
  * the navigator's cycle) meanwhile runs some of its independent parts
  * itself (the two sensors' grids, the planning field's two distance fields
- * beside the memory's update, the per-speed plans:
- * common::CWorkerThread::parallelFor()), so the navigator's thread, idle
+ * beside the memory's update, the per-speed plans, the plans to the goal
+ * beside the choice of the target: common::CWorkerThread::parallelFor()),
+ * so the navigator's thread, idle
  * once MRPT has evaluated its motions, shortens the cycle.
  * The same decisions on the worker and the caller's thread, and for a
  * caller that only calls limit() (each call is then a sensing). A cycle

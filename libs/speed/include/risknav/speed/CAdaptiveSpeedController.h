@@ -86,10 +86,12 @@ class CAdaptiveSpeedController {
                           const TTargetHints& hints = {}) const;
     const TSpeedControlOptions& options() const { return m_o; }
     int necessaryObservations() const { return m_N; }
-    /** How decide() runs its per-speed plans (independent of each other):
-     * empty (the default) one after the other; the planner must then be
-     * safe to call from several threads (CGridPathPlanner is). The same
-     * decisions either way. */
+    /** How decide() runs its independent parts (the per-speed plans; with
+     * the goal in known free space, the plans to the goal beside the choice
+     * of the target, kept if the target is the goal): empty (the default)
+     * one after the other, and no plans to the goal ahead of the target; a
+     * parallelFor needs a planner safe to call from several threads
+     * (CGridPathPlanner is). The same decisions either way. */
     void setParallelFor(common::TParallelFor parallel) {
         m_parallel = std::move(parallel);
     }
