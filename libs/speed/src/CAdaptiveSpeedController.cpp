@@ -2,9 +2,11 @@
 #include <risknav/speed/CAdaptiveSpeedController.h>
 #include <risknav/speed/speed_rules.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 namespace risknav::speed {
@@ -177,29 +179,29 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
     const double res = field.map.resolution;
     auto inflation = [&](size_t k) { return m_radius + m_o.margins[k]; };
     const size_t slowest = nSpeeds - 1;
-    // Beyond the paper, a speed-up with the same decisions: with a second
-    // thread (setParallelFor) and the goal in known free space, where the
-    // target is most often the goal itself, the plans to the goal are made
-    // beside the choice of the target and kept if it is the goal
+    if (!(field.wayOnReach >= wayOnBand(res)))
+        throw std::invalid_argument(
+            "speed controller: the planning field's wayOnDist ends before the band");
+    // Beyond the paper, a speed-up with the same decisions: a goal in known
+    // free space is the target iff chooseTarget()'s flood pops it with the
+    // slowest margin, i.e. iff the slowest speed's plan to it (the same
+    // cells: CTraversable) reaches it and it keeps that margin; that plan
+    // answers in a few hundred cells where the flood took thousands.
     const int gi = field.map.x2idx(goal.x), gj = field.map.y2idx(goal.y);
-    const bool speculate =
-        m_parallel && fixedIndex < 0 && field.map.inside(gi, gj) &&
-        field.map.cells[field.map.index(gi, gj)] == mapping::TFusedCell::Free;
-    std::vector<TPlannedPath> toGoal;
+    std::optional<TPlannedPath> slowToGoal;
     bool chosen = false;
-    common::parallelFor(speculate ? m_parallel : common::TParallelFor{},
-                        speculate ? 2 : 1, [&](size_t part) {
-                            if (part == 0) {
-                                chosen = chooseTarget(field, start, goal, d.target,
-                                                      d.temporaryTarget, hints);
-                                return;
-                            }
-                            toGoal.assign(nSpeeds, TPlannedPath{});
-                            common::parallelFor(m_parallel, nSpeeds, [&](size_t k) {
-                                toGoal[k] = m_planner->plan(
-                                    field, start, goal, inflation(k), 0.0, k == slowest);
-                            });
-                        });
+    if (field.map.inside(gi, gj) &&
+        field.map.cells[field.map.index(gi, gj)] == mapping::TFusedCell::Free) {
+        slowToGoal = m_planner->plan(field, start, goal, inflation(slowest), 0.0, true);
+        if (slowToGoal->reached &&
+            field.clearance[field.map.index(gi, gj)] >= inflation(slowest)) {
+            d.target = goal;
+            d.temporaryTarget = false;
+            chosen = true;
+        }
+    }
+    if (!chosen)
+        chosen = chooseTarget(field, start, goal, d.target, d.temporaryTarget, hints);
     if (!chosen) {
         d.reason = TSpeedReason::Unreachable;
         return d;
@@ -249,11 +251,37 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
     }
 
     std::vector<double> costs(nSpeeds);
-    if (!toGoal.empty() && !d.temporaryTarget && d.target.x == goal.x &&
-        d.target.y == goal.y) {
-        d.perSpeed = std::move(toGoal);  // planned to the goal, tolerance 0
+    d.perSpeed.assign(nSpeeds, TPlannedPath{});
+    if (!d.temporaryTarget) {
+        // Beyond the paper, a speed-up with the same decisions: to a
+        // destination (tolerance 0 for every speed) the plans go slowest
+        // first, each faster one bounded by what the gap rule can use: a
+        // cost-to-go more than gap_threshold above every slower speed's
+        // puts the speed, and every faster one (a larger margin is never
+        // cheaper: IPathPlanner), beyond the split (safeSpeedsByGap()), as a
+        // +inf does. Searched out, such a plan was most of the cycle (the
+        // fastest speed's margin fits nowhere near the destination).
+        if (slowToGoal && d.target.x == goal.x && d.target.y == goal.y)
+            d.perSpeed[slowest] = std::move(*slowToGoal);
+        else
+            d.perSpeed[slowest] =
+                m_planner->plan(field, start, d.target, inflation(slowest), 0.0, true);
+        double slowerMax = d.perSpeed[slowest].costToGo;
+        bool cut = false;
+        for (size_t k = slowest; k-- > 0;) {
+            TPlannedPath& p = d.perSpeed[k];
+            if (cut) {
+                p.points = {start};
+                p.cutOff = true;
+                continue;
+            }
+            p = m_planner->plan(field, start, d.target, inflation(k), 0.0, false,
+                                slowerMax + m_o.gap_threshold);
+            cut = p.cutOff;
+            if (!cut)
+                slowerMax = std::max(slowerMax, p.costToGo);
+        }
     } else {
-        d.perSpeed.assign(nSpeeds, TPlannedPath{});
         common::parallelFor(m_parallel, nSpeeds, [&](size_t k) {
             d.perSpeed[k] = m_planner->plan(field, start, d.target, inflation(k),
                                             tolerance(k), k == slowest);

@@ -88,7 +88,8 @@ bool CTraversable::operator()(int i, int j) const {
 TPlannedPath CGridPathPlanner::plan(const TPlanningField& field,
                                     const mrpt::math::TPoint2D& start,
                                     const mrpt::math::TPoint2D& goal, double inflation,
-                                    double goalTolerance, bool escape) const {
+                                    double goalTolerance, bool escape,
+                                    double maxCost) const {
     const auto& m = field.map;
     const int n = m.size;
     const double res = m.resolution;
@@ -130,9 +131,18 @@ TPlannedPath CGridPathPlanner::plan(const TPlanningField& field,
     int32_t best = int32_t(s);
     double bestDist = std::hypot(m.idx2x(si) - goal.x, m.idx2y(sj) - goal.y);
     const bool goalInside = m.inside(gi, gj);
-    bool found = false;
+    bool found = false, cutOff = false;
+    // f pops in non-decreasing order (a consistent heuristic): past this,
+    // the destination's g, and so any path's cost-to-go, exceeds maxCost
+    // (the path's ends are off the cell centres by < 1.5 cells in all, and
+    // at a cell within the tolerance h is < 0.1 x the tolerance)
+    const double fStop = maxCost + 2 * res + 0.1 * goalTolerance;
     while (!open.empty()) {
         const auto [f, k] = open.top();
+        if (f > fStop) {
+            cutOff = true;
+            break;
+        }
         open.pop();
         if (a.closed[size_t(k)] == search)
             continue;
@@ -184,6 +194,8 @@ TPlannedPath CGridPathPlanner::plan(const TPlanningField& field,
                                  out.points[k].y - out.points[k - 1].y);
     out.reached =
         found || std::hypot(start.x - goal.x, start.y - goal.y) <= goalTolerance;
+    // a start already within the tolerance is reached whatever the bound
+    out.cutOff = cutOff && !out.reached;
     const auto& e = out.points.back();
     out.costToGo = out.reached ? out.length + std::hypot(e.x - goal.x, e.y - goal.y)
                                : std::numeric_limits<double>::infinity();

@@ -570,11 +570,10 @@ bool samePath(const TPlannedPath& a, const TPlannedPath& b) {
 }  // namespace
 
 TEST(SpeedController, ItsPartsInAnyOrderOrOnThreadsGiveTheSerialDecision) {
-    // decide() with a parallel executor: the per-speed plans as parts, and
-    // with the goal in known free space the plans to the goal made beside the
-    // target's choice (kept only when the target is the goal). Each scene
-    // against the serial decision, with the parts run backwards (the plans to
-    // the goal before the target is chosen) and each on its own thread.
+    // decide() with a parallel executor: the per-speed plans to a temporary
+    // destination as parts (to the goal they go one after the other). Each
+    // scene against the serial decision, with the parts run backwards and
+    // each on its own thread.
     const risknav::common::TParallelFor backwards =
         [](size_t n, const std::function<void(size_t)>& body) {
             for (size_t i = n; i-- > 0;)
@@ -608,18 +607,16 @@ TEST(SpeedController, ItsPartsInAnyOrderOrOnThreadsGiveTheSerialDecision) {
         {unknownBeyond, {-2.0, 0, 0}, {4.0, 0.0}, "goal in the unknown"},
         {walledIn, {0, 0, 0}, {3.0, 3.0}, "free goal walled off"},
     };
-    int speculatedToTheGoal = 0, speculatedElsewhere = 0;
+    int toTheGoal = 0, elsewhere = 0;
     for (const auto& s : scenes) {
         CAdaptiveSpeedController serial(TSpeedControlOptions{}, 0.25, 5);
         const auto field =
             computePlanningField(s.map, 0.25, serial.wayOnBand(0.05), 1.05);
         const auto expect = serial.decide(field, s.robot, s.goal);
-        const int gi = s.map.x2idx(s.goal.x), gj = s.map.y2idx(s.goal.y);
-        if (s.map.inside(gi, gj) && s.map.cells[s.map.index(gi, gj)] == TFusedCell::Free)
-            (!expect.temporaryTarget && !expect.nearestToGoal &&
-                     expect.reason != TSpeedReason::Unreachable
-                 ? speculatedToTheGoal
-                 : speculatedElsewhere)++;
+        (!expect.temporaryTarget && !expect.nearestToGoal &&
+                 expect.reason != TSpeedReason::Unreachable
+             ? toTheGoal
+             : elsewhere)++;
         for (const auto& exec : {backwards, threads}) {
             const auto f =
                 computePlanningField(s.map, 0.25, serial.wayOnBand(0.05), 1.05, exec);
@@ -643,7 +640,184 @@ TEST(SpeedController, ItsPartsInAnyOrderOrOnThreadsGiveTheSerialDecision) {
                 EXPECT_TRUE(samePath(d.perSpeed[k], expect.perSpeed[k])) << s.what << k;
         }
     }
-    // both sides of the speculation were exercised
-    EXPECT_GE(speculatedToTheGoal, 2);
-    EXPECT_GE(speculatedElsewhere, 2);
+    // plans to the goal and to other targets (the parallel ones) were made
+    EXPECT_GE(toTheGoal, 2);
+    EXPECT_GE(elsewhere, 2);
+}
+
+namespace {
+/** CGridPathPlanner without the cost bound: the reference for it. */
+class CUnboundedPlanner : public IPathPlanner {
+  public:
+    TPlannedPath plan(const TPlanningField& field, const TPoint2D& start,
+                      const TPoint2D& goal, double inflation, double goalTolerance,
+                      bool escape, double /*maxCost*/) const override {
+        return m_planner.plan(field, start, goal, inflation, goalTolerance, escape);
+    }
+    std::string name() const override { return "unbounded"; }
+
+  private:
+    CGridPathPlanner m_planner;
+};
+
+/** A random 6 x 6 m scene: a wall across x = 0 with one or two gaps of
+ * 0.5-1.3 m (only some speeds' margins pass), boxes, now and then unknown
+ * space beyond some x or a wall closing a detour. */
+TFreeSpaceMap randomGapScene(std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(0, 1);
+    auto m = risknav::test::localMap(0, 0, 6.0, TFusedCell::Free);
+    const double wallX = -0.5 + u(rng);
+    fillRect(m, wallX, -3, wallX + 0.1, 3, TFusedCell::Obstacle);
+    for (int g = 0, ng = u(rng) < 0.5 ? 1 : 2; g < ng; g++) {
+        const double y = -2.5 + 5 * u(rng), w = 0.5 + 0.8 * u(rng);
+        fillRect(m, wallX, y - w / 2, wallX + 0.1, y + w / 2, TFusedCell::Free);
+    }
+    for (int b = 0, nb = int(6 * u(rng)); b < nb; b++) {
+        const double x = -3 + 6 * u(rng), y = -3 + 6 * u(rng);
+        fillRect(m, x, y, x + 0.2 + 0.8 * u(rng), y + 0.1 + 0.3 * u(rng),
+                 TFusedCell::Obstacle);
+    }
+    if (u(rng) < 0.25) {
+        const double x = 1.0 + 1.5 * u(rng);
+        fillRect(m, x, -3, 3, 3, TFusedCell::Undecided);
+    }
+    return m;
+}
+}  // namespace
+
+TEST(GridPathPlanner, ACostBoundCutsOffOnlyPathsThatCostMore) {
+    // against the unbounded search on random scenes: a plan not cut off is
+    // the unbounded plan; a cut-off one is so only when the unbounded
+    // cost-to-go exceeds the bound; and a bound 4 cells (and the
+    // tolerance) below the cost always cuts (the bound does bound)
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<double> u(0, 1);
+    const CGridPathPlanner planner;
+    int cut = 0, kept = 0, tight = 0;
+    for (int trial = 0; trial < 60; trial++) {
+        const auto m = randomGapScene(rng);
+        const auto f = computePlanningField(m, 0.25, 0.4, 1.05);
+        const TPoint2D s(-2.5 + 1.5 * u(rng), -2.5 + 5 * u(rng));
+        const TPoint2D g(1.0 + 1.5 * u(rng), -2.5 + 5 * u(rng));
+        const double infl = 0.25 + 0.3 * u(rng), tol = u(rng) < 0.5 ? 0.0 : 0.3 * u(rng);
+        const bool escape = u(rng) < 0.3;
+        const TPlannedPath full = planner.plan(f, s, g, infl, tol, escape);
+        EXPECT_FALSE(full.cutOff);
+        const double c = full.costToGo;
+        const double finite = std::isfinite(c) ? c : 6.0;
+        for (const double maxCost : {0.0, finite - 1.0, finite - 0.2, finite - 0.05,
+                                     finite - 0.01, finite, finite + 0.5}) {
+            const TPlannedPath b = planner.plan(f, s, g, infl, tol, escape, maxCost);
+            if (b.cutOff) {
+                cut++;
+                EXPECT_GT(c, maxCost) << trial << " " << maxCost;
+                EXPECT_FALSE(b.reached);
+                EXPECT_TRUE(std::isinf(b.costToGo));
+            } else {
+                kept++;
+                EXPECT_TRUE(samePath(b, full)) << trial << " " << maxCost;
+            }
+        }
+        if (std::isfinite(c) && c > 0.5 + 1.1 * tol) {
+            // within the tolerance the path may end up to tol short of the
+            // goal (the bound's slack covers 1.5 cells of ends + tol / 10)
+            const TPlannedPath b =
+                planner.plan(f, s, g, infl, tol, escape, c - 1.1 * tol - 0.2);
+            EXPECT_TRUE(b.cutOff) << trial;
+            tight++;
+        }
+    }
+    EXPECT_GT(cut, 50);
+    EXPECT_GT(kept, 50);
+    EXPECT_GT(tight, 20);
+}
+
+TEST(SpeedController, TheGoalShortcutAndTheCostBoundGiveTheFullSearchesDecision) {
+    // decide() takes the goal as the target when the slowest plan reaches
+    // it (no flood), and bounds the faster plans by what the gap rule uses.
+    // Against chooseTarget()'s flood and an unbounded planner on random
+    // scenes, with gap thresholds from tight to loose: the same target and
+    // decision; every cut-off plan's unbounded cost-to-go is beyond every
+    // slower one's + the threshold.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(0, 1);
+    int shortcut = 0, flooded = 0, cutPlans = 0, narrow = 0;
+    for (int trial = 0; trial < 150; trial++) {
+        const auto m = randomGapScene(rng);
+        TSpeedControlOptions o;
+        o.gap_threshold = trial % 3 == 0 ? 0.3 : (trial % 3 == 1 ? 1.0 : 2.5);
+        const CAdaptiveSpeedController c(o, 0.25, 5);
+        const CAdaptiveSpeedController ref(o, 0.25, 5,
+                                           std::make_shared<CUnboundedPlanner>());
+        const auto f = computePlanningField(m, 0.25, c.wayOnBand(0.05), 1.05);
+        const mrpt::math::TPose2D robot(-2.5 + 1.5 * u(rng), -2.5 + 5 * u(rng), 0);
+        const TPoint2D goal(1.0 + 1.8 * u(rng), -2.8 + 5.6 * u(rng));
+        const auto d = c.decide(f, robot, goal);
+        const auto e = ref.decide(f, robot, goal);
+        TPoint2D target;
+        bool temporary = false;
+        const bool chosen =
+            c.chooseTarget(f, {robot.x, robot.y}, goal, target, temporary);
+        const int gi = m.x2idx(goal.x), gj = m.y2idx(goal.y);
+        const bool goalFree = m.cells[m.index(gi, gj)] == TFusedCell::Free;
+        (goalFree && !temporary && target.x == goal.x && target.y == goal.y ? shortcut
+                                                                            : flooded)++;
+        if (!chosen) {
+            EXPECT_EQ(d.reason, TSpeedReason::Unreachable) << trial;
+            continue;
+        }
+        EXPECT_EQ(d.target.x, target.x) << trial;
+        EXPECT_EQ(d.target.y, target.y) << trial;
+        EXPECT_EQ(d.temporaryTarget, temporary) << trial;
+        EXPECT_EQ(d.speedIndex, e.speedIndex) << trial;
+        EXPECT_EQ(d.reason, e.reason) << trial;
+        EXPECT_EQ(d.pathIndex, e.pathIndex) << trial;
+        EXPECT_EQ(d.safeByGap, e.safeByGap) << trial;
+        EXPECT_EQ(d.allowed, e.allowed) << trial;
+        EXPECT_EQ(d.dUndecided, e.dUndecided) << trial;
+        EXPECT_TRUE(samePath(d.path, e.path)) << trial;
+        narrow += d.reason == TSpeedReason::Narrow;
+        ASSERT_EQ(d.perSpeed.size(), e.perSpeed.size());
+        const size_t n = d.perSpeed.size();
+        for (size_t k = 0; k < n; k++) {
+            if (!d.perSpeed[k].cutOff) {
+                EXPECT_TRUE(samePath(d.perSpeed[k], e.perSpeed[k])) << trial << " " << k;
+                continue;
+            }
+            cutPlans++;
+            double slower = 0;  // the slower plans it was bounded by
+            for (size_t j = k + 1; j < n; j++)
+                if (!d.perSpeed[j].cutOff)
+                    slower = std::max(slower, e.perSpeed[j].costToGo);
+            EXPECT_GT(e.perSpeed[k].costToGo, slower + o.gap_threshold)
+                << trial << " " << k;
+        }
+    }
+    EXPECT_GT(shortcut, 30);
+    EXPECT_GT(flooded, 20);
+    EXPECT_GT(cutPlans, 30);
+    EXPECT_GT(narrow, 20);
+    // a robot by a wall (inside the slowest margin) and a free goal a cell
+    // or two along it: the slowest plan reaches the goal by the escape, but
+    // the goal lacks the margin, so the flood's answer is not the goal
+    const auto m = wallWithGap(0.8);
+    const CAdaptiveSpeedController c(TSpeedControlOptions{}, 0.25, 5);
+    const auto f = computePlanningField(m, 0.25, c.wayOnBand(0.05), 1.05);
+    int escapedToTheGoal = 0;
+    for (int k = 0; k <= 3; k++) {
+        const mrpt::math::TPose2D robot(-0.225, 1.0, 0);
+        const TPoint2D goal(-0.225 - 0.01 * k, 1.0 + 0.05 * k);
+        escapedToTheGoal += CGridPathPlanner()
+                                .plan(f, {robot.x, robot.y}, goal, 0.3, 0.0, true)
+                                .reached &&
+                            f.clearanceAt(goal.x, goal.y) < 0.3;
+        TPoint2D target;
+        bool temporary = false;
+        ASSERT_TRUE(c.chooseTarget(f, {robot.x, robot.y}, goal, target, temporary));
+        const auto d = c.decide(f, robot, goal);
+        EXPECT_EQ(d.target.x, target.x) << k;
+        EXPECT_EQ(d.target.y, target.y) << k;
+        EXPECT_EQ(d.temporaryTarget, temporary) << k;
+    }
+    EXPECT_GE(escapedToTheGoal, 2);
 }

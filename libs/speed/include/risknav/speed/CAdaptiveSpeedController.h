@@ -64,7 +64,11 @@ struct TSpeedDecision {
  *     one with the least path length to it + cost on from it (goalCost, or
  *     frontier_goal_weight x the straight line) + the switch cost;
  *  2. a path per candidate speed, obstacles grown by the robot radius + the
- *     speed's margin (planner behind IPathPlanner);
+ *     speed's margin (planner behind IPathPlanner); beyond the paper, to a
+ *     destination that is not temporary, a faster speed's search stops once
+ *     its cost-to-go is known to exceed every slower speed's by more than
+ *     gap_threshold (TPlannedPath::cutOff; the faster ones are then not
+ *     planned): the rule below excludes it either way;
  *  3. the narrow-space rule on their cost-to-go (safeSpeedsByGap): the
  *     fastest safe speed owns the path;
  *  4. a faster speed is allowed too if its margin holds along the next
@@ -86,12 +90,12 @@ class CAdaptiveSpeedController {
                           const TTargetHints& hints = {}) const;
     const TSpeedControlOptions& options() const { return m_o; }
     int necessaryObservations() const { return m_N; }
-    /** How decide() runs its independent parts (the per-speed plans; with
-     * the goal in known free space, the plans to the goal beside the choice
-     * of the target, kept if the target is the goal): empty (the default)
-     * one after the other, and no plans to the goal ahead of the target; a
-     * parallelFor needs a planner safe to call from several threads
-     * (CGridPathPlanner is). The same decisions either way. */
+    /** How decide() runs its independent parts (the per-speed plans to a
+     * temporary destination; to the goal, or the point nearest it, they go
+     * one after the other, slowest first, each bounding the next): empty
+     * (the default) one after the other; a parallelFor needs a planner safe
+     * to call from several threads (CGridPathPlanner is). The same decisions
+     * either way. */
     void setParallelFor(common::TParallelFor parallel) {
         m_parallel = std::move(parallel);
     }

@@ -16,6 +16,12 @@ struct TPlannedPath {
     /** Cost-to-go (PAPER_NOTES M1): length + the straight-line distance left
      * from the path's end to the destination; +inf when not reached. */
     double costToGo = std::numeric_limits<double>::infinity();
+    /** The search stopped at the caller's maxCost (beyond the paper, see
+     * IPathPlanner::plan()): every path to the destination at this
+     * inflation, and at any larger one, costs more than maxCost; reached =
+     * false, costToGo = +inf, the points end at the nearest point to the
+     * destination found so far (or are the start alone: not planned). */
+    bool cutOff = false;
 };
 
 /** The planner behind the speed controller ((000) section 3.3: "any planner
@@ -27,14 +33,23 @@ struct TPlannedPath {
  * non-free cell has no path at that inflation (costToGo = +inf: the speed's margin is
  * broken now), unless `escape`: then, near the start, it may move with the clearance it
  * has (never nearer a non-free cell than the start; half a cell of rounding
- * only when there is no other way out), so that the slowest speed can get out. */
+ * only when there is no other way out), so that the slowest speed can get out.
+ * Optimal: the path's cost-to-go is the least among the planner's paths at
+ * that inflation, so a larger inflation (fewer cells, no escape) never gives
+ * a lower one (to within two cells: the path starts at the robot's own
+ * position and ends at the destination's, not at cell centres).
+ *
+ * maxCost (beyond the paper, a speed-up for the gap rule, which needs a
+ * faster speed's cost-to-go only while it is within gap_threshold of the
+ * slower ones'): the planner may stop once it knows every path costs more
+ * than maxCost, and then says so (TPlannedPath::cutOff). +inf: never. */
 class IPathPlanner {
   public:
     virtual ~IPathPlanner() = default;
-    virtual TPlannedPath plan(const TPlanningField& field,
-                              const mrpt::math::TPoint2D& start,
-                              const mrpt::math::TPoint2D& goal, double inflation,
-                              double goalTolerance, bool escape) const = 0;
+    virtual TPlannedPath plan(
+        const TPlanningField& field, const mrpt::math::TPoint2D& start,
+        const mrpt::math::TPoint2D& goal, double inflation, double goalTolerance,
+        bool escape, double maxCost = std::numeric_limits<double>::infinity()) const = 0;
     virtual std::string name() const = 0;
 };
 
@@ -60,12 +75,17 @@ class CTraversable {
 };
 
 /** A* on the grid's cells, 8-connected, octile heuristic (exact for the
- * cost of its moves). */
+ * cost of its moves). With a finite maxCost it stops when the least
+ * f = g + h left to expand exceeds maxCost + 2 cells + a tenth of the
+ * tolerance (a path's cost-to-go differs from its cells' g by less than
+ * that: its ends are the robot's and the destination's own positions). */
 class CGridPathPlanner : public IPathPlanner {
   public:
-    TPlannedPath plan(const TPlanningField& field, const mrpt::math::TPoint2D& start,
-                      const mrpt::math::TPoint2D& goal, double inflation,
-                      double goalTolerance, bool escape) const override;
+    TPlannedPath plan(
+        const TPlanningField& field, const mrpt::math::TPoint2D& start,
+        const mrpt::math::TPoint2D& goal, double inflation, double goalTolerance,
+        bool escape,
+        double maxCost = std::numeric_limits<double>::infinity()) const override;
     std::string name() const override { return "grid_astar"; }
 };
 
