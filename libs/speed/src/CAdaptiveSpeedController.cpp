@@ -66,6 +66,7 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
     if (!(field.wayOnReach >= band))
         throw std::invalid_argument(
             "speed controller: the planning field's wayOnDist ends before the band");
+    const std::vector<float>& wayOnDist = field.wayOnDist();
     // Early ends (a speed-up; the result is the full search's): the goal
     // popped with its margin is the answer; and where neither the goal nor
     // the point nearest it can be the answer, no cell popped after the best
@@ -106,7 +107,7 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
         // Beyond the paper (which takes the boundary point nearest the goal
         // in a straight line): path to it + the cost on from it, over the
         // open frontier and the map's edge
-        if (field.wayOnDist[k] <= band) {
+        if (wayOnDist[k] <= band) {
             distToGoal();
             const double straight = gk + m_o.frontier_goal_weight * toGoal;
             if (straight < bestStraight) {

@@ -76,7 +76,8 @@ void CAdaptiveSpeedPipeline::update(const TPose2D& ego,
         if (part == 0)
             m_field = computePlanningField(
                 m_fused, m_p.robotRadius, m_ctrl.wayOnBand(m_p.localMapResolution),
-                m_p.robotRadius + m_p.speed.margins.front() + 0.5, m_parallel);
+                m_p.robotRadius + m_p.speed.margins.front() + 0.5, m_parallel,
+                m_wayOnAhead);
         else if (m_memory)
             m_memory->update(m_fused);
     });
@@ -107,7 +108,12 @@ TSpeedDecision CAdaptiveSpeedPipeline::decide(
                 x, y,
                 m_p.robotRadius + m_p.speed.margins.back() + 3 * m_p.localMapResolution);
         };
-    return m_ctrl.decide(m_field, ego, goal, fixedIndex, hints);
+    TSpeedDecision d = m_ctrl.decide(m_field, ego, goal, fixedIndex, hints);
+    // the ways on next cycle beside the clearance when this cycle chose a
+    // target other than the goal (then likely again), else only if asked
+    m_wayOnAhead = d.reason == TSpeedReason::Unreachable || d.temporaryTarget ||
+                   d.target.x != goal.x || d.target.y != goal.y;
+    return d;
 }
 
 void CAdaptiveSpeedPipeline::setCycleTime(double T) {

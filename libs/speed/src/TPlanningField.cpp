@@ -210,20 +210,30 @@ void wayOnDistOf(const mapping::TFreeSpaceMap& map, double minOpening, double wa
 }
 }  // namespace
 
+const std::vector<float>& TPlanningField::wayOnDist() const {
+    if (!m_wayOnReady) {
+        wayOnDistOf(map, minOpening, wayOnReach, m_wayOnDist);
+        m_wayOnReady = true;
+    }
+    return m_wayOnDist;
+}
+
 TPlanningField computePlanningField(const mapping::TFreeSpaceMap& map, double minOpening,
                                     double wayOnReach, double clearanceReach,
-                                    const common::TParallelFor& parallel) {
+                                    const common::TParallelFor& parallel, bool wayOnNow) {
     TPlanningField f;
     f.map = map;
     f.wayOnReach = wayOnReach;
     f.clearanceReach = clearanceReach;
+    f.minOpening = minOpening;
     // the two parts read only the map and each writes its own field
-    common::parallelFor(parallel, 2, [&](size_t part) {
-        if (part == 0)
-            clearanceOf(map, clearanceReach, f.clearance);
-        else
-            wayOnDistOf(map, minOpening, wayOnReach, f.wayOnDist);
-    });
+    common::parallelFor(wayOnNow ? parallel : common::TParallelFor{}, wayOnNow ? 2 : 1,
+                        [&](size_t part) {
+                            if (part == 0)
+                                clearanceOf(map, clearanceReach, f.clearance);
+                            else
+                                (void)f.wayOnDist();
+                        });
     return f;
 }
 }  // namespace risknav::speed

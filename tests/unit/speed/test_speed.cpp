@@ -235,15 +235,15 @@ TEST(PlanningField, AHoleInAWallIsAFrontierButNoOpenOne) {
     fillRect(m, 0.15, -10, 10, 10, TFusedCell::Undecided);     // unknown beyond
     auto f = computePlanningField(m, 0.25);
     const size_t k = f.map.index(f.map.x2idx(-0.3), f.map.y2idx(0.0));
-    EXPECT_GT(f.wayOnDist[k], 4.0);  // no way on through it (only the map's edge)
+    EXPECT_GT(f.wayOnDist()[k], 4.0);  // no way on through it (only the map's edge)
     // without the opening test it would be one
-    EXPECT_LT(computePlanningField(m, 0.0).wayOnDist[k], 0.3);
+    EXPECT_LT(computePlanningField(m, 0.0).wayOnDist()[k], 0.3);
     // a 1 m undecided stretch of the wall: room for the robot beyond it
     m = wallWithGap(0.0);
     fillRect(m, 0.0, -0.5, 0.1, 0.5, TFusedCell::Undecided);
     fillRect(m, 0.15, -10, 10, 10, TFusedCell::Undecided);
     f = computePlanningField(m, 0.25);
-    EXPECT_LT(f.wayOnDist[k], 0.3);
+    EXPECT_LT(f.wayOnDist()[k], 0.3);
 }
 
 TEST(PlanningField, FreeCellsOnTheMapsEdgeAreTheWayOnWhereTheMapEnds) {
@@ -253,11 +253,11 @@ TEST(PlanningField, FreeCellsOnTheMapsEdgeAreTheWayOnWhereTheMapEnds) {
     auto at = [&](const std::vector<float>& v, double x, double y) {
         return double(v[f.map.index(f.map.x2idx(x), f.map.y2idx(y))]);
     };
-    EXPECT_LT(at(f.wayOnDist, -4.9, 0.0), 0.1);  // west edge, open
-    EXPECT_LT(at(f.wayOnDist, 0.0, -4.9), 0.1);  // south edge
+    EXPECT_LT(at(f.wayOnDist(), -4.9, 0.0), 0.1);  // west edge, open
+    EXPECT_LT(at(f.wayOnDist(), 0.0, -4.9), 0.1);  // south edge
     // the edge cells under the wall's reach (< radius from it) are not open
-    EXPECT_GT(at(f.wayOnDist, -4.95, 0.9), 0.1);
-    EXPECT_NEAR(at(f.wayOnDist, 0.0, 0.0), 4.95 - 0.025, 0.03);  // only the edges
+    EXPECT_GT(at(f.wayOnDist(), -4.95, 0.9), 0.1);
+    EXPECT_NEAR(at(f.wayOnDist(), 0.0, 0.0), 4.95 - 0.025, 0.03);  // only the edges
 }
 
 TEST(PlanningField, ClearanceAndWayOnDistanceEqualBruteForceOnRandomMaps) {
@@ -331,15 +331,15 @@ TEST(PlanningField, ClearanceAndWayOnDistanceEqualBruteForceOnRandomMaps) {
                         bestWay = d2;
                 }
                 if (bestWay < 0)
-                    ASSERT_TRUE(std::isinf(f.wayOnDist[k]));
+                    ASSERT_TRUE(std::isinf(f.wayOnDist()[k]));
                 else
-                    ASSERT_EQ(f.wayOnDist[k], measured(bestWay))
+                    ASSERT_EQ(f.wayOnDist()[k], measured(bestWay))
                         << trial << " " << i << " " << j;
                 // computed only as far as a reach: the same up to it, and
                 // beyond it nothing that would pass a test against it
-                const float r = reached.wayOnDist[k];
-                if (f.wayOnDist[k] <= reach)
-                    ASSERT_EQ(r, f.wayOnDist[k]) << trial << " " << i << " " << j;
+                const float r = reached.wayOnDist()[k];
+                if (f.wayOnDist()[k] <= reach)
+                    ASSERT_EQ(r, f.wayOnDist()[k]) << trial << " " << i << " " << j;
                 else
                     ASSERT_TRUE(r > reach) << trial << " " << i << " " << j;
                 const float c = cleared.clearance[k];
@@ -349,7 +349,15 @@ TEST(PlanningField, ClearanceAndWayOnDistanceEqualBruteForceOnRandomMaps) {
                     ASSERT_TRUE(c > clearReach) << trial << " " << i << " " << j;
             }
         EXPECT_EQ(reached.clearance, f.clearance);
-        EXPECT_EQ(cleared.wayOnDist, f.wayOnDist);
+        EXPECT_EQ(cleared.wayOnDist(), f.wayOnDist());
+        // the ways on left to the first read: the same values then
+        const auto lazy = computePlanningField(
+            m, minOpening, reach, std::numeric_limits<double>::infinity(), {}, false);
+        EXPECT_FALSE(lazy.hasWayOnDist());
+        EXPECT_TRUE(reached.hasWayOnDist());
+        EXPECT_EQ(lazy.clearance, f.clearance);
+        EXPECT_EQ(lazy.wayOnDist(), reached.wayOnDist());
+        EXPECT_TRUE(lazy.hasWayOnDist());
     }
 }
 
@@ -549,7 +557,7 @@ TEST(AdaptiveSpeedPipeline, TakeFieldMovesTheCycleFieldOutAndDecideThenRefuses) 
     const TPlanningField taken = pipe.takeField();
     EXPECT_EQ(taken.map.cells, copy.map.cells);
     EXPECT_EQ(taken.clearance, copy.clearance);
-    EXPECT_EQ(taken.wayOnDist, copy.wayOnDist);
+    EXPECT_EQ(taken.wayOnDist(), copy.wayOnDist());
     EXPECT_TRUE(pipe.field().map.cells.empty());
     EXPECT_THROW(pipe.decide(ego, {3.0, 2.0}, -1, std::nullopt), std::logic_error);
     pipe.update(ego, nullptr, ego, nullptr, ego);  // the next cycle has its own
@@ -621,7 +629,7 @@ TEST(SpeedController, ItsPartsInAnyOrderOrOnThreadsGiveTheSerialDecision) {
             const auto f =
                 computePlanningField(s.map, 0.25, serial.wayOnBand(0.05), 1.05, exec);
             EXPECT_EQ(f.clearance, field.clearance) << s.what;
-            EXPECT_EQ(f.wayOnDist, field.wayOnDist) << s.what;
+            EXPECT_EQ(f.wayOnDist(), field.wayOnDist()) << s.what;
             CAdaptiveSpeedController c(TSpeedControlOptions{}, 0.25, 5);
             c.setParallelFor(exec);
             const auto d = c.decide(field, s.robot, s.goal);

@@ -127,6 +127,9 @@ class CAdaptiveSpeedPipeline {
     std::unique_ptr<mapping::CFreeSpaceMemory> m_memory;
     mapping::TFreeSpaceMap m_fused;
     TPlanningField m_field;
+    /** The next field's ways on computed with its clearance (the last
+     * decision's target was not the goal), else at the first read. */
+    bool m_wayOnAhead = true;
     int m_held = 0;
     common::TParallelFor m_parallel;
 };
