@@ -96,6 +96,15 @@ void BM_SensorUpdatesOnly(benchmark::State& st) {
 }
 BENCHMARK(BM_SensorUpdatesOnly)->Arg(200)->Arg(400)->Unit(benchmark::kMillisecond);
 
+/** Classification and fusion of the two grids alone. */
+void BM_FuseOnly(benchmark::State& st) {
+    auto& s = scene(200);
+    for (auto _ : st)
+        benchmark::DoNotOptimize(
+            mapping::fuseGrids(s.laser, s.range2, 0.7, 0.2).cells.data());
+}
+BENCHMARK(BM_FuseOnly)->Unit(benchmark::kMicrosecond);
+
 /** The planning field alone (clearance, frontier, open frontier, map edge):
  * /0 the distance to the ways on everywhere, /1 only as far as the
  * controller's band, /2 that and the clearance only as far as the widest

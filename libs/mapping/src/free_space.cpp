@@ -1,6 +1,7 @@
 #include <risknav/mapping/free_space.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace risknav::mapping {
@@ -26,16 +27,41 @@ TFreeSpaceMap fuseGrids(const CLocalProbGrid& a, const CLocalProbGrid& b,
     const auto& pb = b.probabilities();
     const auto& ca = a.counts();
     const auto& cb = b.counts();
-    // fuseCells() of the two classes looked up in a table it fills (a
-    // speed-up, the same cells)
-    TFusedCell table[4][4];
-    for (int a = 0; a < 4; a++)
-        for (int b = 0; b < 4; b++)
-            table[a][b] = fuseCells(TCellClass(a), TCellClass(b));
-    for (size_t k = 0; k < m.cells.size(); k++)
-        m.cells[k] =
-            table[int(classifyCell(pa[k], ca[k], occupiedThreshold, freeThreshold))]
-                 [int(classifyCell(pb[k], cb[k], occupiedThreshold, freeThreshold))];
+    // fuseCells() without branches or look-ups, per cell on 0/1 bytes (a
+    // speed-up: the loop vectorizes; the same cells, checked against
+    // fuseCells() in the tests): p > occupied is an obstacle; else p >=
+    // free (not p < free: P is never NaN) is undecided, observed or not.
+    // The thresholds as floats that compare the same: p > t iff p >= the
+    // least float above t, p < t iff p <= the greatest float below t.
+    static_assert(uint8_t(TFusedCell::Free) == 0 && uint8_t(TFusedCell::Obstacle) == 1 &&
+                  uint8_t(TFusedCell::Undecided) == 2);
+    auto floatAbove = [](double t) {
+        const float x = float(t);
+        return double(x) > t ? x
+                             : std::nextafter(x, std::numeric_limits<float>::infinity());
+    };
+    auto floatBelow = [](double t) {
+        const float x = float(t);
+        return double(x) < t ? x
+                             : std::nextafter(x, -std::numeric_limits<float>::infinity());
+    };
+    const float occ = floatAbove(occupiedThreshold), fr = floatBelow(freeThreshold);
+    const float* fa = pa.data();
+    const float* fb = pb.data();
+    const uint16_t* na = ca.data();
+    const uint16_t* nb = cb.data();
+    auto* out = reinterpret_cast<uint8_t*>(m.cells.data());
+    for (size_t k = 0, n = m.cells.size(); k < n; k++) {
+        const float a = fa[k], b = fb[k];
+        const uint8_t obstA = a >= occ, obstB = b >= occ;
+        const uint8_t freeA = !obstA & (a <= fr), freeB = !obstB & (b <= fr);
+        // undecided with an observation: neither obstacle nor free, seen
+        const uint8_t seenA = !(obstA | freeA) & (na[k] > 0);
+        const uint8_t seenB = !(obstB | freeB) & (nb[k] > 0);
+        const uint8_t isFree = (freeA & (freeB | seenB)) | (freeB & seenA);
+        const uint8_t isObst = !isFree & (obstA | obstB);
+        out[k] = uint8_t(!isFree * (2 - isObst));
+    }
     return m;
 }
 

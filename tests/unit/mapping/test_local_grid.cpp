@@ -100,31 +100,43 @@ TEST(LocalGrid, FusionTruthTable) {
 }
 
 TEST(LocalGrid, FuseGridsIsClassifyAndFuseCellByCell) {
-    // fuseGrids() looks the pair of classes up in a table: the same as
-    // classifyCell() + fuseCells() on every cell, thresholds' edges included
+    // fuseGrids() computes the classes without branches, comparing floats
+    // with the thresholds' nearest floats: the same as classifyCell() +
+    // fuseCells() on every cell, the thresholds' edges (the floats nearest
+    // each threshold, above and below) included, for thresholds that are
+    // floats (0.75, 0.25) and that are not (0.7, 0.2, ...)
     std::mt19937 rng(5);
     const int n = 64;
-    CLocalProbGrid a(n, 0.05, 0, 0), b(n, 0.05, 0, 0);
-    const float edges[] = {0.2f, 0.7f, 0.5f, 0.19999999f, 0.70000005f, 0.001f, 0.999f};
-    std::uniform_real_distribution<float> u(0.f, 1.f);
-    std::uniform_int_distribution<int> pick(0, 9), count(0, 2);
-    for (auto* g : {&a, &b})
-        for (int j = 0; j < n; j++)
-            for (int i = 0; i < n; i++) {
-                const int r = pick(rng);
-                g->setCell(i, j, r < 7 ? edges[r] : u(rng), uint16_t(count(rng)));
-            }
-    const auto m = fuseGrids(a, b, 0.7, 0.2);
-    int byClass[3] = {0, 0, 0};
-    for (size_t k = 0; k < m.cells.size(); k++) {
-        const auto expected =
-            fuseCells(classifyCell(a.probabilities()[k], a.counts()[k], 0.7, 0.2),
-                      classifyCell(b.probabilities()[k], b.counts()[k], 0.7, 0.2));
-        ASSERT_EQ(m.cells[k], expected) << k;
-        byClass[int(expected)]++;
+    for (const auto& [occ, fr] : std::vector<std::pair<double, double>>{
+             {0.7, 0.2}, {0.75, 0.25}, {0.6, 0.4}, {0.55, 0.1}, {0.9999, 0.0001}}) {
+        CLocalProbGrid a(n, 0.05, 0, 0), b(n, 0.05, 0, 0);
+        std::vector<float> edges = {0.5f, 0.001f, 0.999f};
+        for (const double t : {occ, fr}) {
+            const float f = float(t);
+            edges.insert(edges.end(),
+                         {f, std::nextafter(f, 0.f), std::nextafter(f, 1.f)});
+        }
+        std::uniform_real_distribution<float> u(0.f, 1.f);
+        std::uniform_int_distribution<int> pick(0, 2 * int(edges.size())), count(0, 2);
+        for (auto* g : {&a, &b})
+            for (int j = 0; j < n; j++)
+                for (int i = 0; i < n; i++) {
+                    const size_t r = size_t(pick(rng));
+                    g->setCell(i, j, r < edges.size() ? edges[r] : u(rng),
+                               uint16_t(count(rng)));
+                }
+        const auto m = fuseGrids(a, b, occ, fr);
+        int byClass[3] = {0, 0, 0};
+        for (size_t k = 0; k < m.cells.size(); k++) {
+            const auto expected =
+                fuseCells(classifyCell(a.probabilities()[k], a.counts()[k], occ, fr),
+                          classifyCell(b.probabilities()[k], b.counts()[k], occ, fr));
+            ASSERT_EQ(m.cells[k], expected) << k << " " << occ << " " << fr;
+            byClass[int(expected)]++;
+        }
+        for (int c : byClass)
+            EXPECT_GT(c, 100);  // every fused class occurs
     }
-    for (int c : byClass)
-        EXPECT_GT(c, 100);  // every fused class occurs
 }
 
 TEST(LocalGrid, SectorModelFreeBeforeOccupiedAroundNothingBeyond) {
