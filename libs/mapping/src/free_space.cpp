@@ -54,13 +54,14 @@ TFreeSpaceMap fuseGrids(const CLocalProbGrid& a, const CLocalProbGrid& b,
     for (size_t k = 0, n = m.cells.size(); k < n; k++) {
         const float a = fa[k], b = fb[k];
         const uint8_t obstA = a >= occ, obstB = b >= occ;
-        const uint8_t freeA = !obstA & (a <= fr), freeB = !obstB & (b <= fr);
+        // 0/1 flags combined bitwise (1 ^ x: not x)
+        const uint8_t freeA = (1 ^ obstA) & (a <= fr), freeB = (1 ^ obstB) & (b <= fr);
         // undecided with an observation: neither obstacle nor free, seen
-        const uint8_t seenA = !(obstA | freeA) & (na[k] > 0);
-        const uint8_t seenB = !(obstB | freeB) & (nb[k] > 0);
+        const uint8_t seenA = (1 ^ (obstA | freeA)) & (na[k] > 0);
+        const uint8_t seenB = (1 ^ (obstB | freeB)) & (nb[k] > 0);
         const uint8_t isFree = (freeA & (freeB | seenB)) | (freeB & seenA);
-        const uint8_t isObst = !isFree & (obstA | obstB);
-        out[k] = uint8_t(!isFree * (2 - isObst));
+        const uint8_t isObst = (1 ^ isFree) & (obstA | obstB);
+        out[k] = uint8_t((1 ^ isFree) * (2 - isObst));
     }
     return m;
 }
