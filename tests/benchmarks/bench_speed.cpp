@@ -108,7 +108,10 @@ BENCHMARK(BM_FuseOnly)->Unit(benchmark::kMicrosecond);
 /** The planning field alone (clearance, frontier, open frontier, map edge):
  * /0 the distance to the ways on everywhere, /1 only as far as the
  * controller's band, /2 that and the clearance only as far as the widest
- * inflation + 0.5 m (as CAdaptiveSpeedPipeline computes it). */
+ * inflation + 0.5 m (as CAdaptiveSpeedPipeline computes it when the last
+ * target was not the goal), /3 that clearance alone (the ways on left to
+ * their first read, as the pipeline computes it when the target was the
+ * goal). */
 void BM_PlanningFieldOnly(benchmark::State& st) {
     auto& s = scene(200);
     const auto fused = mapping::fuseGrids(s.laser, s.range2, 0.7, 0.2);
@@ -116,15 +119,21 @@ void BM_PlanningFieldOnly(benchmark::State& st) {
                                                s.ex.necessaryObservations());
     const double reach =
         st.range(0) ? ctrl.wayOnBand(0.05) : std::numeric_limits<double>::infinity();
-    const double clearanceReach = st.range(0) == 2
+    const double clearanceReach = st.range(0) >= 2
                                       ? 0.25 + s.ex.speed.margins.front() + 0.5
                                       : std::numeric_limits<double>::infinity();
     for (auto _ : st)
-        benchmark::DoNotOptimize(
-            speed::computePlanningField(fused, 0.25, reach, clearanceReach)
-                .clearance.data());
+        benchmark::DoNotOptimize(speed::computePlanningField(fused, 0.25, reach,
+                                                             clearanceReach, {},
+                                                             st.range(0) != 3)
+                                     .clearance.data());
 }
-BENCHMARK(BM_PlanningFieldOnly)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanningFieldOnly)
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(3)
+    ->Unit(benchmark::kMillisecond);
 
 /** The decision alone (target choice + four A* plans), straight-line rule. */
 void BM_DecideOnly(benchmark::State& st) {
