@@ -95,9 +95,17 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
     }
     // a ray index, wrapped for a full circle; -1: no such ray
     auto validRay = [&](long ray) -> long {
-        if (fullCircle)
-            ray = ((ray % long(nRays)) + long(nRays)) % long(nRays);
-        return ray < 0 || ray >= long(nRays) ? -1 : ray;
+        const long n = long(nRays);
+        if (fullCircle) {
+            // one turn either way without a division (most are), else modulo
+            if (ray < 0 && ray >= -n)
+                ray += n;
+            else if (ray >= n && ray < 2 * n)
+                ray -= n;
+            else if (ray < 0 || ray >= n)
+                ray = ((ray % n) + n) % n;
+        }
+        return ray < 0 || ray >= n ? -1 : ray;
     };
     // the ray whose angular sector holds a bearing (-1: none): the sector
     // model's formula, b = sign * wrapToPi(atan2 - yaw), ray = round(...)
