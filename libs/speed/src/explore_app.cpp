@@ -129,7 +129,7 @@ void writeExploreOutputs(const CExplorer& ex, const std::vector<TModeResult>& ru
                     c.temporaryTarget ? "1" : "0",
                     c.marginBroken ? "1" : "0"};
                 for (size_t k = 0; k < o.speeds.size(); k++)
-                    row.push_back(k < c.costToGo.size()  // empty: no path
+                    row.push_back(k < c.costToGo.size()  // empty: no path (or cut off)
                                       ? CCsvWriter::num(c.costToGo[k], 6)
                                       : "");
                 row.push_back(CCsvWriter::num(c.computeMs, 4));
@@ -229,8 +229,11 @@ void writeExploreOutputs(const CExplorer& ex, const std::vector<TModeResult>& ru
             for (size_t k = 0; k < d.perSpeed.size(); k++) {
                 const TRgb c = kModeColours[(k + 1) % 6];
                 img.polyline(d.perSpeed[k].points, c, 1, true);
+                const auto& p = d.perSpeed[k];
                 img.legendLine(numberText(o.speeds[k]) + " m/s path" +
-                                   (d.perSpeed[k].reached ? "" : " (no path)"),
+                                   (p.reached  ? ""
+                                    : p.cutOff ? " (longer than the gap rule uses)"
+                                               : " (no path)"),
                                c, 1);
             }
             img.polyline(d.path.points, {0, 0, 0}, 3);
