@@ -746,14 +746,28 @@ TEST(SpeedController, TheGoalShortcutAndTheCostBoundGiveTheFullSearchesDecision)
     // Against chooseTarget()'s flood and an unbounded planner on random
     // scenes, with gap thresholds from tight to loose: the same target and
     // decision; every cut-off plan's unbounded cost-to-go is beyond every
-    // slower one's + the threshold.
+    // slower one's + the threshold. The last 100 scenes with random
+    // candidate lists too: 1-5 speeds, margins that fall or stay equal.
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> u(0, 1);
     int shortcut = 0, flooded = 0, cutPlans = 0, narrow = 0;
-    for (int trial = 0; trial < 150; trial++) {
+    for (int trial = 0; trial < 250; trial++) {
         const auto m = randomGapScene(rng);
         TSpeedControlOptions o;
         o.gap_threshold = trial % 3 == 0 ? 0.3 : (trial % 3 == 1 ? 1.0 : 2.5);
+        if (trial >= 150) {
+            const int n = 1 + int(5 * u(rng));
+            o.speeds.clear();
+            o.margins.clear();
+            double margin = 0.3 * u(rng);
+            for (int k = 0; k < n; k++) {
+                o.speeds.push_back(1.2 * (n - k) / n);
+                o.margins.push_back(margin);
+                if (u(rng) < 0.7)
+                    margin *= u(rng);
+            }
+            o.gap_threshold = 0.05 + 2 * u(rng);
+        }
         const CAdaptiveSpeedController c(o, 0.25, 5);
         const CAdaptiveSpeedController ref(o, 0.25, 5,
                                            std::make_shared<CUnboundedPlanner>());
