@@ -227,8 +227,13 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
     if (fixedIndex >= 0) {
         const size_t k = size_t(fixedIndex);
         d.perSpeed.assign(nSpeeds, TPlannedPath{});
-        d.perSpeed[k] =
-            m_planner->plan(field, start, d.target, inflation(k), tolerance(k), true);
+        // the slowest speed's plan to the goal, made above, is this one
+        if (k == slowest && slowToGoal && !d.temporaryTarget && d.target.x == goal.x &&
+            d.target.y == goal.y)
+            d.perSpeed[k] = std::move(*slowToGoal);
+        else
+            d.perSpeed[k] =
+                m_planner->plan(field, start, d.target, inflation(k), tolerance(k), true);
         d.path = d.perSpeed[k];
         if (!d.path.reached) {
             // the fixed robot has no path with its margin: it goes with its size only
