@@ -195,6 +195,24 @@ TEST(ExploreE2E, AnUnreachableDestinationIsReportedAndTheRobotStops) {
                 s["adaptive_over_slowest_time"].is_null());
 }
 
+TEST(ExploreE2E, ALocalMapOfNoWholeNumberOfCellsDrawsItsSnapshots) {
+    // 10 m at 3 cm is 333.3 cells: from this start MRPT's grid for the
+    // snapshot images got a cell more a side than the map, and drawing the
+    // grown obstacles threw after the whole run (exit 1, no snapshots; found
+    // by an independent tester)
+    const std::string out = freshDir("res003");
+    const auto r = run(binPath(kApp) + " -q -o '" + out +
+                       "' --set Explore.modes=adaptive --set Explore.time_limit=3 " +
+                       "--set Explore.local_map_resolution=0.03 " +
+                       "--set Explore.start='3.01 3 90' '" +
+                       sourcePath("datasets/office/explore.ini") + "'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    int pngs = 0;
+    for (const auto& e : fs::directory_iterator(out + "/snapshots"))
+        pngs += e.path().extension() == ".png";
+    EXPECT_GT(pngs, 0);
+}
+
 TEST(ExploreE2E, EveryKeyInTheDocumentedConfigIsKnown) {
     // config/risknav-explore.ini lists every key; the app rejects unknown keys
     const std::string d = freshDir("cfg");

@@ -219,12 +219,21 @@ void writeExploreOutputs(const CExplorer& ex, const std::vector<TModeResult>& ru
                               ? numberText(std::round(d.dUndecided * 100) / 100).c_str()
                               : "inf");
             img.setTitle(title);
-            // obstacles expanded by the fastest speed's margin and the robot size
+            // obstacles expanded by the fastest speed's margin and the robot
+            // size, on the cells of the MRPT grid the image is drawn on, as
+            // toMrptGrid() fills them (MRPT snaps its limits to the
+            // resolution: a side that is no whole number of cells, 10 m at
+            // 3 cm, gets a cell more than the map)
             const auto& clearance = s.field.clearance;
-            std::vector<uint8_t> grown(clearance.size());
-            for (size_t k = 0; k < grown.size(); k++)
-                grown[k] = map.cells[k] == mapping::TFusedCell::Free &&
-                           clearance[k] < ex.world.robot.radius + o.margins.front();
+            const int gw = int(grid.getSizeX()), gh = int(grid.getSizeY());
+            std::vector<uint8_t> grown(size_t(gw) * gh, 0);
+            for (int j = 0; j < gh && j < map.size; j++)
+                for (int i = 0; i < gw && i < map.size; i++) {
+                    const size_t k = map.index(i, j);
+                    grown[size_t(j) * gw + i] =
+                        map.cells[k] == mapping::TFusedCell::Free &&
+                        clearance[k] < ex.world.robot.radius + o.margins.front();
+                }
             img.paintCells(grown, {255, 200, 200});
             for (size_t k = 0; k < d.perSpeed.size(); k++) {
                 const TRgb c = kModeColours[(k + 1) % 6];
