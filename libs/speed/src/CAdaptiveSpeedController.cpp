@@ -35,6 +35,12 @@ CAdaptiveSpeedController::CAdaptiveSpeedController(
         m_planner = std::make_shared<CGridPathPlanner>();
 }
 
+void CAdaptiveSpeedController::checkWayOnReach(const TPlanningField& field) const {
+    if (!(field.wayOnReach >= wayOnBand(field.map.resolution)))
+        throw std::invalid_argument(
+            "speed controller: the planning field's wayOnDist ends before the band");
+}
+
 bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
                                             const mrpt::math::TPoint2D& start,
                                             const mrpt::math::TPoint2D& goal,
@@ -63,9 +69,7 @@ bool CAdaptiveSpeedController::chooseTarget(const TPlanningField& field,
     double bestCost = inf, nearestDist = inf, bestStraight = inf;
     mrpt::math::TPoint2D nearest, straightTarget;
     const double band = wayOnBand(res);
-    if (!(field.wayOnReach >= band))
-        throw std::invalid_argument(
-            "speed controller: the planning field's wayOnDist ends before the band");
+    checkWayOnReach(field);
     const std::vector<float>& wayOnDist = field.wayOnDist();
     // Early ends (a speed-up; the result is the full search's): the goal
     // popped with its margin is the answer; and where neither the goal nor
@@ -180,9 +184,7 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
     const double res = field.map.resolution;
     auto inflation = [&](size_t k) { return m_radius + m_o.margins[k]; };
     const size_t slowest = nSpeeds - 1;
-    if (!(field.wayOnReach >= wayOnBand(res)))
-        throw std::invalid_argument(
-            "speed controller: the planning field's wayOnDist ends before the band");
+    checkWayOnReach(field);
     // Beyond the paper, a speed-up with the same decisions: a goal in known
     // free space is the target iff chooseTarget()'s flood pops it with the
     // slowest margin, i.e. iff the slowest speed's plan to it (the same
@@ -224,16 +226,22 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
         return d.temporaryTarget ? inflation(k) - inflation(slowest) + 2 * res : 0.0;
     };
 
+    // the slowest speed's plan to the target: the one made above when the
+    // target is the goal
+    auto slowestToTarget = [&] {
+        if (slowToGoal && !d.temporaryTarget && d.target.x == goal.x &&
+            d.target.y == goal.y)
+            return std::move(*slowToGoal);
+        return m_planner->plan(field, start, d.target, inflation(slowest),
+                               tolerance(slowest), true);
+    };
+
     if (fixedIndex >= 0) {
         const size_t k = size_t(fixedIndex);
         d.perSpeed.assign(nSpeeds, TPlannedPath{});
-        // the slowest speed's plan to the goal, made above, is this one
-        if (k == slowest && slowToGoal && !d.temporaryTarget && d.target.x == goal.x &&
-            d.target.y == goal.y)
-            d.perSpeed[k] = std::move(*slowToGoal);
-        else
-            d.perSpeed[k] =
-                m_planner->plan(field, start, d.target, inflation(k), tolerance(k), true);
+        d.perSpeed[k] = k == slowest ? slowestToTarget()
+                                     : m_planner->plan(field, start, d.target,
+                                                       inflation(k), tolerance(k), true);
         d.path = d.perSpeed[k];
         if (!d.path.reached) {
             // the fixed robot has no path with its margin: it goes with its size only
@@ -267,11 +275,7 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
         // cheaper: IPathPlanner), beyond the split (safeSpeedsByGap()), as a
         // +inf does. Searched out, such a plan was most of the cycle (the
         // fastest speed's margin fits nowhere near the destination).
-        if (slowToGoal && d.target.x == goal.x && d.target.y == goal.y)
-            d.perSpeed[slowest] = std::move(*slowToGoal);
-        else
-            d.perSpeed[slowest] =
-                m_planner->plan(field, start, d.target, inflation(slowest), 0.0, true);
+        d.perSpeed[slowest] = slowestToTarget();
         double slowerMax = d.perSpeed[slowest].costToGo;
         bool cut = false;
         for (size_t k = slowest; k-- > 0;) {

@@ -112,6 +112,8 @@ class CAdaptiveSpeedController {
                       bool& temporary, const TTargetHints& hints = {}) const;
 
   private:
+    /** std::invalid_argument unless the field's wayOnDist reaches wayOnBand. */
+    void checkWayOnReach(const TPlanningField& field) const;
     TSpeedControlOptions m_o;
     double m_radius;
     int m_N;
