@@ -3,10 +3,13 @@
 #include <risknav/common/CIniConfig.h>
 #include <risknav/common/config_read.h>
 
+#include <mrpt/config/config_parser.h>
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 
 namespace fs = std::filesystem;
@@ -51,33 +54,84 @@ CIniConfig::~CIniConfig() {
     discardSavingChanges();
 }
 
+namespace {
+/** The lines of `text` as MRPT's SimpleIni splits them: at CR+LF, a lone CR
+ * or a lone LF (a CR-only file is many lines to MRPT, one to getline()). */
+std::vector<std::string> mrptLines(const std::string& text) {
+    std::vector<std::string> lines(1);
+    for (size_t i = 0; i < text.size(); i++) {
+        const char ch = text[i];
+        if (ch == '\r' || ch == '\n') {
+            if (ch == '\r' && i + 1 < text.size() && text[i + 1] == '\n')
+                i++;
+            lines.emplace_back();
+        } else
+            lines.back() += ch;
+    }
+    return lines;
+}
+
+/** For each line MRPT's preprocessor keeps, the source line it starts on: its
+ * line continuation (a backslash right before a line break) joins lines, and
+ * nothing else adds or removes a break. Empty when the count does not match
+ * (a backslash ending an @define value or a $env{} holding a break). */
+std::vector<size_t> sourceLineNumbers(const std::string& raw, size_t preprocessedLines) {
+    std::vector<size_t> starts{1};
+    size_t line = 1;
+    for (size_t i = 0; i < raw.size(); i++) {
+        const char ch = raw[i];
+        if (ch != '\r' && ch != '\n')
+            continue;
+        const bool joined = i > 0 && raw[i - 1] == '\\';
+        if (ch == '\r' && i + 1 < raw.size() && raw[i + 1] == '\n')
+            i++;
+        line++;
+        if (!joined)
+            starts.push_back(line);
+    }
+    if (starts.size() != preprocessedLines)
+        starts.clear();
+    return starts;
+}
+}  // namespace
+
 void CIniConfig::checkLines(const std::string& path) {
     // MRPT (SimpleIni) keeps the last of two equal keys and drops a line
-    // without '=': both would silently change what a run uses.
-    std::ifstream f(path);
+    // without '=': both would silently change what a run uses. Checked on
+    // what MRPT reads: the text after its preprocessor (@define, ${}, $eval{},
+    // line continuation), split into lines where SimpleIni splits them, so
+    // that neither a CR-only file nor a @define'd name hides a duplicate.
+    std::ifstream f(path, std::ios::binary);
+    const std::string raw((std::istreambuf_iterator<char>(f)),
+                          std::istreambuf_iterator<char>());
+    // MRPT's reader takes the text as a C string: it ends at a NUL byte,
+    // and every section after it was silently gone
+    if (const auto nul = raw.find('\0'); nul != std::string::npos) {
+        const size_t n = mrptLines(raw.substr(0, nul)).size();
+        throw CBadInputError(path + ": line " + std::to_string(n) +
+                             ": a NUL byte (a binary file? MRPT's reader would "
+                             "drop everything after it)");
+    }
+    const std::vector<std::string> lines = mrptLines(mrpt::config::config_parser(raw));
+    const std::vector<size_t> source = sourceLineNumbers(raw, lines.size());
+    auto lineName = [&](size_t i) {
+        return source.empty() ? "line " + std::to_string(i + 1) +
+                                    " after MRPT's @define / line-continuation "
+                                    "preprocessing"
+                              : "line " + std::to_string(source[i]);
+    };
     std::string section;
     std::map<std::pair<std::string, std::string>, size_t> seen;
-    bool continued = false;
-    size_t n = 0;
-    for (std::string raw; std::getline(f, raw);) {
-        n++;
-        // MRPT's reader takes the text as a C string: it ends at a NUL byte,
-        // and every section after it was silently gone
-        if (raw.find('\0') != std::string::npos)
-            throw CBadInputError(path + ": line " + std::to_string(n) +
-                                 ": a NUL byte (a binary file? MRPT's reader would "
-                                 "drop everything after it)");
+    for (size_t i = 0; i < lines.size(); i++) {
+        std::string text = lines[i];
         // a UTF-8 byte order mark (editors on Windows write one), as MRPT's
         // reader skips it
-        if (n == 1 && raw.rfind("\xEF\xBB\xBF", 0) == 0)
-            raw.erase(0, 3);
-        const bool wasContinued = continued;
-        std::string line = trim(raw);
-        continued = !line.empty() && line.back() == '\\';
-        if (wasContinued || line.empty() || line[0] == ';' || line[0] == '#' ||
-            line[0] == '@' || line.rfind("//", 0) == 0)
+        if (i == 0 && text.rfind("\xEF\xBB\xBF", 0) == 0)
+            text.erase(0, 3);
+        const std::string line = trim(text);
+        if (line.empty() || line[0] == ';' || line[0] == '#' || line.rfind("//", 0) == 0)
             continue;
-        const std::string where = path + ": line " + std::to_string(n) + ": ";
+        const std::string where = path + ": " + lineName(i) + ": ";
         if (line[0] == '[') {
             const auto close = line.find(']');
             if (close == std::string::npos)
@@ -87,16 +141,17 @@ void CIniConfig::checkLines(const std::string& path) {
             continue;
         }
         const auto eq = line.find('=');
-        if (eq == std::string::npos)
+        // (SimpleIni drops a line with an empty key too)
+        if (eq == std::string::npos || eq == 0)
             throw CBadInputError(where + "'" + clippedText(line) + "' in [" +
                                  clippedText(section) + "]: expected KEY = VALUE");
         const std::string key = trim(line.substr(0, eq));
         const auto [it, fresh] =
-            seen.emplace(std::make_pair(lower(section), lower(key)), n);
+            seen.emplace(std::make_pair(lower(section), lower(key)), i);
         if (!fresh)
-            throw CBadInputError(where + "[" + section + "] " + key +
-                                 " is given twice (also line " +
-                                 std::to_string(it->second) + ")");
+            throw CBadInputError(where + "[" + clippedText(section) + "] " +
+                                 clippedText(key) + " is given twice (also " +
+                                 lineName(it->second) + ")");
     }
 }
 

@@ -1,10 +1,12 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/CIniConfig.h>
+#include <risknav/common/COutputDir.h>
 #include <risknav/common/config_read.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -104,8 +106,10 @@ void copyConfigKeys(
 std::string fileProblem(const std::string& path) {
     std::error_code ec;
     const auto st = fs::status(path, ec);
-    if (st.type() == fs::file_type::regular)
+    if (st.type() == fs::file_type::regular) {
+        noteRunInput(path);  // no output of this run may replace it
         return "";
+    }
     if (ec || st.type() == fs::file_type::not_found)
         return "not found";
     if (st.type() == fs::file_type::directory)
@@ -403,16 +407,87 @@ void checkRule(bool ok, const std::string& s, const std::string& k,
         throw CConfigKeyError(s, k, value, rule);
 }
 
+void checkOutputFileName(const std::string& section, const std::string& key,
+                         const std::string& value, const std::string& fileName) {
+    if (fileName.size() <= kMaxOutputFileName)
+        return;
+    throw CConfigKeyError(section, key, clippedText(value, 60),
+                          "makes the output file name '" + clippedText(fileName, 60) +
+                              "' " + std::to_string(fileName.size()) +
+                              " bytes long; at most " +
+                              std::to_string(kMaxOutputFileName) +
+                              " (a file name holds 255 bytes, less the prefix of "
+                              "the run's temporary file)");
+}
+
+void checkOutputPath(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                     const std::string& key, const std::string& value,
+                     const std::string& outDir, const std::string& fileName) {
+    const size_t bytes = fs::absolute(outDir).string().size() + 1 + 20 + fileName.size();
+    if (bytes < PATH_MAX)
+        return;
+    throwBadKey(c, section, key, clippedText(value, 60),
+                "makes the output path " + clippedText(outDir, 60) + "/" +
+                    clippedText(fileName, 60) + " " + std::to_string(bytes) +
+                    " bytes long (with the temporary file's prefix); at most " +
+                    std::to_string(PATH_MAX - 1));
+}
+
+namespace {
+// MRPT's preprocessor expands ${NAME}, $eval{}, $env{} and @define anywhere in
+// a file (comments and values alike) and has no escape, so a path or name
+// holding one would not load back. Each is written through a variable whose
+// value is the bare character: an expanded value is not expanded again.
+const std::string kDollarVar = "risknav_dollar", kAtVar = "risknav_at";
+
+std::string escapePreprocessor(const std::string& s, bool& escaped) {
+    std::string out;
+    out.reserve(s.size());
+    for (size_t i = 0; i < s.size(); i++) {
+        const auto at = [&](const char* w) {
+            return s.compare(i, std::strlen(w), w) == 0;
+        };
+        if (at("${") || at("$eval{") || at("$env{")) {
+            out += "${" + kDollarVar + "}";
+            escaped = true;
+        } else if (at("@define")) {
+            out += "${" + kAtVar + "}";
+            escaped = true;
+        } else
+            out += s[i];
+    }
+    return out;
+}
+
+// A comment line holds no line break: one in the path would start a line
+// MRPT reads as a key.
+std::string oneLine(std::string s) {
+    for (char& ch : s)
+        if (ch == '\n' || ch == '\r')
+            ch = '?';
+    return s;
+}
+}  // namespace
+
 std::string effectiveConfigText(const std::string& sourcePath,
                                 const mrpt::config::CConfigFileMemory& saved) {
     std::string body;
     saved.getContent(body);
-    return "; Effective configuration of this run: every key with the value used\n"
-           "; (from " +
-           sourcePath +
-           ", --set overrides, or the default), written by the options'\n"
-           "; saveToConfigFile(). Running the app on this file reproduces the run.\n\n" +
-           body;
+    const std::string text =
+        "; Effective configuration of this run: every key with the value used\n"
+        "; (from " +
+        oneLine(sourcePath) +
+        ", --set overrides, or the default), written by the options'\n"
+        "; saveToConfigFile(). Running the app on this file reproduces the run.\n\n" +
+        body;
+    bool escaped = false;
+    const std::string out = escapePreprocessor(text, escaped);
+    if (!escaped)
+        return out;
+    return "@define " + kDollarVar + " $\n@define " + kAtVar +
+           " @\n; (the two variables above stand for a literal dollar and at sign, "
+           "which MRPT's preprocessor would expand)\n" +
+           out;
 }
 
 }  // namespace risknav::common

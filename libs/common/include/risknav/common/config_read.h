@@ -52,7 +52,9 @@ std::string trim(const std::string& s);
 /** Why `path` cannot be read as a file: "" when it is a regular file (or a
  * link to one), else "not found", "is a folder, not a file" or "is not a
  * regular file (a device, FIFO or socket)" (/dev/zero, a FIFO: reading one
- * would not end or would block). */
+ * would not end or would block). A readable file is noted as an input of
+ * the run (noteRunInput()): every reader checks its file here first, and no
+ * output of the run may then replace it. */
 std::string fileProblem(const std::string& path);
 /** `s`, or its first `max` bytes and "... (N bytes)" when longer: a message
  * quotes a 10 MB line in a few hundred bytes. */
@@ -132,6 +134,23 @@ void checkDegrees(const std::string& section, const std::string& key, double rad
 /** Throws CConfigKeyError(section, key, value, rule) unless ok. */
 void checkRule(bool ok, const std::string& section, const std::string& key,
                const std::string& value, const std::string& rule);
+/** @} */
+
+/** @name Config values that become output file names.
+ * @{ */
+/** The longest name an output file may have [bytes]: NAME_MAX (255) less the
+ * 20 bytes COutputDir's temporaries put before it (".tmp-<pid>-old-"). */
+constexpr size_t kMaxOutputFileName = 235;
+/** Throws CConfigKeyError "[section] key = 'value': ..." when `fileName`, the
+ * output file name the key's value becomes, is longer than
+ * kMaxOutputFileName bytes (the file system would refuse it after the work). */
+void checkOutputFileName(const std::string& section, const std::string& key,
+                         const std::string& value, const std::string& fileName);
+/** Throws CBadInputError naming the key when `outDir`/`fileName` (with the
+ * temporaries' prefix) is longer than PATH_MAX - 1 bytes. */
+void checkOutputPath(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                     const std::string& key, const std::string& value,
+                     const std::string& outDir, const std::string& fileName);
 /** @} */
 
 /** config_effective.ini: the header naming the source, then the keys the
