@@ -83,9 +83,21 @@ std::vector<std::string> listDir(const std::string& dir) {
     return v;
 }
 
+namespace {
+// The manifest an earlier run into the folder wrote with these files.
+std::string earlierManifest(const TEarlierOutput& files) {
+    std::string m = "risknav output manifest 2\napp risknav-earlier\n";
+    for (const auto& f : files)
+        m += "file " + f.first + "\n";
+    return m;
+}
+}  // namespace
+
 void writeEarlierOutput(const std::string& dir, const TEarlierOutput& files) {
     for (const auto& [name, content] : files)
         writeFile(dir + "/" + name, content);
+    if (!files.empty())
+        writeFile(dir + "/.risknav-run", earlierManifest(files));
 }
 
 void expectBadInput(const TRun& r, const std::string& expect, const std::string& outDir,
@@ -100,6 +112,11 @@ void expectBadInput(const TRun& r, const std::string& expect, const std::string&
     std::vector<std::string> names;
     for (const auto& e : earlier)
         names.push_back(e.first);
+    if (!earlier.empty()) {
+        names.push_back(".risknav-run");
+        EXPECT_EQ(readFile(outDir + "/.risknav-run"), earlierManifest(earlier));
+    }
+    std::sort(names.begin(), names.end());
     EXPECT_EQ(listDir(outDir), names);
     for (const auto& [name, content] : earlier)
         EXPECT_EQ(readFile(outDir + "/" + name), content) << name;

@@ -38,11 +38,13 @@ std::vector<std::string> listDir(const std::string& dir);
 
 /** An earlier run's results in an output folder (file name -> content). */
 using TEarlierOutput = std::map<std::string, std::string>;
-/** Writes them into `dir` (a bad-input run must leave them as they are). */
+/** Writes them into `dir` with the manifest of the run that wrote them (a
+ * bad-input run must leave them as they are). */
 void writeEarlierOutput(const std::string& dir, const TEarlierOutput& files);
 /** The checks of every bad-input case: exit code 2, exactly one line on
  * stderr that contains `expect` (and starts with "<appPrefix>" when given),
- * and the output folder holding exactly the earlier files, unchanged. */
+ * and the output folder holding exactly the earlier files and their
+ * manifest, unchanged. */
 void expectBadInput(const TRun& r, const std::string& expect, const std::string& outDir,
                     const TEarlierOutput& earlier, const std::string& appPrefix = "");
 

@@ -1,5 +1,6 @@
 #include <risknav/afraid/CAfraidGrid.h>
 #include <risknav/common/CBadInputError.h>
+#include <risknav/common/COutputDir.h>
 #include <risknav/common/config_read.h>
 
 #include <mrpt/io/CFileGZInputStream.h>
@@ -313,23 +314,22 @@ CAfraidGrid CAfraidGrid::decode(const std::string& bytes, const std::string& nam
 }
 
 void CAfraidGrid::save(const std::string& path) const {
-    const std::filesystem::path p(path);
-    const std::string tmp = (p.parent_path() / (".tmp-" + std::to_string(::getpid()) +
-                                                "-" + p.filename().string()))
-                                .string();
+    const std::string tmp = common::exclusiveTempBeside(path);
     const std::string bytes = encode();
     bool ok;
+    int err = 0;
     {
         mrpt::io::CFileGZOutputStream f;
         ok = f.open(tmp, 6) && f.Write(bytes.data(), bytes.size()) == bytes.size();
+        err = errno;
         f.close();
     }
     std::error_code ec;
     if (ok)
         std::filesystem::rename(tmp, path, ec);
     if (!ok || ec) {
-        std::filesystem::remove(tmp, ec);
-        throw std::runtime_error("cannot write " + path);
+        ::unlink(tmp.c_str());
+        throw common::writeFailure(path, ec ? ec.value() : err);
     }
 }
 

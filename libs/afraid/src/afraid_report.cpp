@@ -347,15 +347,10 @@ void runAfraidLearnApp(const TAppContext& ctx) {
                          {"frames_per_s", l.frames() && l.replaySeconds() > 0
                                               ? json(l.frames() / l.replaySeconds())
                                               : json(nullptr)}};
+    // (without a route there is no profile.png and speed.png: the commit
+    // removes an earlier run's, as every file of its set this run does not
+    // write)
     commitRun(ctx, out, summary, effective);
-    // Without a route (a merge-only run, or too few localized frames) there is
-    // no profile.png and speed.png: an earlier run's are removed, so that the
-    // folder does not mix runs.
-    if (!l.partial() && summary["profile_axis"].is_null()) {
-        std::error_code ec;
-        for (const char* f : {"profile.png", "speed.png"})
-            std::filesystem::remove(out.finalPath(f), ec);
-    }
     if (l.partial())  // results up to the bad entry are saved, marked partial
         throw CBadInputError(l.error() + "; partial results in " +
                              out.finalPath("partial"));

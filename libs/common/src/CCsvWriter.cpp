@@ -1,5 +1,7 @@
 #include <risknav/common/CCsvWriter.h>
+#include <risknav/common/COutputDir.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -8,7 +10,7 @@ namespace risknav::common {
 CCsvWriter::CCsvWriter(const std::string& path, const std::vector<std::string>& header)
     : m_path(path), m_out(path, std::ios::trunc), m_columns(header.size()) {
     if (!m_out.good())
-        throw std::runtime_error("cannot write " + path);
+        throw writeFailure(path, errno);
     row(header);
     m_rows = 0;
 }
@@ -24,9 +26,11 @@ void CCsvWriter::row(const std::vector<std::string>& cells) {
 }
 
 void CCsvWriter::close() {
+    m_out.flush();
+    const int err = errno;
     m_out.close();
     if (!m_out)
-        throw std::runtime_error("cannot write " + m_path);
+        throw writeFailure(m_path, err);
 }
 
 // No value (an unreachable cost, a blocked route's U) is an empty cell, as

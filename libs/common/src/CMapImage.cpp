@@ -1,4 +1,5 @@
 #include <risknav/common/CMapImage.h>
+#include <risknav/common/image_file.h>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -316,15 +317,7 @@ cv::Mat CMapImage::compose() const {
 }
 
 void CMapImage::save(const std::string& path) const {
-    const cv::Mat img = compose();
-    bool ok = false;
-    try {
-        ok = cv::imwrite(path, img, {cv::IMWRITE_PNG_COMPRESSION, 6});
-    } catch (const cv::Exception&) {
-        ok = false;
-    }
-    if (!ok)
-        throw std::runtime_error("cannot write image " + path);
+    writeImageFile(path, compose(), {cv::IMWRITE_PNG_COMPRESSION, 6});
 }
 
 }  // namespace risknav::common

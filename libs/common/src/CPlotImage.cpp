@@ -1,4 +1,5 @@
 #include <risknav/common/CPlotImage.h>
+#include <risknav/common/image_file.h>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -174,13 +175,7 @@ cv::Mat CPlotImage::render() const {
 }
 
 void CPlotImage::save(const std::string& path) const {
-    bool ok = false;
-    try {
-        ok = cv::imwrite(path, render());
-    } catch (const cv::Exception&) {
-    }
-    if (!ok)
-        throw std::runtime_error("cannot write image " + path);
+    writeImageFile(path, render());
 }
 
 }  // namespace risknav::common

@@ -1,4 +1,5 @@
 #include <risknav/common/CBadInputError.h>
+#include <risknav/common/COutputDir.h>
 #include <risknav/common/config_read.h>
 #include <risknav/common/grid_io.h>
 
@@ -403,8 +404,7 @@ void saveGridmapGz(const mrpt::maps::COccupancyGridMap2D& g, const std::string& 
         a << g;
     } catch (const std::exception&) {
         // MRPT says only "Cannot write bytes to stream!": name the file.
-        throw std::runtime_error("cannot write " + path +
-                                 " (disk full or file system error)");
+        throw writeFailure(path, errno);
     }
 }
 

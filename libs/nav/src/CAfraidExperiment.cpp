@@ -209,17 +209,8 @@ void runAfraidExperiment(const TAppContext& ctx) {
     c.throwOnUnreadKeys(own);
 
     COutputDir out(ctx.args.outDir, ctx.info.name);
-    const std::string scratch =
-        (fs::path(out.dir()) / (".experiment-" + std::to_string(::getpid()))).string();
-    fs::remove_all(scratch);
-    fs::create_directories(scratch);
-    struct TCleanup {
-        std::string p;
-        ~TCleanup() {
-            std::error_code ec;
-            fs::remove_all(p, ec);
-        }
-    } cleanup{scratch};
+    // removed with the run's staging area, also by the next run after a kill
+    const std::string scratch = out.scratchDir("experiment");
 
     json perSeed = json::array();
     std::vector<double> tSafe, tWith, tWithout, speedup;

@@ -16,33 +16,21 @@ namespace fs = std::filesystem;
 
 namespace risknav::nav {
 namespace {
-// MRPT writes its navlog into a folder of its own; this one is inside the
-// output folder (same file system, so the file is renamed into its staged
-// name) and removed whatever happens; named as a temporary, so that the
-// next run into the folder removes it after a killed run.
-struct TScratchDir {
-    explicit TScratchDir(const std::string& parent)
-        : path((fs::path(parent) / (".tmp-" + std::to_string(::getpid()) + "-navlog"))
-                   .string()) {
-        fs::remove_all(path);
-    }
-    ~TScratchDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    std::string path;
-};
-
 void runSingle(const TAppContext& ctx) {
     CNavigationRun nr;
     nr.loadFromConfigFile(ctx.cfg, ctx.args.seed);
-    COutputDir out(ctx.args.outDir, ctx.info.name);
-    TScratchDir scratch(out.dir());
+    // (what is in the way of an output refused before the run, not after it)
+    COutputDir out(ctx.args.outDir, ctx.info.name,
+                   {"cycles.csv", "events.csv", "trajectory.png", "speed_profile.png"});
+    // MRPT writes its navlog into a folder of its own: one in the run's
+    // staging area (the same file system: the file is renamed into its staged
+    // name), removed with it, also by the next run after a kill.
+    const std::string navlogScratch = out.scratchDir("navlog");
     TNavRunSetup setup;
     setup.seed = nr.options.seed;
     setup.quiet = ctx.args.quiet;
     if (nr.options.navlog)
-        setup.navlogDir = scratch.path;
+        setup.navlogDir = navlogScratch;
     if (nr.options.rawlog) {
         setup.rawlogPath = out.stage("navigation.rawlog");
         setup.groundtruthPath = out.stage("groundtruth.txt");

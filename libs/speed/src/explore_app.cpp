@@ -206,7 +206,6 @@ void writeExploreOutputs(const CExplorer& ex, const std::vector<TModeResult>& ru
     }
     // snapshots/: the free-space map where the adaptive speed changes (Fig. 16)
     if (!runs.empty() && runs.front().fixedIndex < 0 && !runs.front().snapshots.empty()) {
-        std::filesystem::create_directories(out.finalPath("snapshots"));
         for (const auto& s : runs.front().snapshots) {
             const auto& map = s.field.map;
             const auto grid = mapping::toMrptGrid(map);
@@ -263,7 +262,9 @@ void writeExploreOutputs(const CExplorer& ex, const std::vector<TModeResult>& ru
 void runExploreApp(const TAppContext& ctx) {
     CExplorer ex;
     ex.loadFromConfigFile(ctx.cfg, ctx.args.seed);
-    COutputDir out(ctx.args.outDir, ctx.info.name);
+    // (what is in the way of an output refused before the run, not after it)
+    COutputDir out(ctx.args.outDir, ctx.info.name,
+                   {"cycles.csv", "trace.png", "speed_profile.png", "snapshots/"});
     std::vector<int> modes;
     for (const auto& m : ex.explore.modes) {
         if (m == "adaptive")

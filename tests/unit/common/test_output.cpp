@@ -23,7 +23,8 @@ TEST(COutputDir, FilesAppearOnlyAtCommit) {
         COutputDir out(d);
         out.writeText("a.txt", "new a");
         writeFile(out.stage("b.csv"), "new b");
-        EXPECT_TRUE(listDir(d).size() == 2u);  // two hidden temporaries
+        ASSERT_EQ(listDir(d).size(), 1u);  // the run's staging folder
+        EXPECT_EQ(listDir(d)[0].rfind(".risknav-stage-", 0), 0u);
         EXPECT_FALSE(std::filesystem::exists(d + "/a.txt"));
         out.commit();
     }
@@ -33,15 +34,15 @@ TEST(COutputDir, FilesAppearOnlyAtCommit) {
 
 TEST(COutputDir, AFailedRunLeavesEarlierResultsIntact) {
     const std::string d = freshDir("out");
-    writeFile(d + "/summary.json", "{\"old\": true}\n");
+    writeEarlierOutput(d, {{"summary.json", "{\"old\": true}\n"}});
     try {
         COutputDir out(d);
         out.writeText("summary.json", "half-written");
         throw std::runtime_error("crash in the middle");
     } catch (const std::runtime_error&) {
     }
-    EXPECT_EQ(listDir(d),
-              (std::vector<std::string>{"summary.json"}));  // no temporaries left
+    EXPECT_EQ(listDir(d), (std::vector<std::string>{
+                              ".risknav-run", "summary.json"}));  // nothing staged left
     EXPECT_EQ(readFile(d + "/summary.json"), "{\"old\": true}\n");
 }
 
@@ -110,31 +111,13 @@ TEST(CProgress, NonTerminalPrintsOneLine) {
     EXPECT_EQ(lines[0].rfind("work: 8/8 items in ", 0), 0u) << lines[0];
 }
 
-TEST(COutputDir, RemovesTemporariesOfDeadRunsOnly) {
-    const std::string d = freshDir("out");
-    writeFile(d + "/.tmp-999999999-summary.json", "dead run");  // no such process
-    writeFile(d + "/.tmp-1-summary.json", "init is alive");
-    writeFile(d + "/.tmp-x-notes.txt", "not ours");
-    writeFile(d + "/summary.json", "earlier result");
-    // a killed risknav-navigate's navlog scratch folder, and a live one's
-    std::filesystem::create_directories(d + "/.tmp-999999998-navlog");
-    std::filesystem::create_directories(d + "/.tmp-1-navlog");
-    writeFile(d + "/.tmp-999999998-navlog/log_001.reactivenavlog", "dead run");
-    writeFile(d + "/.tmp-1-navlog/log_001.reactivenavlog", "alive");
-    COutputDir out(d);
-    EXPECT_FALSE(std::filesystem::exists(d + "/.tmp-999999998-navlog"));
-    EXPECT_TRUE(std::filesystem::exists(d + "/.tmp-1-navlog/log_001.reactivenavlog"));
-    EXPECT_FALSE(std::filesystem::exists(d + "/.tmp-999999999-summary.json"));
-    EXPECT_TRUE(std::filesystem::exists(d + "/.tmp-1-summary.json"));
-    EXPECT_TRUE(std::filesystem::exists(d + "/.tmp-x-notes.txt"));
-    EXPECT_EQ(readFile(d + "/summary.json"), "earlier result");
-}
-
 TEST(COutputDir, CommitIntoASubfolderLeavesTheFolderAlone) {
     const std::string d = freshDir("out");
     writeFile(d + "/zones.csv", "complete run");
     std::filesystem::create_directories(d + "/partial");
     writeFile(d + "/partial/old.csv", "an older partial run");
+    writeFile(d + "/.risknav-run",
+              "risknav output manifest 2\napp a\nfile zones.csv\ndir partial\n");
     {
         COutputDir out(d);
         out.writeText("zones.csv", "partial run");
@@ -144,7 +127,10 @@ TEST(COutputDir, CommitIntoASubfolderLeavesTheFolderAlone) {
     EXPECT_EQ(readFile(d + "/zones.csv"), "complete run");
     EXPECT_EQ(readFile(d + "/partial/zones.csv"), "partial run");
     EXPECT_FALSE(std::filesystem::exists(d + "/partial/old.csv"));
-    EXPECT_EQ(listDir(d), (std::vector<std::string>{"partial", "zones.csv"}));
+    EXPECT_EQ(listDir(d),
+              (std::vector<std::string>{".risknav-run", "partial", "zones.csv"}));
+    EXPECT_EQ(readFile(d + "/.risknav-run"),
+              "risknav output manifest 2\napp a\nfile zones.csv\ndir partial\n");
 }
 
 TEST(SummaryJson, NonUtf8TextIsReplacedNotThrown) {
@@ -176,20 +162,46 @@ TEST(COutputDir, OneRunPerFolderAtATime) {
 
 TEST(COutputDir, ACommitThatFailsPutsEverythingBack) {
     const std::string d = freshDir("out");
-    writeFile(d + "/a.txt", "earlier a");
-    writeFile(d + "/b.txt", "earlier b");
-    {
-        COutputDir out(d);
-        out.writeText("a.txt", "new a");
-        out.writeText("b.txt", "new b");
-        // The second file's temporary vanishes before the commit: the commit
-        // fails half-way, and the first file must not stay replaced.
-        std::filesystem::remove(out.stage("b.txt"));
-        EXPECT_THROW(out.commit(), std::runtime_error);
+    writeEarlierOutput(d, {{"a.txt", "earlier a"}, {"b.txt", "earlier b"}});
+    const std::string manifest = readFile(d + "/.risknav-run");
+    // A step of the commit fails (a rename refused), at every step in turn:
+    // the steps done are undone.
+    for (int failAt = 1;; failAt++) {
+        COutputDir::setCommitStepHook([failAt](int step) {
+            if (step == failAt)
+                throw std::runtime_error("a rename refused");
+        });
+        bool failed = false;
+        {
+            COutputDir out(d);
+            out.writeText("a.txt", "new a");
+            out.writeText("b.txt", "new b");
+            try {
+                out.commit();
+            } catch (const std::runtime_error&) {
+                failed = true;
+            }
+        }
+        COutputDir::setCommitStepHook({});
+        if (!failed)
+            break;
+        EXPECT_EQ(listDir(d),
+                  (std::vector<std::string>{".risknav-run", "a.txt", "b.txt"}));
+        // a failure after the last rename (removing the staging folder) finds
+        // the new set complete; any earlier one the earlier set whole
+        if (readFile(d + "/a.txt") == "new a") {
+            EXPECT_EQ(readFile(d + "/b.txt"), "new b") << failAt;
+            EXPECT_GE(failAt, 9);
+            writeEarlierOutput(d, {{"a.txt", "earlier a"}, {"b.txt", "earlier b"}});
+            continue;
+        }
+        EXPECT_LT(failAt, 9);
+        EXPECT_EQ(readFile(d + "/a.txt"), "earlier a") << failAt;
+        EXPECT_EQ(readFile(d + "/b.txt"), "earlier b") << failAt;
+        EXPECT_EQ(readFile(d + "/.risknav-run"), manifest) << failAt;
+        ASSERT_LT(failAt, 100);
     }
-    EXPECT_EQ(readFile(d + "/a.txt"), "earlier a");
-    EXPECT_EQ(readFile(d + "/b.txt"), "earlier b");
-    EXPECT_EQ(listDir(d), (std::vector<std::string>{"a.txt", "b.txt"}));
+    EXPECT_EQ(readFile(d + "/a.txt"), "new a");
 }
 
 TEST(COutputDir, ASecondRunReplacesTheWholeSetOfTheFirst) {
@@ -217,7 +229,7 @@ TEST(COutputDir, ASecondRunReplacesTheWholeSetOfTheFirst) {
                                                     "summary.json", "zones.csv"}));
     EXPECT_EQ(readFile(d + "/summary.json"), "afraid");
     EXPECT_EQ(readFile(d + "/.risknav-run"),
-              "risknav output manifest 1\napp risknav-afraid-learn\nfile summary.json\n"
+              "risknav output manifest 2\napp risknav-afraid-learn\nfile summary.json\n"
               "file zones.csv\n");
     // a run that fails in its commit leaves the second run's set whole
     {
@@ -235,7 +247,8 @@ TEST(COutputDir, ASecondRunReplacesTheWholeSetOfTheFirst) {
     const std::string outside = freshDir("elsewhere") + "/outside.txt";
     writeFile(outside, "outside");
     writeFile(d + "/.risknav-run",
-              "file .x\nfile ../elsewhere/outside.txt\nfile " + outside + "\n");
+              "file summary.json\nfile .x\nfile ../elsewhere/outside.txt\nfile " +
+                  outside + "\n");
     {
         COutputDir out(d);
         out.writeText("summary.json", "third");
@@ -253,8 +266,9 @@ TEST(COutputDir, ASecondRunReplacesTheWholeSetOfTheFirst) {
     std::filesystem::create_symlink(victims + "/linked.txt", d + "/filelink");
     std::filesystem::create_directory(d + "/sub");
     writeFile(d + "/sub/keep.txt", "user's");
-    writeFile(d + "/.risknav-run",
-              "file link/precious.txt\nfile sub/keep.txt\nfile filelink\n");
+    writeFile(
+        d + "/.risknav-run",
+        "file summary.json\nfile link/precious.txt\nfile sub/keep.txt\nfile filelink\n");
     {
         COutputDir out(d);
         out.writeText("summary.json", "fourth");
