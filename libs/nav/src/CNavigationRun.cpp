@@ -1,5 +1,6 @@
 #include <risknav/common/CAppRunner.h>
 #include <risknav/common/CBadInputError.h>
+#include <risknav/common/COutputDir.h>
 #include <risknav/common/CProgress.h>
 #include <risknav/common/CSpeedLimiter.h>
 #include <risknav/common/config_read.h>
@@ -22,6 +23,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -527,16 +529,23 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     // the last error's text, for its mrpt_error event (when and where)
     std::string lastMrptError;
     int mrptErrorsSeen = 0;
-    nav.logRegisterCallback(
-        [&r, &lastMrptError](std::string_view msg, mrpt::system::VerbosityLevel lvl,
-                             std::string_view, mrpt::Clock::time_point) {
-            if (lvl < mrpt::system::LVL_ERROR)
-                return;
-            r.mrptErrors++;
-            lastMrptError = mrptErrorText(std::string(msg));
-            if (r.firstMrptError.empty())
-                r.firstMrptError = lastMrptError;
-        });
+    // MRPT's navlog writer failing (a full disk) is not a value of the
+    // config: the system's reason, as the failed write left it
+    int navlogWriteErrno = 0;
+    nav.logRegisterCallback([&r, &lastMrptError, &navlogWriteErrno](
+                                std::string_view msg, mrpt::system::VerbosityLevel lvl,
+                                std::string_view, mrpt::Clock::time_point) {
+        const int err = errno;
+        if (lvl < mrpt::system::LVL_ERROR)
+            return;
+        if (msg.find("Cannot write bytes to stream") != std::string_view::npos &&
+            !navlogWriteErrno)
+            navlogWriteErrno = err ? err : EIO;
+        r.mrptErrors++;
+        lastMrptError = mrptErrorText(std::string(msg));
+        if (r.firstMrptError.empty())
+            r.firstMrptError = lastMrptError;
+    });
     const_cast<mrpt::system::CTimeLogger&>(nav.getDelaysTimeLogger()).disable();
     nav.setEngineConfig(m_engine.get());
     nav.loadConfigFile(c);
@@ -756,6 +765,9 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
             }
             r.events.push_back(te);
         }
+        if (navlogWriteErrno && navlog)
+            throw writeFailure(setup.navlogDir + "/navigation.reactivenavlog",
+                               navlogWriteErrno);
         // MRPT failing on each of the run's first cycles (exceptions it
         // catches inside navigationStep(), e.g. its asserts on a PTG's
         // clearance_num_points, a v_max_mps of 1e-9 or a score formula
