@@ -8,6 +8,7 @@ PACKAGES=(
   g++ cmake make pkg-config python3
   libmrpt-dev mrpt-apps mrpt-common      # MRPT 2.5: libraries, apps (rawlog-edit, pf-localization), datasets
   libopencv-dev nlohmann-json3-dev       # images, summary.json
+  libyaml-dev                            # ROS map YAML files (a real YAML parser)
   libgtest-dev libbenchmark-dev          # tests, benchmarks
   xvfb xauth imagemagick time x11-utils xdotool  # headless runs of MRPT's GUI apps (navlog-viewer), screenshots, peak memory
   parallel                               # scripts/learn_parallel.sh (GNU parallel)

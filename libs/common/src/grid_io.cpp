@@ -1,13 +1,20 @@
+#include <risknav/common/CAllocationBudget.h>
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/COutputDir.h>
 #include <risknav/common/config_read.h>
 #include <risknav/common/grid_io.h>
+#include <risknav/common/probe_in_child.h>
 
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/maps/CSimpleMap.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose3D.h>
+#include <mrpt/poses/CPose3DPDF.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <yaml.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include <fcntl.h>
@@ -15,6 +22,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -22,6 +30,8 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <new>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -109,60 +119,178 @@ struct TRosParams {
 // The largest grid risknav reads (cells): 25 M, e.g. 250 m x 250 m at 5 cm.
 constexpr uint64_t kMaxGridCells = 25'000'000;
 
-/** The pixel size of a PNG, BMP or binary/ASCII PGM from its header, without
- * decoding it (0 x 0: not one of those, left to the decoder). */
-std::pair<uint64_t, uint64_t> imageHeaderSize(const std::string& file) {
+std::string cellsText(uint64_t n) {
+    return std::to_string(n / 1000000) + " M cells";
+}
+
+/** The cells COccupancyGridMap2D::setSize would allocate for these bounds:
+ * the same float arithmetic as MRPT 2.5's (bounds rounded to the
+ * resolution, then round(span / res) a side), so that it is known BEFORE
+ * MRPT allocates. {0, 0} for bounds MRPT would refuse. */
+std::pair<uint64_t, uint64_t> setSizeCells(float x0, float x1, float y0, float y1,
+                                           float res) {
+    if (!(res > 0 && x1 > x0 && y1 > y0) || !std::isfinite(x0) || !std::isfinite(x1) ||
+        !std::isfinite(y0) || !std::isfinite(y1))
+        return {0, 0};
+    x0 = res * std::round(x0 / res);
+    y0 = res * std::round(y0 / res);
+    x1 = res * std::round(x1 / res);
+    y1 = res * std::round(y1 / res);
+    const double nx = std::round((x1 - x0) / res), ny = std::round((y1 - y0) / res);
+    if (!(nx >= 0 && ny >= 0 && nx < 4e9 && ny < 4e9))
+        return {UINT32_MAX, UINT32_MAX};
+    return {uint64_t(nx), uint64_t(ny)};
+}
+
+/** An image's format and pixel size from its header, without decoding it. */
+struct TImageHeader {
+    std::string format;  ///< empty: not a format risknav reads
+    uint64_t width = 0, height = 0;
+};
+
+/** Reads the header of a PNG, BMP, PBM/PGM/PPM, JPEG or TIFF file (the
+ * formats risknav decodes; OpenCV would decode more, but for no other is the
+ * size checked before decoding, so they are refused). width/height 0: the
+ * header names no size. */
+TImageHeader imageHeader(const std::string& file) {
     std::ifstream f(file, std::ios::binary);
-    unsigned char h[64] = {};
-    f.read(reinterpret_cast<char*>(h), sizeof(h));
-    const auto n = size_t(f.gcount());
-    auto be32 = [&](size_t o) {
-        return uint64_t(h[o]) << 24 | uint64_t(h[o + 1]) << 16 | uint64_t(h[o + 2]) << 8 |
-               uint64_t(h[o + 3]);
-    };
-    auto le32 = [&](size_t o) {
-        return uint64_t(uint32_t(h[o] | h[o + 1] << 8 | h[o + 2] << 16 | h[o + 3] << 24));
-    };
-    if (n >= 24 && h[0] == 0x89 && h[1] == 'P' && h[2] == 'N' && h[3] == 'G')
-        return {be32(16), be32(20)};
-    if (n >= 26 && h[0] == 'B' && h[1] == 'M') {
-        const int64_t w = int32_t(le32(18)), hh = int32_t(le32(22));
-        return {uint64_t(std::abs(w)), uint64_t(std::abs(hh))};
-    }
-    if (n >= 2 && h[0] == 'P' && (h[1] == '2' || h[1] == '5')) {
+    std::string h(4096, '\0');
+    f.read(&h[0], std::streamsize(h.size()));
+    h.resize(size_t(f.gcount()));
+    f.clear();
+    const size_t n = h.size();
+    auto u8 = [&](size_t o) { return o < n ? uint64_t(uint8_t(h[o])) : 0; };
+    auto be16 = [&](size_t o) { return u8(o) << 8 | u8(o + 1); };
+    auto be32 = [&](size_t o) { return be16(o) << 16 | be16(o + 2); };
+    auto le16 = [&](size_t o) { return u8(o) | u8(o + 1) << 8; };
+    auto le32 = [&](size_t o) { return le16(o) | le16(o + 2) << 16; };
+    TImageHeader r;
+    if (n >= 24 && h.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0) {
+        r.format = "PNG";
+        if (h.compare(12, 4, "IHDR") == 0)
+            r.width = be32(16), r.height = be32(20);
+    } else if (n >= 26 && h[0] == 'B' && h[1] == 'M') {
+        r.format = "BMP";
+        if (le32(14) == 12) {  // OS/2 header: 16-bit sizes
+            r.width = le16(18), r.height = le16(20);
+        } else {
+            r.width = uint64_t(std::abs(int64_t(int32_t(uint32_t(le32(18))))));
+            r.height = uint64_t(std::abs(int64_t(int32_t(uint32_t(le32(22))))));
+        }
+    } else if (n >= 2 && h[0] == 'P' && h[1] >= '1' && h[1] <= '6') {
         // "P5 <w> <h> ...", comments (#...) between the fields
-        std::string t(reinterpret_cast<char*>(h) + 2, n - 2);
+        r.format = "PNM";
         std::vector<uint64_t> v;
-        size_t i = 0;
-        while (v.size() < 2 && i < t.size()) {
-            if (t[i] == '#') {
-                while (i < t.size() && t[i] != '\n')
+        size_t i = 2;
+        while (v.size() < 2 && i < n) {
+            if (h[i] == '#') {
+                while (i < n && h[i] != '\n')
                     i++;
-            } else if (std::isdigit(static_cast<unsigned char>(t[i]))) {
+            } else if (std::isdigit(static_cast<unsigned char>(h[i]))) {
                 uint64_t x = 0;
-                while (i < t.size() && std::isdigit(static_cast<unsigned char>(t[i])) &&
+                while (i < n && std::isdigit(static_cast<unsigned char>(h[i])) &&
                        x < (uint64_t(1) << 40))
-                    x = x * 10 + uint64_t(t[i++] - '0');
+                    x = x * 10 + uint64_t(h[i++] - '0');
                 v.push_back(x);
                 continue;
+            } else if (!std::isspace(static_cast<unsigned char>(h[i]))) {
+                break;
             }
             i++;
         }
         if (v.size() == 2)
-            return {v[0], v[1]};
+            r.width = v[0], r.height = v[1];
+    } else if (n >= 4 && uint8_t(h[0]) == 0xFF && uint8_t(h[1]) == 0xD8 &&
+               uint8_t(h[2]) == 0xFF) {
+        // JPEG: walk the segments to the first start-of-frame (SOFn)
+        r.format = "JPEG";
+        uint64_t pos = 2;
+        for (int seg = 0; seg < 100000; seg++) {
+            unsigned char m[4];
+            f.seekg(std::streamoff(pos));
+            if (!f.read(reinterpret_cast<char*>(m), 2) || m[0] != 0xFF)
+                break;
+            if (m[1] == 0xFF) {  // fill byte
+                pos++;
+                continue;
+            }
+            if (m[1] == 0x01 || (m[1] >= 0xD0 && m[1] <= 0xD8)) {  // no length
+                pos += 2;
+                continue;
+            }
+            if (m[1] == 0xD9 || m[1] == 0xDA)  // end of image, scan: no frame before
+                break;
+            const unsigned marker = m[1];
+            if (!f.read(reinterpret_cast<char*>(m), 2))
+                break;
+            const uint64_t len = uint64_t(m[0]) << 8 | m[1];
+            if (len < 2)
+                break;
+            // SOF0..SOF15, not DHT (C4), JPG (C8), DAC (CC)
+            if (marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 &&
+                marker != 0xCC) {
+                unsigned char d[5];  // precision, height, width
+                if (!f.read(reinterpret_cast<char*>(d), 5))
+                    break;
+                r.height = uint64_t(d[1]) << 8 | d[2];
+                r.width = uint64_t(d[3]) << 8 | d[4];
+                break;
+            }
+            pos += 2 + len;
+        }
+    } else if (n >= 8 &&
+               (h.compare(0, 4, "II*\0", 4) == 0 || h.compare(0, 4, "MM\0*", 4) == 0)) {
+        // TIFF: the first image file directory's ImageWidth / ImageLength
+        r.format = "TIFF";
+        const bool le = h[0] == 'I';
+        auto rd = [&](uint64_t at, int bytes) -> std::optional<uint64_t> {
+            unsigned char b[4];
+            f.seekg(std::streamoff(at));
+            if (!f.read(reinterpret_cast<char*>(b), bytes))
+                return std::nullopt;
+            uint64_t v = 0;
+            for (int k = 0; k < bytes; k++)
+                v |= uint64_t(b[k]) << (8 * (le ? k : bytes - 1 - k));
+            return v;
+        };
+        const auto ifd = rd(4, 4);
+        const auto count = ifd ? rd(*ifd, 2) : std::nullopt;
+        for (uint64_t e = 0; count && e < *count; e++) {
+            const uint64_t at = *ifd + 2 + 12 * e;
+            const auto tag = rd(at, 2), type = rd(at + 2, 2);
+            if (!tag || !type)
+                break;
+            if (*tag != 256 && *tag != 257)
+                continue;
+            // SHORT (3) or LONG (4), one value, stored in the entry itself
+            const auto v = *type == 3   ? rd(at + 8, 2)
+                           : *type == 4 ? rd(at + 8, 4)
+                                        : std::nullopt;
+            if (!v)
+                break;
+            (*tag == 256 ? r.width : r.height) = *v;
+        }
     }
-    return {0, 0};
+    return r;
 }
 
 COccupancyGridMap2D fromImage(const std::string& file, double res, double ox, double oy,
                               TPixelModel model, const TRosParams& ros = {}) {
     // before decoding: a small file can hold a huge image (a 439 KB PNG of
-    // 20000 x 20000 px took 4.4 GB)
-    if (const auto [w, h] = imageHeaderSize(file); w * h > kMaxGridCells)
-        throw CBadInputError(file + ": the map image is " + std::to_string(w) + " x " +
-                             std::to_string(h) + " px, more than " +
-                             std::to_string(kMaxGridCells / 1000000) +
-                             " M cells (one cell per pixel)");
+    // 20000 x 20000 px took 4.4 GB, a 162-byte JPEG can claim 30000 x 30000)
+    const TImageHeader hd = imageHeader(file);
+    if (hd.format.empty())
+        throw CBadInputError(file +
+                             ": cannot read the map image (not a PNG, BMP, PGM/PPM/PBM, "
+                             "JPEG or TIFF, the formats whose size is checked before "
+                             "decoding)");
+    if (hd.width == 0 || hd.height == 0)
+        throw CBadInputError(file + ": cannot read the map image (a " + hd.format +
+                             " header without its size)");
+    if (hd.width * hd.height > kMaxGridCells)
+        throw CBadInputError(file + ": the map image is " + std::to_string(hd.width) +
+                             " x " + std::to_string(hd.height) + " px, more than " +
+                             cellsText(kMaxGridCells) + " (one cell per pixel)");
     cv::Mat img;
     try {
         const CStderrSilenced quiet;  // libpng prints its own lines on a bad file
@@ -170,16 +298,21 @@ COccupancyGridMap2D fromImage(const std::string& file, double res, double ox, do
     } catch (const std::exception&) {
     }
     if (img.empty())
-        throw CBadInputError(file + ": cannot read the map image (not a PNG/PGM/BMP?)");
+        throw CBadInputError(file + ": cannot read the map image (a corrupt " +
+                             hd.format + ")");
     if (img.cols < 2 || img.rows < 2)
         throw CBadInputError(file + ": map image is too small (" +
                              std::to_string(img.cols) + "x" + std::to_string(img.rows) +
                              " px)");
+    const float x0 = float(ox), x1 = float(ox + img.cols * res), y0 = float(oy),
+                y1 = float(oy + img.rows * res);
+    if (const auto [nx, ny] = setSizeCells(x0, x1, y0, y1, float(res));
+        nx * ny > kMaxGridCells || nx == 0)
+        throw CBadInputError(file + ": the map image gives a grid of " +
+                             std::to_string(nx) + " x " + std::to_string(ny) + " cells");
     COccupancyGridMap2D g;
     // Cell centres: the grid spans exactly the image (cols*res by rows*res).
-    g.setSize(static_cast<float>(ox), static_cast<float>(ox + img.cols * res),
-              static_cast<float>(oy), static_cast<float>(oy + img.rows * res),
-              static_cast<float>(res), 0.5f);
+    g.setSize(x0, x1, y0, y1, static_cast<float>(res), 0.5f);
     const int nx = static_cast<int>(g.getSizeX()), ny = static_cast<int>(g.getSizeY());
     for (int cy = 0; cy < ny; cy++) {
         const int row = img.rows - 1 - std::min(cy, img.rows - 1);  // image row 0 = top
@@ -200,82 +333,214 @@ COccupancyGridMap2D fromImage(const std::string& file, double res, double ox, do
     return g;
 }
 
-// ROS map_server YAML is flat "key: value"; a full YAML parser would accept
-// more, but these are all the keys map_server defines.
-COccupancyGridMap2D fromRosYaml(const std::string& file) {
-    std::ifstream f(file);
-    if (!f.good())
-        throw CBadInputError(file + ": cannot read the map YAML");
-    std::map<std::string, std::string> kv;
-    std::string line;
-    while (std::getline(f, line)) {
-        line = line.substr(0, line.find('#'));
-        const auto colon = line.find(':');
-        if (colon == std::string::npos)
-            continue;
-        auto trim = [](std::string s) {
-            s.erase(0, s.find_first_not_of(" \t\r\"'"));
-            s.erase(s.find_last_not_of(" \t\r\"'") + 1);
-            return s;
-        };
-        kv[trim(line.substr(0, colon))] = trim(line.substr(colon + 1));
+/** One value of a ROS map YAML: a scalar or a list of scalars. */
+struct TYamlValue {
+    std::string scalar;
+    std::vector<std::string> list;
+    bool isList = false;
+    size_t line = 0;
+};
+
+/** Parses a map_server YAML with libyaml: a mapping of keys to scalars or
+ * lists of scalars. libyaml rather than MRPT's yaml or yaml-cpp: its event
+ * stream shows every key, so a key given twice is seen (the others keep the
+ * last or the first silently), and it parses without recursion (yaml-cpp
+ * 0.7 overflows its stack on deeply nested input). Values of keys risknav
+ * does not know may be anything and are skipped. */
+std::map<std::string, TYamlValue> parseMapYaml(const std::string& file) {
+    std::string text;
+    {
+        std::ifstream f(file, std::ios::binary);
+        if (!f.good())
+            throw CBadInputError(file + ": cannot read the map YAML");
+        const size_t cap = 1 << 20;
+        text.resize(cap + 1);
+        f.read(&text[0], std::streamsize(text.size()));
+        text.resize(size_t(f.gcount()));
+        if (text.size() > cap)
+            throw CBadInputError(file + ": larger than 1 MiB, not a map YAML");
     }
-    auto need = [&](const std::string& k) {
-        if (!kv.count(k) || kv[k].empty())
-            throw CBadInputError(file + ": map YAML has no '" + k + "' key");
-        return kv[k];
+    yaml_parser_t parser;
+    if (!yaml_parser_initialize(&parser))
+        throw std::bad_alloc();
+    yaml_parser_set_input_string(
+        &parser, reinterpret_cast<const unsigned char*>(text.data()), text.size());
+    struct TGuard {
+        yaml_parser_t* p;
+        ~TGuard() { yaml_parser_delete(p); }
+    } guard{&parser};
+    yaml_event_t ev;
+    auto bad = [&](size_t line, const std::string& why) {
+        return CBadInputError(file + ":" + std::to_string(line) + ": " + why);
     };
-    auto number = [&](const std::string& k, const std::string& v) {
-        char* end = nullptr;
-        const double d = std::strtod(v.c_str(), &end);
-        if (v.empty() || *end != '\0')
-            throw CBadInputError(file + ": map YAML key '" + k + "' = '" + v +
+    // The next event; the caller owns it until the next call.
+    bool have = false;
+    auto next = [&]() -> yaml_event_t& {
+        if (have)
+            yaml_event_delete(&ev);
+        have = false;
+        if (!yaml_parser_parse(&parser, &ev))
+            throw bad(parser.problem_mark.line + 1,
+                      std::string("not YAML: ") +
+                          (parser.problem ? parser.problem : "parse error"));
+        have = true;
+        return ev;
+    };
+    struct TEventGuard {
+        bool& have;
+        yaml_event_t& ev;
+        ~TEventGuard() {
+            if (have)
+                yaml_event_delete(&ev);
+        }
+    } evGuard{have, ev};
+    auto scalar = [](const yaml_event_t& e) {
+        return std::string(reinterpret_cast<const char*>(e.data.scalar.value),
+                           e.data.scalar.length);
+    };
+    auto line = [](const yaml_event_t& e) { return size_t(e.start_mark.line) + 1; };
+    std::map<std::string, TYamlValue> kv;
+    if (next().type != YAML_STREAM_START_EVENT ||
+        next().type != YAML_DOCUMENT_START_EVENT)
+        throw bad(1, "empty, not a map YAML");
+    if (next().type != YAML_MAPPING_START_EVENT)
+        throw bad(line(ev), "not a mapping of keys (image: ..., resolution: ...)");
+    for (;;) {
+        if (next().type == YAML_MAPPING_END_EVENT)
+            break;
+        if (ev.type == YAML_ALIAS_EVENT)
+            throw bad(line(ev), "an alias (*name) as a key");
+        if (ev.type != YAML_SCALAR_EVENT)
+            throw bad(line(ev), "a key that is not a plain name");
+        const std::string key = scalar(ev);
+        TYamlValue v;
+        v.line = line(ev);
+        if (const auto it = kv.find(key); it != kv.end())
+            throw bad(v.line, "key '" + clippedText(key) +
+                                  "' given twice (also on line " +
+                                  std::to_string(it->second.line) + ")");
+        next();
+        if (ev.type == YAML_ALIAS_EVENT)
+            throw bad(line(ev), "key '" + key + "': an alias (*name) as its value");
+        if (ev.type == YAML_SCALAR_EVENT) {
+            v.scalar = scalar(ev);
+        } else {
+            // a list or a mapping: kept as a list when it is a flat list of
+            // scalars, skipped otherwise (and refused below for a known key)
+            const bool isSeq = ev.type == YAML_SEQUENCE_START_EVENT;
+            v.isList = isSeq;
+            for (int depth = 1; depth > 0;) {
+                next();
+                if (ev.type == YAML_SEQUENCE_START_EVENT ||
+                    ev.type == YAML_MAPPING_START_EVENT) {
+                    depth++;
+                    v.isList = false;
+                } else if (ev.type == YAML_SEQUENCE_END_EVENT ||
+                           ev.type == YAML_MAPPING_END_EVENT) {
+                    depth--;
+                } else if (ev.type == YAML_SCALAR_EVENT && depth == 1 && isSeq) {
+                    v.list.push_back(scalar(ev));
+                } else if (ev.type != YAML_SCALAR_EVENT) {
+                    v.isList = false;  // an alias
+                }
+                if (depth > 64)
+                    throw bad(line(ev), "key '" + key + "': nested too deeply");
+            }
+            if (!v.isList)
+                v.list.clear(), v.scalar = "\x01";  // marks "not a scalar"
+        }
+        kv.emplace(key, std::move(v));
+    }
+    if (next().type != YAML_DOCUMENT_END_EVENT)
+        throw bad(line(ev), "more than one mapping");
+    if (next().type != YAML_STREAM_END_EVENT)
+        throw bad(line(ev), "more than one YAML document");
+    return kv;
+}
+
+// ROS map_server's YAML (image, resolution, origin, negate, occupied_thresh,
+// free_thresh, mode), parsed as YAML; each value is checked.
+COccupancyGridMap2D fromRosYaml(const std::string& file) {
+    const auto kv = parseMapYaml(file);
+    auto where = [&](const std::string& k) {
+        return file + ":" + std::to_string(kv.at(k).line) + ": " + k;
+    };
+    auto has = [&](const std::string& k) { return kv.count(k) > 0; };
+    // a scalar value (not a list, not null)
+    auto text = [&](const std::string& k) {
+        const TYamlValue& v = kv.at(k);
+        if (v.isList || v.scalar == "\x01")
+            throw CBadInputError(where(k) + " must be a single value, not a list");
+        if (v.scalar.empty() || v.scalar == "~" || v.scalar == "null")
+            throw CBadInputError(where(k) + " has no value");
+        return v.scalar;
+    };
+    auto need = [&](const std::string& k) {
+        if (!has(k))
+            throw CBadInputError(file + ": map YAML has no '" + k + "' key");
+        return text(k);
+    };
+    // the one number rule of risknav's readers: decimal, finite
+    auto toNumber = [](const std::string& v, double& d) { return parseNumber(v, d); };
+    auto number = [&](const std::string& k) {
+        const std::string v = text(k);
+        double d = 0;
+        if (!toNumber(v, d))
+            throw CBadInputError(where(k) + " = '" + clippedText(v) +
                                  "' is not a number");
         return d;
     };
     fs::path img = need("image");
     if (img.is_relative())
         img = fs::path(file).parent_path() / img;
-    const double res = number("resolution", need("resolution"));
+    need("resolution");
+    const double res = number("resolution");
     if (!(res >= 0.001 && res <= 10))
-        throw CBadInputError(file + ": map YAML resolution '" + need("resolution") +
+        throw CBadInputError(where("resolution") + " = '" + text("resolution") +
                              "' must be in [0.001, 10] m");
-    std::string o = need("origin");
-    std::replace(o.begin(), o.end(), '[', ' ');
-    std::replace(o.begin(), o.end(), ']', ' ');
-    std::replace(o.begin(), o.end(), ',', ' ');
-    std::istringstream os(o);
-    double ox = 0, oy = 0, oyaw = 0;
-    if (!(os >> ox >> oy))
-        throw CBadInputError(file + ": map YAML origin must be [x, y, yaw]");
+    if (!has("origin"))
+        throw CBadInputError(file + ": map YAML has no 'origin' key");
+    const TYamlValue& o = kv.at("origin");
+    if (!o.isList || o.list.size() != 3)
+        throw CBadInputError(where("origin") + " must be a list [x, y, yaw]");
+    double org[3];
+    for (int i = 0; i < 3; i++)
+        if (!toNumber(o.list[size_t(i)], org[i]))
+            throw CBadInputError(where("origin") + ": '" +
+                                 clippedText(o.list[size_t(i)]) + "' is not a number");
+    const double ox = org[0], oy = org[1], oyaw = org[2];
     if (!(std::abs(ox) <= 1e6 && std::abs(oy) <= 1e6))
-        throw CBadInputError(file + ": map YAML origin x, y must be in [-1e6, 1e6] m");
-    os >> oyaw;
+        throw CBadInputError(where("origin") + ": x, y must be in [-1e6, 1e6] m");
     if (oyaw != 0.0)
-        throw CBadInputError(file + ": map YAML origin yaw != 0 is not supported");
+        throw CBadInputError(where("origin") + ": yaw != 0 is not supported");
     TRosParams rp;
-    if (kv.count("occupied_thresh"))
-        rp.occupied = number("occupied_thresh", kv["occupied_thresh"]);
-    if (kv.count("free_thresh"))
-        rp.free = number("free_thresh", kv["free_thresh"]);
-    // map_server's thresholds are probabilities in [0, 1], free below occupied;
-    // anything else (nan, inf, 2) would silently turn every wall into unknown.
-    for (const auto& [k, v] :
-         {std::pair{"occupied_thresh", rp.occupied}, std::pair{"free_thresh", rp.free}})
-        if (!(v >= 0 && v <= 1))
-            throw CBadInputError(file + ": map YAML " + k + " = '" + kv[k] +
+    for (const auto& [k, dst] :
+         {std::pair<const char*, double*>{"occupied_thresh", &rp.occupied},
+          std::pair<const char*, double*>{"free_thresh", &rp.free}}) {
+        if (!has(k))
+            continue;
+        const std::string v = text(k);
+        double d = 0;
+        // map_server's thresholds are probabilities in [0, 1], free below
+        // occupied; anything else (nan, inf, 2) would silently turn every
+        // wall into unknown.
+        if (!toNumber(v, d) || !(d >= 0 && d <= 1))
+            throw CBadInputError(where(k) + " = '" + clippedText(v) +
                                  "' must be in [0, 1]");
+        *dst = d;
+    }
     if (!(rp.free < rp.occupied))
         throw CBadInputError(file + ": map YAML free_thresh must be < occupied_thresh");
-    if (kv.count("negate")) {
-        const std::string n = kv["negate"];
+    if (has("negate")) {
+        const std::string n = text("negate");
         if (n != "0" && n != "1" && n != "true" && n != "false")
-            throw CBadInputError(file + ": map YAML negate = '" + n + "' must be 0 or 1");
+            throw CBadInputError(where("negate") + " = '" + clippedText(n) +
+                                 "' must be 0 or 1");
         rp.negate = n == "1" || n == "true";
     }
-    const std::string mode = kv.count("mode") ? kv["mode"] : "trinary";
+    const std::string mode = has("mode") ? text("mode") : "trinary";
     if (mode != "trinary" && mode != "scale")
-        throw CBadInputError(file + ": map YAML mode '" + mode +
+        throw CBadInputError(where("mode") + " = '" + clippedText(mode) +
                              "' is not supported (trinary, scale)");
     if (const std::string why = fileProblem(img.string()); !why.empty())
         throw CBadInputError(file + ": map image " + why + ": " + img.string());
@@ -284,48 +549,55 @@ COccupancyGridMap2D fromRosYaml(const std::string& file) {
                      rp);
 }
 
-// A .gridmap is MRPT's serialized COccupancyGridMap2D. Its header (class name,
-// version 6: bits per cell, size_x, size_y, bounds, resolution) is checked
-// BEFORE MRPT deserializes it: a corrupt header (zeroed, resolution 0, huge
-// sizes) made MRPT allocate gigabytes. The file is decompressed into memory
-// no further than the largest grid needs.
-COccupancyGridMap2D fromGridmap(const std::string& file) {
+/** The bytes of a plain or gz-compressed file, no more than `cap` (more:
+ * CBadInputError with `tooLarge`). */
+std::string readAtMost(const std::string& file, size_t cap, const std::string& tooLarge,
+                       const std::string& unreadable) {
     std::string bytes;
     try {
         mrpt::io::CFileGZInputStream f(file);
-        const size_t cap = size_t(kMaxGridCells) + (1u << 20);
-        char buf[1 << 16];
-        for (size_t n; (n = f.Read(buf, sizeof(buf))) > 0;) {
-            bytes.append(buf, n);
+        std::vector<char> buf(1 << 16);
+        for (;;) {
+            const size_t n = f.Read(buf.data(), buf.size());
+            // MRPT passes gzread's -1 (a corrupt stream) on as a huge size_t
+            if (n > buf.size())
+                throw CBadInputError(unreadable + " (a corrupt gzip stream)");
+            if (n == 0)
+                break;
+            bytes.append(buf.data(), n);
             if (bytes.size() > cap)
-                throw CBadInputError(file +
-                                     ": larger than the largest map risknav reads (" +
-                                     std::to_string(kMaxGridCells) + " cells)");
+                throw CBadInputError(tooLarge);
         }
     } catch (const CBadInputError&) {
         throw;
     } catch (const std::exception&) {
-        throw CBadInputError(file + ": not a readable MRPT .gridmap file");
+        throw CBadInputError(unreadable);
     }
-    const std::string name = "mrpt::maps::COccupancyGridMap2D";
-    const size_t h = 1 + name.size();  // length byte (0x80 | len) + class name
-    const size_t o = h + 2;            // after the version and the bits-per-cell byte
+    return bytes;
+}
+
+// A .gridmap is MRPT's serialized COccupancyGridMap2D. Its header (class
+// name, version, bits per cell, size_x, size_y, bounds, resolution) is
+// checked BEFORE any grid is allocated: a corrupt header (zeroed, resolution
+// 0, huge sizes, bounds far beyond the size) made MRPT allocate gigabytes.
+// Every serialization version MRPT 2.5 reads (0..6; 8- or 16-bit cells,
+// the pre-0.5.5 object header) is read; the file is decompressed no further
+// than the largest grid needs.
+COccupancyGridMap2D fromGridmap(const std::string& file) {
+    const std::string unreadable = file + ": not a readable MRPT .gridmap file";
+    const std::string bytes =
+        readAtMost(file, size_t(2 * kMaxGridCells) + (1u << 20),
+                   file + ": larger than the largest map risknav reads (" +
+                       cellsText(kMaxGridCells) + ")",
+                   unreadable);
     auto bad = [&](const std::string& why) {
-        return CBadInputError(file + ": not a readable MRPT .gridmap file (" + why + ")");
+        return CBadInputError(unreadable + " (" + why + ")");
     };
-    if (bytes.size() < o + 28 || uint8_t(bytes[0]) != (0x80 | name.size()) ||
-        bytes.compare(1, name.size(), name) != 0)
-        throw bad("no COccupancyGridMap2D header");
-    // Only the layout MRPT 2.5 writes (version 6, 8-bit cells) is read.
-    if (uint8_t(bytes[h]) != 6)
-        throw bad("serialization version " + std::to_string(uint8_t(bytes[h])) +
-                  "; MRPT 2.5 writes 6");
-    if (uint8_t(bytes[h + 1]) != 8 * sizeof(COccupancyGridMap2D::cellType))
-        throw bad("cells of " + std::to_string(uint8_t(bytes[h + 1])) + " bits");
+    auto u8 = [&](size_t at) { return at < bytes.size() ? uint8_t(bytes[at]) : 0; };
     auto u32 = [&](size_t at) {
         uint32_t v = 0;
         for (int k = 3; k >= 0; k--)
-            v = (v << 8) | uint8_t(bytes[at + size_t(k)]);
+            v = (v << 8) | u8(at + size_t(k));
         return v;
     };
     auto f32 = [&](size_t at) {
@@ -334,17 +606,49 @@ COccupancyGridMap2D fromGridmap(const std::string& file) {
         std::memcpy(&v, &u, 4);
         return v;
     };
+    // The object header (CArchive): 0x80 | name length, name, version byte;
+    // or (before MRPT 0.5.5) a 32-bit name length, name, 32-bit version.
+    const bool oldHeader = !(u8(0) & 0x80);
+    const size_t nameLen = oldHeader ? u32(0) : size_t(u8(0) & 0x7F);
+    const size_t nameAt = oldHeader ? 4 : 1;
+    const std::string cls = "COccupancyGridMap2D";
+    if (bytes.size() < nameAt + nameLen + 4 || nameLen > 120 || nameLen < cls.size())
+        throw bad("no COccupancyGridMap2D header");
+    // MRPT also finds a class by its name without namespace (old datasets)
+    const std::string name = bytes.substr(nameAt, nameLen);
+    if (name.compare(nameLen - cls.size(), cls.size(), cls) != 0 ||
+        !(nameLen == cls.size() || name.compare(nameLen - cls.size() - 2, 2, "::") == 0))
+        throw bad("no COccupancyGridMap2D header");
+    size_t o = nameAt + nameLen;
+    const uint32_t version = oldHeader ? u32(o) : u8(o);
+    o += oldHeader ? 4 : 1;
+    if (version > 6)
+        throw bad("serialization version " + std::to_string(version) +
+                  "; MRPT 2.5 reads 0 to 6");
+    const unsigned bits = version >= 2 ? u8(o++) : 8;
+    if (bits != 8 && bits != 16)
+        throw bad("cells of " + std::to_string(bits) + " bits");
+    if (bytes.size() < o + 28)
+        throw bad("truncated header");
     const uint64_t sx = u32(o), sy = u32(o + 4);
-    const double x0 = f32(o + 8), x1 = f32(o + 12), y0 = f32(o + 16), y1 = f32(o + 20),
-                 res = f32(o + 24);
-    if (!(res >= 0.001 && res <= 10))
+    const float x0 = f32(o + 8), x1 = f32(o + 12), y0 = f32(o + 16), y1 = f32(o + 20),
+                res = f32(o + 24);
+    o += 28;
+    if (!(res >= 0.001f && res <= 10))
         throw bad("resolution " + std::to_string(res) + " m");
-    if (!(std::abs(x0) <= 1e6 && std::abs(x1) <= 1e6 && std::abs(y0) <= 1e6 &&
-          std::abs(y1) <= 1e6 && x0 < x1 && y0 < y1))
+    if (!(std::abs(x0) <= 1e6f && std::abs(x1) <= 1e6f && std::abs(y0) <= 1e6f &&
+          std::abs(y1) <= 1e6f && x0 < x1 && y0 < y1))
         throw bad("map bounds");
     if (sx == 0 || sy == 0 || sx * sy > kMaxGridCells)
         throw bad(std::to_string(sx) + " x " + std::to_string(sy) + " cells");
-    if (sx * sy > bytes.size() - (o + 28))
+    // MRPT sizes the grid from the bounds, not from size_x / size_y: both
+    // must agree (1 x 1 cells over 2 km at 1 mm would be 4e12 cells).
+    if (const auto [nx, ny] = setSizeCells(x0, x1, y0, y1, res); nx != sx || ny != sy)
+        throw bad("size " + std::to_string(sx) + " x " + std::to_string(sy) +
+                  " cells does not match its bounds and resolution (" +
+                  std::to_string(nx) + " x " + std::to_string(ny) + ")");
+    const uint64_t cellBytes = bits / 8;
+    if (sx * sy * cellBytes > bytes.size() - o)
         throw bad("truncated: " + std::to_string(sx) + " x " + std::to_string(sy) +
                   " cells announced");
     // The grid is built from the checked header and its cells; the options
@@ -352,28 +656,172 @@ COccupancyGridMap2D fromGridmap(const std::string& file) {
     // risknav sets itself) are not read: their lengths come from the file
     // too, and a corrupt one made MRPT allocate gigabytes.
     COccupancyGridMap2D g;
-    g.setSize(float(x0), float(x1), float(y0), float(y1), float(res));
-    if (g.getSizeX() != sx || g.getSizeY() != sy)
-        throw bad("size " + std::to_string(sx) + " x " + std::to_string(sy) +
-                  " does not match its bounds and resolution");
-    const char* cells = bytes.data() + o + 28;
-    for (uint64_t cy = 0; cy < sy; cy++)
-        std::memcpy(g.getRow(int(cy)), cells + cy * sx, size_t(sx));
+    g.setSize(x0, x1, y0, y1, res);
+    const unsigned char* cells = reinterpret_cast<const unsigned char*>(bytes.data()) + o;
+    for (uint64_t cy = 0; cy < sy; cy++) {
+        auto* row = g.getRow(int(cy));
+        for (uint64_t cx = 0; cx < sx; cx++) {
+            const uint64_t i = cy * sx + cx;
+            // 16-bit cells: MRPT keeps the high byte (of a little-endian word)
+            const uint8_t c = bits == 8 ? cells[i] : cells[2 * i + 1];
+            if (version < 3) {
+                // before version 3 cells were probabilities (0..255), not
+                // log-odds: MRPT converts them as it reads
+                row[cx] = COccupancyGridMap2D::p2l(float(double(c) * (1.0f / 0xFF)));
+            } else {
+                std::memcpy(&row[cx], &c, 1);
+            }
+        }
+    }
     return g;
 }
 
-COccupancyGridMap2D fromSimplemap(const std::string& file, double res) {
-    mrpt::maps::CSimpleMap sm;
-    try {
-        if (!sm.loadFromFile(file))
-            throw std::runtime_error("load");
-    } catch (const std::exception&) {
-        throw CBadInputError(file + ": not a readable MRPT .simplemap file");
+// What MRPT may allocate while deserializing a simplemap: as for a rawlog
+// entry (CRawlogReader), a base plus a small multiple of the decompressed
+// bytes: a real simplemap's arrays are stored in it.
+constexpr uint64_t kSimplemapBudgetBase = 64ull << 20;
+constexpr uint64_t kSimplemapBudgetPerByte = 16;
+// The largest decompressed simplemap read (its budget stays below 16 GiB).
+constexpr size_t kMaxSimplemapBytes = size_t(1) << 30;
+// MRPT inserts a scan with two stack buffers of its ray count (alloca).
+constexpr size_t kMaxScanRays = 100000;
+
+void readSimplemap(const std::string& file, mrpt::maps::CSimpleMap& sm, size_t budget) {
+    mrpt::io::CFileGZInputStream f(file);
+    auto a = mrpt::serialization::archiveFrom(f);
+    const CAllocationBudget b(budget);
+    a >> sm;
+}
+
+// A .simplemap is MRPT's CSimpleMap: keyframes (pose PDF, sensory frame).
+// MRPT 2.5 segfaults on some corrupt ones (a keyframe pose that is null or of
+// another class) and allocates what the file's counts say: the file is read
+// first in a forked child (probeInChild), then here under an allocation
+// budget. The grid its 2D scans give is sized before it is allocated.
+COccupancyGridMap2D fromSimplemap(const std::string& file, double res,
+                                  const std::string& section) {
+    const std::string unreadable = file + ": not a readable MRPT .simplemap file";
+    uint64_t bytes = 0;
+    {
+        try {
+            mrpt::io::CFileGZInputStream f(file);
+            std::vector<char> buf(1 << 16);
+            for (size_t n; (n = f.Read(buf.data(), buf.size())) > 0;) {
+                if (n > buf.size())
+                    throw CBadInputError(unreadable + " (a corrupt gzip stream)");
+                bytes += n;
+                if (bytes > kMaxSimplemapBytes)
+                    throw CBadInputError(file +
+                                         ": larger than 1 GiB, more than risknav reads");
+            }
+        } catch (const CBadInputError&) {
+            throw;
+        } catch (const std::exception&) {
+            throw CBadInputError(unreadable);
+        }
     }
+    const size_t budget = size_t(kSimplemapBudgetBase + kSimplemapBudgetPerByte * bytes);
+    if (common::probeInChild([&](const TProbeProgress&) {
+            mrpt::maps::CSimpleMap sm;
+            readSimplemap(file, sm, budget);
+        }))
+        throw CBadInputError(unreadable +
+                             " (MRPT's deserializer crashes on it: a null or mistyped "
+                             "object inside)");
+    mrpt::maps::CSimpleMap sm;
+    bool overBudget = false;
+    try {
+        readSimplemap(file, sm, budget);
+    } catch (const std::bad_alloc&) {
+        overBudget = true;
+    } catch (const std::exception&) {
+        throw CBadInputError(unreadable);
+    }
+    if (overBudget)
+        throw CBadInputError(unreadable + " (its counts ask for more than " +
+                             std::to_string(budget >> 20) + " MiB)");
     if (sm.empty())
         throw CBadInputError(file + ": the simplemap has no keyframes");
-    COccupancyGridMap2D g(-10, 10, -10, 10, static_cast<float>(res));
-    g.loadFromSimpleMap(sm);
+    // The extent of the grid: every 2D scan's rays as MRPT inserts them (no
+    // longer than maxDistanceInsertion, invalid ones half the last valid).
+    COccupancyGridMap2D g;
+    const float maxIns = g.insertionOptions.maxDistanceInsertion;
+    double xmin = HUGE_VAL, xmax = -HUGE_VAL, ymin = HUGE_VAL, ymax = -HUGE_VAL;
+    struct TScan {
+        mrpt::poses::CPose3D robot;
+        const mrpt::obs::CObservation2DRangeScan* scan;
+    };
+    std::vector<TScan> scans;
+    for (size_t i = 0; i < sm.size(); i++) {
+        const auto [pdf, sf] = sm.get(i);
+        const std::string at = file + ": keyframe " + std::to_string(i);
+        if (!pdf || !sf)
+            throw CBadInputError(at + " has no pose or no observations");
+        mrpt::poses::CPose3D robot;
+        pdf->getMean(robot);
+        auto sane = [](const mrpt::poses::CPose3D& p) {
+            for (const double v : {p.x(), p.y(), p.z(), p.yaw(), p.pitch(), p.roll()})
+                if (!(std::abs(v) <= 1e6))
+                    return false;
+            return true;
+        };
+        if (!sane(robot))
+            throw CBadInputError(at + ": its pose is not finite or beyond 1e6 m");
+        for (const auto& obs : *sf) {
+            if (!obs)
+                throw CBadInputError(at + ": a null observation");
+            const auto* scan =
+                dynamic_cast<const mrpt::obs::CObservation2DRangeScan*>(obs.get());
+            if (!scan)
+                continue;  // the grid takes 2D scans only
+            if (!sane(scan->sensorPose) || !std::isfinite(scan->aperture))
+                throw CBadInputError(at +
+                                     ": a scan's sensor pose or aperture is not finite");
+            const size_t n = scan->getScanSize();
+            if (n > kMaxScanRays)
+                throw CBadInputError(at + ": a scan of " + std::to_string(n) +
+                                     " rays, more than " + std::to_string(kMaxScanRays));
+            float longest = 0.5f * maxIns;
+            for (size_t k = 0; k < n; k++) {
+                if (!scan->getScanRangeValidity(k))
+                    continue;
+                const float r = scan->getScanRange(k);
+                if (!std::isfinite(r))
+                    throw CBadInputError(at + ": a scan range is not finite");
+                longest = std::max(longest, r);
+            }
+            const double reach = std::min(maxIns, longest);
+            const mrpt::poses::CPose3D sensor = robot + scan->sensorPose;
+            xmin = std::min(xmin, sensor.x() - reach);
+            xmax = std::max(xmax, sensor.x() + reach);
+            ymin = std::min(ymin, sensor.y() - reach);
+            ymax = std::max(ymax, sensor.y() + reach);
+            scans.push_back({robot, scan});
+        }
+    }
+    if (scans.empty())
+        throw CBadInputError(file + ": the simplemap has no 2D laser scans");
+    // MRPT grows a grid that comes within 15 cells of a scan: a margin of 20
+    // keeps it at this size.
+    const double margin = 20 * res;
+    const float x0 = float(xmin - margin), x1 = float(xmax + margin),
+                y0 = float(ymin - margin), y1 = float(ymax + margin);
+    const auto [nx, ny] = setSizeCells(x0, x1, y0, y1, float(res));
+    if (nx * ny > kMaxGridCells || nx == 0)
+        throw CBadInputError(
+            file + ": its scans span " + std::to_string(int64_t(std::ceil(x1 - x0))) +
+            " x " + std::to_string(int64_t(std::ceil(y1 - y0))) + " m, " +
+            std::to_string(nx) + " x " + std::to_string(ny) + " cells at [" + section +
+            "] simplemap_resolution = " +
+            [&] {
+                std::ostringstream t;
+                t << res;
+                return t.str();
+            }() +
+            " m, more than " + cellsText(kMaxGridCells) + " (a coarser resolution)");
+    g.setSize(x0, x1, y0, y1, float(res), 0.5f);
+    for (const auto& s : scans)
+        g.insertObservation(*s.scan, s.robot);
     return g;
 }
 }  // namespace
@@ -388,7 +836,7 @@ mrpt::maps::COccupancyGridMap2D loadOccupancyGrid(const TMapSourceOptions& src) 
     else if (endsWith(f, ".yaml") || endsWith(f, ".yml"))
         g = fromRosYaml(f);
     else if (endsWith(f, ".simplemap") || endsWith(f, ".simplemap.gz"))
-        g = fromSimplemap(f, src.simplemap_resolution);
+        g = fromSimplemap(f, src.simplemap_resolution, src.section);
     else
         g = fromImage(f, src.map_resolution, src.map_origin_x, src.map_origin_y,
                       TPixelModel::FreeIsWhite);

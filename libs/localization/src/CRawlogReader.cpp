@@ -18,8 +18,8 @@ CRawlogReader::CRawlogReader(const std::string& path, double minStdXY,
                              double minStdPhiDeg)
     : CRawlogReader(path, minStdXY, minStdPhiDeg, nullptr) {
     // One pass through MRPT in a child process finds the entry, if any,
-    // whose deserialization would kill this process (rawlog_scan.h).
-    m_crashEntry = probeInChild([&](const TProbeProgress& progress) {
+    // whose deserialization would kill this process (probe_in_child.h).
+    m_crashEntry = common::probeInChild([&](const TProbeProgress& progress) {
         CRawlogReader probe(path, minStdXY, minStdPhiDeg, &progress);
         while (probe.next()) {
         }

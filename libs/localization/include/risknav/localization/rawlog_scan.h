@@ -1,7 +1,7 @@
 #pragma once
+#include <risknav/common/probe_in_child.h>
+
 #include <cstdint>
-#include <functional>
-#include <optional>
 #include <string>
 
 namespace risknav::localization {
@@ -19,21 +19,6 @@ struct TRawlogSize {
  *  the file if it cannot be opened. */
 TRawlogSize rawlogBytes(const std::string& path);
 
-/** Progress callback of a probe: "this many units are done". */
-using TProbeProgress = std::function<void(std::uint64_t)>;
-
-/** Runs `work` in a forked child process. Returns nullopt when the child
- *  finished (normally or by an exception), or, when it died (signal,
- *  sanitizer exit, abort), the last value it passed to its progress callback
- *  (0 if none): the first unit it could not finish.
- *
- *  Why: MRPT 2.5's deserializers dereference null pointers they read from a
- *  file (a CActionCollection element, or a CActionRobotMovement2D pose PDF,
- *  that is null or of another class: its `deepcopy_poly_ptr` clones it), a
- *  signal no exception handler can catch. The rawlog reader reads the file
- *  once in a child to learn which entry, if any, does that. The child writes
- *  nothing to stdout or stderr and leaves by _exit, so no destructor of the
- *  parent's objects (staged output folders, files) runs in it. */
-std::optional<std::uint64_t> probeInChild(
-    const std::function<void(const TProbeProgress&)>& work);
+/** The probe's progress callback (risknav/common/probe_in_child.h). */
+using TProbeProgress = common::TProbeProgress;
 }  // namespace risknav::localization
