@@ -49,10 +49,21 @@ void readWaypointFile(const std::string& path, double tol,
         const double d = std::max(tol, readDouble(*f, W, k + "allowed_distance", tol,
                                                   TRange::closed(0.001, 100, "m")));
         const bool skip = readBool(*f, W, k + "allow_skip", true);
-        // MRPT's speed at the approach (TargetInfo::targetDesiredRelSpeed);
-        // 0 would never arrive
+        // MRPT's speed at the approach (TargetInfo::targetDesiredRelSpeed):
+        // MRPT 2.5.8 slows to it only within its holonomic method's
+        // TARGET_SLOW_APPROACHING_DISTANCE (0.1 m in MRPT's shipped file) of
+        // the waypoint, inside the allowed distance where the waypoint is
+        // already reached. It changed nothing (the office route's cycles.csv
+        // was the same with 0.05 and 1), so only MRPT's default 1 is taken.
         const double ratio =
             readDouble(*f, W, k + "speed_ratio", 1, TRange{0, 1, true, false, ""});
+        if (ratio != 1)
+            throwBadKey(
+                *f, W, k + "speed_ratio", readString(*f, W, k + "speed_ratio", ""),
+                "only 1: MRPT 2.5.8 slows to it only within 0.1 m of the "
+                "waypoint (TARGET_SLOW_APPROACHING_DISTANCE), where it is already "
+                "reached (allowed distance >= goal_tolerance), so it has no effect; "
+                "remove the key");
         // the robot's pose is in "map" (CSimRobotInterface): a waypoint in
         // another frame would need a transform MRPT's navigator cannot get here
         const std::string frame = readString(*f, W, k + "target_frame_id", "map");

@@ -334,22 +334,65 @@ TEST(AfraidLimiter, BadFilesAndKeysAreClearErrors) {
     }
 }
 
-TEST(WaypointFile, MrptsSpeedRatioIsAppliedAsItsApproachSpeed) {
-    // wpNNN_speed_ratio reaches MRPT's TWaypoint (its targetDesiredRelSpeed
-    // at the approach); absent, MRPT's default 1
+TEST(WaypointFile, SpeedRatioOtherThanOneIsRefusedWithTheReason) {
+    // MRPT 2.5.8 applies wpNNN_speed_ratio only within 0.1 m of the waypoint,
+    // where it is already reached: accepted, it changed nothing. 1 (MRPT's
+    // default, what risknav-viewpoint-plan writes) is taken.
     const std::string d = test::freshDir("wpfile");
-    test::writeFile(d + "/wp.ini",
-                    "[Waypoints]\nwaypoint_count = 2\nwp000_target_x = 5\n"
-                    "wp000_target_y = 6.6\nwp000_speed_ratio = 0.4\n"
-                    "wp000_target_frame_id = map\nwp001_target_x = 9\n"
-                    "wp001_target_y = 6.6\n");
+    const std::string head =
+        "[Waypoints]\nwaypoint_count = 2\nwp000_target_x = 5\nwp000_target_y = 6.6\n"
+        "wp000_target_frame_id = map\nwp001_target_x = 9\nwp001_target_y = 6.6\n";
     mrpt::nav::TWaypointSequence seq;
     std::map<size_t, nav::TWaypointTag> tags;
+    test::writeFile(d + "/wp.ini", head + "wp000_speed_ratio = 0.4\n");
+    try {
+        nav::readWaypointFile(d + "/wp.ini", 0.3, seq, tags);
+        ADD_FAILURE() << "accepted";
+    } catch (const common::CBadInputError& e) {
+        EXPECT_EQ(
+            std::string(e.what()).rfind(d + "/wp.ini: [Waypoints] wp000_speed_ratio = "
+                                            "'0.4': only 1: MRPT 2.5.8 slows to it only "
+                                            "within 0.1 m of the waypoint",
+                                        0),
+            0u)
+            << e.what();
+    }
+    test::writeFile(d + "/wp.ini", head + "wp000_speed_ratio = 1\n");
     nav::readWaypointFile(d + "/wp.ini", 0.3, seq, tags);
     ASSERT_EQ(seq.waypoints.size(), 2u);
-    EXPECT_DOUBLE_EQ(seq.waypoints[0].speed_ratio, 0.4);
+    EXPECT_DOUBLE_EQ(seq.waypoints[0].speed_ratio, 1.0);
     EXPECT_EQ(seq.waypoints[0].target_frame_id, "map");
     EXPECT_DOUBLE_EQ(seq.waypoints[1].speed_ratio, 1.0);
+}
+
+TEST(WaypointFile, TheDocumentedExampleLoads) {
+    // config/risknav-navigate.ini documents the route_file keys with an
+    // example (the ';   ' lines after "route_file:"): it is what the reader
+    // takes.
+    std::string example;
+    bool in = false;
+    for (const auto& line :
+         test::readLines(test::sourcePath("config/risknav-navigate.ini"))) {
+        if (line.rfind("; route_file:", 0) == 0)
+            in = true;
+        else if (in && line.rfind(";   ", 0) == 0)
+            example += line.substr(4) + "\n";
+        else if (in && !example.empty())
+            break;
+    }
+    ASSERT_NE(example.find("[Waypoints]"), std::string::npos) << example;
+    const std::string d = test::freshDir("wpdoc");
+    test::writeFile(d + "/route.ini", example);
+    mrpt::nav::TWaypointSequence seq;
+    std::map<size_t, nav::TWaypointTag> tags;
+    nav::readWaypointFile(d + "/route.ini", 0.3, seq, tags);
+    ASSERT_EQ(seq.waypoints.size(), 2u);
+    EXPECT_DOUBLE_EQ(seq.waypoints[0].target.x, 9.0);
+    EXPECT_DOUBLE_EQ(seq.waypoints[1].target.y, 6.6);
+    EXPECT_DOUBLE_EQ(seq.waypoints[0].allowed_distance, 0.5);
+    EXPECT_FALSE(seq.waypoints[1].allow_skip);
+    ASSERT_EQ(tags.count(1), 1u);
+    EXPECT_EQ(tags.at(1).kind, "viewpoint");
 }
 
 TEST(EscapeHeading, AgreesWithASweepOfAllHeadings) {

@@ -17,7 +17,8 @@ struct TWaypointTag {
  * waypoint_count, wpNNN_target_x / _target_y / _allowed_distance /
  * _allow_skip / _speed_ratio / _target_frame_id, the keys of MRPT's
  * TWaypointSequence::save / load) strictly: a missing or malformed number,
- * a speed_ratio outside (0, 1] (it is MRPT's approach speed), a frame other
+ * a speed_ratio other than 1 (MRPT 2.5.8 applies its approach speed only
+ * within 0.1 m of a waypoint, where it is already reached), a frame other
  * than "map", a target_heading (MRPT's diff-drive simulator cannot align),
  * a count beyond 10000 or an unknown key is a CBadInputError naming the file
  * (MRPT's own load() would read "5abc" as 5). Each waypoint's allowed
