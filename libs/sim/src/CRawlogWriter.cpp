@@ -1,14 +1,16 @@
+#include <risknav/common/COutputDir.h>
 #include <risknav/sim/CRawlogWriter.h>
 
 #include <mrpt/serialization/CArchive.h>
 
+#include <cerrno>
 #include <stdexcept>
 
 namespace risknav::sim {
 CRawlogWriter::CRawlogWriter(const std::string& path, int level)
     : m_path(path), m_file(std::make_unique<mrpt::io::CFileGZOutputStream>()) {
     if (!m_file->open(path, level))
-        throw std::runtime_error("cannot write rawlog " + path);
+        throw common::writeFailure(path, errno);
 }
 
 void CRawlogWriter::write(const mrpt::obs::CActionCollection& actions,
@@ -17,9 +19,9 @@ void CRawlogWriter::write(const mrpt::obs::CActionCollection& actions,
         auto a = mrpt::serialization::archiveFrom(*m_file);
         a << actions << sf;
     } catch (const std::exception&) {
-        // MRPT says only "Cannot write bytes to stream!" (a full disk): name the file.
-        throw std::runtime_error("cannot write rawlog " + m_path +
-                                 " (disk full or file system error)");
+        // MRPT says only "Cannot write bytes to stream!" (a full disk): the
+        // file, and the system's reason as the failed write left it
+        throw common::writeFailure(m_path, errno);
     }
     m_frames++;
 }
