@@ -64,7 +64,7 @@ TEST(AfraidLearnE2E, OneZonePerDoorAndNoOther) {
     const std::string d = freshDir("out");
     const auto s = learn(d, "");
     EXPECT_EQ(s["status"], "ok");
-    EXPECT_EQ(s["frames"], 3959);
+    EXPECT_EQ(s["frames"], 3990);  // 3959 when the vehicle overshot its steps
     const double doors[3][2] = {{11.21, 12.02}, {13.68, 15.10}, {17.53, 18.95}};
     ASSERT_EQ(s["zones"].size(), 3u) << s["zones"].dump();
     std::vector<int> zoneOfDoor(3, 0);

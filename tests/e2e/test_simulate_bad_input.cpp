@@ -92,6 +92,12 @@ INSTANTIATE_TEST_SUITE_P(
         TCase{"start_in_obstacle", "waypoints = 2.0 4.5  28.0 4.5",
               "waypoints = 2.0 1.0  28.0 4.5", "",
               "start (2.00, 1.00) is inside an obstacle"},
+        // in metres, as risknav-navigate and -explore check it (the
+        // distance field's whole cells let it run and collide at t = 0)
+        TCase{"start_0_20_m_from_wall", "waypoints = 2.0 4.5  28.0 4.5",
+              "waypoints = 2.0 3.2  2.0 4.5  28.0 4.5", "",
+              "start (2.00, 3.20) is inside an obstacle (clearance 0.20 m < robot "
+              "radius 0.25 m)"},
         TCase{"start_on_clutter", "\\[Robot\\]\n",
               "[Clutter9]\nx = 2.0\ny = 4.5\n\n[Robot]\n", "",
               "start (2.00, 4.50) is inside [Clutter9]"},

@@ -417,30 +417,15 @@ void CNavigationRun::checkAgainstMap(const CIniConfig& c) const {
     if (!onMap(s.x, s.y))
         throwBadKey(c, kSec, "start", startText,
                     "start " + pointText(s.x, s.y) + " is outside the map");
-    const double cl = world.pointClearance(s.x, s.y);
-    if (cl < world.robot.radius) {
-        char b[200];
-        std::snprintf(b, sizeof(b),
-                      "the robot is spawned in collision at %s (clearance %.2f m < "
-                      "robot radius %.2f m)",
-                      pointText(s.x, s.y).c_str(), cl, world.robot.radius);
-        throwBadKey(c, kSec, "start", startText, b);
-    }
+    // the map and the clutter the map does not hold, in metres, as every app
+    // checks a start (CSimWorld::placement()); people move: a person crossing
+    // the start is the world's, not the config's, problem
+    if (const auto pl = world.placement(s.x, s.y); !pl.free())
+        throwBadKey(c, kSec, "start", startText,
+                    "the robot is spawned in collision with " + pl.with + ": start " +
+                        pointText(s.x, s.y) + " " + pl.why);
     // the people's paths and the clutter against the map (as risknav-simulate)
     world.checkAgentsAgainstMap(c);
-    // the clutter the map does not hold, at the start (people move: a person
-    // crossing the start is the world's, not the config's, problem)
-    double d = 0;
-    if (const auto* k =
-            world.agents.clutterOverlapping(s.x, s.y, world.robot.radius, &d)) {
-        char b[240];
-        std::snprintf(b, sizeof(b),
-                      "the robot is spawned in collision with [%s] at %s (%.2f m "
-                      "between the centres < %.2f m + robot radius %.2f m)",
-                      k->section.c_str(), pointText(k->x, k->y).c_str(), d, k->radius,
-                      world.robot.radius);
-        throwBadKey(c, kSec, "start", startText, b);
-    }
     for (const auto& w : waypoints.waypoints)
         if (!onMap(w.target.x, w.target.y))
             throwBadKey(

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 using namespace risknav::common;
 using mrpt::math::TPoint2D;
@@ -80,7 +81,7 @@ void CSimWorld::buildField() {
 }
 
 void CSimWorld::reset(const mrpt::math::TPose2D& start, uint64_t seed, double startTime) {
-    m_vehicle = mrpt::kinematics::CVehicleSimul_DiffDriven();
+    m_vehicle = CDiffDriveVehicle();
     m_vehicle.setCurrentGTPose(start);
     odometry.reset(start, streamSeed(seed, 1));
     agents.reset(streamSeed(seed, 2));
@@ -113,8 +114,7 @@ void CSimWorld::step(double dt) {
         m_v = 0;
     if (std::abs(m_w) < 1e-9)
         m_w = 0;
-    m_vehicle.movementCommand(m_v, m_w);
-    m_vehicle.simulateOneTimeStep(dt);
+    m_vehicle.advance(m_v, m_w, dt);
     const auto tw = m_vehicle.getCurrentGTVelLocal();
     odometry.step(tw.vx, tw.omega, dt);
     agents.step(t0 + dt, dt, truePose(), robot.radius, m_agentEvents);
@@ -150,6 +150,28 @@ double CSimWorld::rangesPerFrame() const {
 bool CSimWorld::onMap(double x, double y) const {
     return x >= m_grid.getXMin() && x <= m_grid.getXMax() && y >= m_grid.getYMin() &&
            y <= m_grid.getYMax();
+}
+
+CSimWorld::TPlacement CSimWorld::placement(double x, double y) const {
+    char b[240];
+    if (!onMap(x, y))
+        return {"the map", "is outside the map"};
+    const double R = robot.radius, cl = pointClearance(x, y);
+    if (cl < R) {
+        std::snprintf(b, sizeof(b),
+                      "is inside an obstacle (clearance %.2f m < robot radius %.2f m)",
+                      cl, R);
+        return {"the map", b};
+    }
+    double d = 0;
+    if (const auto* k = agents.clutterOverlapping(x, y, R, &d)) {
+        std::snprintf(b, sizeof(b),
+                      "is inside [%s] (%.2f m from its centre < %.2f m + robot radius "
+                      "%.2f m)",
+                      k->section.c_str(), d, k->radius, R);
+        return {"[" + k->section + "]", b};
+    }
+    return {};
 }
 
 std::optional<TPoint2D> CSimWorld::firstSampleWhere(

@@ -130,38 +130,24 @@ void CWorldSimulator::checkAgainstMap(const CIniConfig& c) const {
         if (!world.onMap(p.x, p.y))
             throwBadKey(c, "Route", "waypoints", wpText,
                         "point " + where(p) + " is outside the map");
+    // the start in metres, as every app checks it (CSimWorld::placement())
+    if (const auto pl = world.placement(wps[0].x, wps[0].y); !pl.free())
+        throwBadKey(c, "Route", "waypoints", wpText,
+                    "start " + where(wps[0]) + " " + pl.why);
     const double R = world.robot.radius;
-    if (world.clearance(wps[0].x, wps[0].y) < R) {
-        char b[160];
-        std::snprintf(
-            b, sizeof(b),
-            "start %s is inside an obstacle (clearance %.2f m < robot radius %.2f m)",
-            where(wps[0]).c_str(), world.clearance(wps[0].x, wps[0].y), R);
-        throwBadKey(c, "Route", "waypoints", wpText, b);
-    }
-    // the clutter the map does not hold
-    double d = 0;
-    if (const auto* k = world.agents.clutterOverlapping(wps[0].x, wps[0].y, R, &d)) {
-        char b[200];
-        std::snprintf(b, sizeof(b),
-                      "start %s is inside [%s] (%.2f m from its centre < %.2f m + "
-                      "robot radius %.2f m)",
-                      where(wps[0]).c_str(), k->section.c_str(), d, k->radius, R);
-        throwBadKey(c, "Route", "waypoints", wpText, b);
-    }
     std::vector<TPoint2D> pass = wps;
     if (route.options.mode == "loop")
         pass.push_back(wps.front());
     for (size_t i = 1; i < pass.size(); i++)
         if (const auto q = world.firstSampleWhere(
                 pass[i - 1], pass[i],
-                [&](const TPoint2D& p) { return world.clearance(p.x, p.y) < R; })) {
+                [&](const TPoint2D& p) { return world.pointClearance(p.x, p.y) < R; })) {
             char b[220];
             std::snprintf(b, sizeof(b),
                           "segment %zu %s -> %s runs through an obstacle at %s "
                           "(clearance %.2f m < robot radius %.2f m)",
                           i, where(pass[i - 1]).c_str(), where(pass[i]).c_str(),
-                          where(*q).c_str(), world.clearance(q->x, q->y), R);
+                          where(*q).c_str(), world.pointClearance(q->x, q->y), R);
             throwBadKey(c, "Route", "waypoints", wpText, b);
         }
     {

@@ -68,30 +68,16 @@ void CExplorer::loadFromConfigFile(const CIniConfig& c, std::optional<uint64_t> 
                           x, y, g.getXMin(), g.getXMax(), g.getYMin(), g.getYMax());
             throwBadKey(c, "Explore", key, readString(c, "Explore", key, ""), b);
         }
-        if (world.pointClearance(x, y) < world.robot.radius) {
-            std::snprintf(b, sizeof(b),
-                          "(%.2f, %.2f) is inside an obstacle (clearance %.2f m < robot "
-                          "radius %.2f m)",
-                          x, y, world.pointClearance(x, y), world.robot.radius);
-            throwBadKey(c, "Explore", key, readString(c, "Explore", key, ""), b);
-        }
+        // in metres, as every app checks a start (CSimWorld::placement());
+        // the clutter the map does not hold is checked at the start only
+        const auto pl = world.placement(x, y);
+        if (!pl.free() && (key == "start" || pl.with == "the map"))
+            throwBadKey(c, "Explore", key, readString(c, "Explore", key, ""),
+                        pointText(x, y) + " " + pl.why);
     };
     check("start", explore.start[0], explore.start[1]);
     // people and clutter against the map (as every app that steps the world)
     world.checkAgentsAgainstMap(c);
-    // the clutter the map does not hold, not on the robot (a tester's start
-    // inside a disc gave a collision in every mode, exit 0)
-    double d = 0;
-    if (const auto* k = world.agents.clutterOverlapping(
-            explore.start[0], explore.start[1], world.robot.radius, &d)) {
-        char b[200];
-        std::snprintf(b, sizeof(b),
-                      "(%.2f, %.2f) is inside [%s] (%.2f m from its centre < %.2f m + "
-                      "robot radius %.2f m)",
-                      explore.start[0], explore.start[1], k->section.c_str(), d,
-                      k->radius, world.robot.radius);
-        throwBadKey(c, "Explore", "start", readString(c, "Explore", "start", ""), b);
-    }
     for (size_t k = 0; k + 1 < explore.destinations.size(); k += 2)
         check("destinations", explore.destinations[k], explore.destinations[k + 1]);
     // N must exist for each model (validate() cannot know the free threshold)

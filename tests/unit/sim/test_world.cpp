@@ -47,16 +47,14 @@ TEST(SimWorld, ConstantCommandDrivesTheArc) {
     // On the circle of radius v / omega through the start, heading tangent.
     EXPECT_NEAR(p.x, R * std::sin(p.phi), 1e-3);
     EXPECT_NEAR(p.y, R * (1 - std::cos(p.phi)), 1e-3);
-    // MRPT 2.5.8's CVehicleSimul_DiffDriven::simulateOneTimeStep(dt) runs its
-    // 0.5 ms firmware sub-steps past dt (4.0155 s of motion after 80 x 0.05 s):
-    // the arc is 0.39 % longer than omega T. Known, kept (the committed
-    // rawlogs depend on it), bounded here.
-    EXPECT_NEAR(p.phi, om * T, 0.005);
-    EXPECT_GT(p.phi, om * T - 1e-9);
-    // No odometry error: the odometry integrates the true twist over the
-    // world's clock, so it trails the truth by that overshoot only.
+    // Exactly omega T: MRPT 2.5.8's simulateOneTimeStep(dt) ran its 0.5 ms
+    // sub-steps past dt (4.0155 s of motion after 80 x 0.05 s); the world
+    // steps its vehicle for dt exactly (CDiffDriveVehicle).
+    EXPECT_NEAR(p.phi, om * T, 1e-9);
+    EXPECT_NEAR(p.x, R * std::sin(om * T), 1e-9);
+    // No odometry error: the odometry integrates the same twist.
     EXPECT_NEAR(w.odometricPose().phi, om * T, 1e-9);
-    EXPECT_NEAR(w.odometricPose().x, R * std::sin(om * T), 1e-3);
+    EXPECT_NEAR(w.odometricPose().x, R * std::sin(om * T), 1e-9);
     EXPECT_NEAR(w.speed(), v, 1e-12);
 }
 
@@ -281,4 +279,38 @@ TEST(CRawlogWriter, AFullDiskNamesTheFile) {
         err = e.what();
     }
     EXPECT_NE(err.find("/dev/full"), std::string::npos) << err;
+}
+
+// The one start check of every app, in metres (the distance field's whole
+// cells let a start 0.20 m from a wall pass for a 0.25 m robot).
+TEST(SimWorld, PlacementIsCheckedInMetres) {
+    mrpt::maps::COccupancyGridMap2D g(-10, 10, -10, 10, 0.05f);
+    g.fill(1.0f);
+    for (int iy = 0; iy < int(g.getSizeY()); iy++)
+        for (int ix = g.x2idx(1.0 + 0.025); ix < int(g.getSizeX()); ix++)
+            g.setCell(ix, iy, 0.0f);  // a wall from x = 1.0 m on
+    CSimWorld w;
+    w.robot.radius = 0.25;
+    CAgentsSim::TClutter k;
+    k.section = "Clutter1";
+    k.x = -5;
+    k.y = 0;
+    k.radius = 0.3;
+    w.agents.clutter.push_back(k);
+    w.setMap(g);
+    EXPECT_NEAR(w.pointClearance(0.80, 0), 0.20, 1e-6);
+    const auto near = w.placement(0.80, 0);
+    EXPECT_FALSE(near.free());
+    EXPECT_EQ(near.with, "the map");
+    EXPECT_EQ(near.why, "is inside an obstacle (clearance 0.20 m < robot radius 0.25 m)");
+    EXPECT_TRUE(w.placement(0.74, 0).free());   // 0.26 m
+    EXPECT_FALSE(w.placement(0.76, 0).free());  // 0.24 m
+    const auto off = w.placement(0, 12);
+    EXPECT_EQ(off.why, "is outside the map");
+    const auto onDisc = w.placement(-5.5, 0);  // 0.5 m < 0.3 + 0.25
+    EXPECT_EQ(onDisc.with, "[Clutter1]");
+    EXPECT_EQ(onDisc.why,
+              "is inside [Clutter1] (0.50 m from its centre < 0.30 m + robot radius "
+              "0.25 m)");
+    EXPECT_TRUE(w.placement(-5.6, 0).free());
 }

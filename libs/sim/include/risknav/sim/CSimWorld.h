@@ -4,10 +4,10 @@
 #include <risknav/mapping/CDistanceField.h>
 #include <risknav/mapping/TObstacleRule.h>
 #include <risknav/sim/CAgentsSim.h>
+#include <risknav/sim/CDiffDriveVehicle.h>
 #include <risknav/sim/COdometrySim.h>
 #include <risknav/sim/CRangeSensorSim.h>
 
-#include <mrpt/kinematics/CVehicleSimul_DiffDriven.h>
 #include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/math/TPose2D.h>
 #include <mrpt/math/TTwist2D.h>
@@ -17,12 +17,14 @@
 #include <functional>
 #include <optional>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace risknav::sim {
 /** A steppable world: a static occupancy map, the people and clutter the map
  * does not show, and a differential-drive robot (MRPT's
- * CVehicleSimul_DiffDriven) with acceleration limits, wheel odometry with the
+ * CVehicleSimul_DiffDriven, stepped for exactly dt: CDiffDriveVehicle) with
+ * acceleration limits, wheel odometry with the
  * errors of Irie et al. and range sensors. A controller (route follower,
  * speed controller, MRPT's reactive navigator through CSimRobotInterface)
  * commands a velocity, step() advances physics, odometry and people, sense()
@@ -70,6 +72,24 @@ class CSimWorld {
     /** (x, y) within the map's bounds. */
     bool onMap(double x, double y) const;
 
+    /** Where the robot disc at a point would be in collision. */
+    struct TPlacement {
+        /** What it hits: "" (nothing), "the map" (off it or on an obstacle) or
+         * a clutter section, "[ClutterN]". */
+        std::string with;
+        /** The reason after the point, e.g. "is inside an obstacle (clearance
+         * 0.20 m < robot radius 0.25 m)"; "" when free. */
+        std::string why;
+        bool free() const { return with.empty(); }
+    };
+    /** The robot disc at (x, y) against the map and the clutter, in metres:
+     * the exact distance to the obstacle cells' squares (pointClearance(),
+     * what collisions are counted with) against the robot radius. The one
+     * start check of every app that steps the world (the distance field's
+     * whole cells let a start 0.20 m from a wall pass for a 0.25 m robot,
+     * which then collided at t = 0). */
+    TPlacement placement(double x, double y) const;
+
     /** Sets the map directly (from code); validates the options. */
     void setMap(const mrpt::maps::COccupancyGridMap2D& grid);
 
@@ -81,7 +101,9 @@ class CSimWorld {
     /** The commanded velocity [m/s, rad/s], clamped to max_v / max_w; the
      * robot follows it within its acceleration limits. */
     void command(double v, double w);
-    /** Advances the world by dt [s] under the current command. */
+    /** Advances the world by dt [s] under the current command: the speed
+     * moves towards the command within the acceleration limits, then the
+     * robot drives that twist for exactly dt. */
     void step(double dt);
     void step(double v, double w, double dt) {
         command(v, w);
@@ -117,13 +139,13 @@ class CSimWorld {
     /** People events since reset (emerge, spawn, leave, give_up). */
     const std::vector<TAgentEvent>& agentEvents() const { return m_agentEvents; }
     size_t range2Scans() const { return m_range2Scans; }
-    mrpt::kinematics::CVehicleSimul_DiffDriven& vehicle() { return m_vehicle; }
+    CDiffDriveVehicle& vehicle() { return m_vehicle; }
 
   private:
     void buildField();
     mrpt::maps::COccupancyGridMap2D m_grid;
     risknav::mapping::CDistanceField m_field;
-    mrpt::kinematics::CVehicleSimul_DiffDriven m_vehicle;
+    CDiffDriveVehicle m_vehicle;
     std::mt19937_64 m_rngLaser, m_rngRange2;
     std::vector<TAgentEvent> m_agentEvents;
     double m_v = 0, m_w = 0, m_vCmd = 0, m_wCmd = 0;
