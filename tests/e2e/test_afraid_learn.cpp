@@ -559,6 +559,17 @@ INSTANTIATE_TEST_SUITE_P(
              "learned on another map"},
         TBad{"no_laser", "--set AfraidLearn.rawlogs=@W/nolaser.rawlog",
              "no 2D laser scan (CObservation2DRangeScan)"},
+        // MRPT's range-bearing logs (they end with an action without its
+        // sensory frame): they were called "truncated at entry 500"
+        TBad{"mrpt_kf_slam_demo_no_laser",
+             "--set AfraidLearn.rawlogs=/usr/share/mrpt/datasets/kf-slam_demo.rawlog",
+             "/usr/share/mrpt/datasets/kf-slam_demo.rawlog: no 2D laser scan "
+             "(CObservation2DRangeScan) in its first 249 frames, where reading stops: "
+             "truncated rawlog at entry 500"},
+        TBad{"mrpt_ro_slam_demo_no_laser",
+             "--set AfraidLearn.rawlogs=/usr/share/mrpt/datasets/RO-SLAM_demo.rawlog",
+             "/usr/share/mrpt/datasets/RO-SLAM_demo.rawlog: no 2D laser scan "
+             "(CObservation2DRangeScan) in its first 99 frames"},
         TBad{"missing_rawlog", "--set AfraidLearn.rawlogs=@W/none.rawlog",
              "rawlog not found"},
         TBad{"afraid_in_twice",
@@ -647,4 +658,23 @@ TEST(AfraidLearnE2E, EveryKeyInTheDocumentedConfigIsKnown) {
     // ours starts 1 m before the first zone.
     EXPECT_NEAR(s["ten_metre_section"]["time_before_s"].get<double>(), 50.0, 1e-6);
     EXPECT_LT(s["ten_metre_section"]["time_after_s"].get<double>(), 35.0);
+}
+
+// Paths and names quoted in a message are clipped as config values are: a
+// 100 KB sensor label was quoted whole on the "one line".
+TEST(AfraidLearnMessages, LongNameIsClipped) {
+    const std::string label(100000, 'L');
+    const std::string out = freshDir("out");
+    const auto r =
+        run(binPath(kLearn) + " -q -o '" + out +
+            "' --set AfraidLearn.rawlogs=/usr/share/mrpt/datasets/"
+            "kf-slam_demo.rawlog --set AfraidLearn.scan_label=" +
+            label + " '" + sourcePath("datasets/corridor-doors/afraid.ini") + "'");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err.size();
+    EXPECT_LT(r.err.size(), 600u);
+    EXPECT_NE(r.err.find("labelled 'LLLL"), std::string::npos);
+    EXPECT_NE(r.err.find("... (100000 bytes)') in its first 249 frames"),
+              std::string::npos)
+        << r.err.substr(0, 300);
 }

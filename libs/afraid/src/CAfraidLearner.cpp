@@ -277,13 +277,50 @@ void CAfraidLearner::run(bool quiet) {
 
 void CAfraidLearner::replay(const std::string& path,
                             const std::vector<TGroundTruthPose>* gt, bool quiet) {
-    // Count the frames first (cheap: no filtering) for the progress line.
+    auto laserOf = [&](const mrpt::obs::CSensoryFrame& sf) {
+        for (const auto& o : sf) {
+            auto s = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(o);
+            if (s && (options.scan_label.empty() || s->sensorLabel == options.scan_label))
+                return s;
+        }
+        return mrpt::obs::CObservation2DRangeScan::Ptr();
+    };
+    // Count the frames first (cheap: no filtering) for the progress line, and
+    // see whether the log holds the laser at all, before any work (exit 2,
+    // earlier outputs untouched): MRPT's range-bearing demo logs
+    // (kf-slam_demo, RO-SLAM_demo) were called "truncated at entry 500" for
+    // their last action, not what they are.
     size_t total = 0;
+    bool anyScan = false;
+    std::string countError;
     try {
         localization::CRawlogReader counter(path);
-        while (counter.next())
+        while (const auto f = counter.next()) {
             total++;
-    } catch (const std::exception&) {
+            anyScan = anyScan || (f->sf && laserOf(*f->sf));
+        }
+    } catch (const std::exception& e) {
+        countError = e.what();
+    }
+    if (!anyScan && (total > 0 || countError.empty())) {
+        const std::string what =
+            "no 2D laser scan (CObservation2DRangeScan" +
+            (options.scan_label.empty() ? std::string()
+                                        : " labelled '" + options.scan_label + "'") +
+            ")";
+        if (countError.empty())
+            throw CBadInputError(path + ": " + what + " in the file (" +
+                                 std::to_string(total) +
+                                 " frames): nothing to localize with");
+        else {
+            // the reader's reason without its leading "<path>: "
+            const std::string why = countError.rfind(path + ": ", 0) == 0
+                                        ? countError.substr(path.size() + 2)
+                                        : countError;
+            throw CBadInputError(path + ": " + what + " in its first " +
+                                 std::to_string(total) +
+                                 " frames, where reading stops: " + why);
+        }
     }
     localization::CRawlogReader reader(path);
     CProgress progress("replay " + fs::path(path).filename().string(), total, "frames",
@@ -315,15 +352,7 @@ void CAfraidLearner::replay(const std::string& path,
         progress.update(++done);
         if (!frame->actions || !frame->sf)
             continue;
-        mrpt::obs::CObservation2DRangeScan::Ptr scan;
-        for (const auto& o : *frame->sf) {
-            auto s = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(o);
-            if (s &&
-                (options.scan_label.empty() || s->sensorLabel == options.scan_label)) {
-                scan = s;
-                break;
-            }
-        }
+        const auto scan = laserOf(*frame->sf);
         if (!scan)
             continue;
         m_sawScan = true;

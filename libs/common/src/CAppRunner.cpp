@@ -5,7 +5,9 @@
 
 #include <mrpt/version.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <utility>
 
@@ -40,6 +42,36 @@ std::string printable(const std::string& s) {
 }
 }  // namespace
 
+std::string clippedMessage(const std::string& s) {
+    // Paths, names and values quoted whole (a 1 MB path, a 10 MB sensor
+    // label) made a megabyte "line": each run without a space is clipped as
+    // config values are (clippedText), and a line of many short words keeps
+    // its head and its tail (the reason usually ends it).
+    constexpr size_t kRun = 200, kLine = 1200;
+    std::string out;
+    for (size_t i = 0; i < s.size();) {
+        const size_t e = std::min(s.find(' ', i), s.size());
+        // the punctuation around the run ("<path>:", "'<name>',") stays
+        size_t b = i, core = e;
+        while (b < e && std::strchr("'\"(", s[b]) && s[b])
+            b++;
+        while (core > b && std::strchr(":;,.'\")]", s[core - 1]) && s[core - 1])
+            core--;
+        out.append(s, i, b - i);
+        // (longer than a value clippedText already clipped)
+        out += core - b > kRun + 56 ? clippedText(s.substr(b, core - b), kRun)
+                                    : s.substr(b, core - b);
+        out.append(s, core, e - core);
+        if (e < s.size())
+            out += ' ';
+        i = e + 1;
+    }
+    if (out.size() > kLine)
+        out = out.substr(0, kLine * 2 / 3) + " ... (" + std::to_string(s.size()) +
+              " bytes) ... " + out.substr(out.size() - kLine / 3);
+    return out;
+}
+
 std::string firstLine(const std::string& s) {
     // MRPT exceptions: "==== MRPT exception ====\nMessage:  <text>\nLocation: ...",
     // also after a prefix of ours ("x.ini: cannot parse config file: ==== ...")
@@ -55,7 +87,7 @@ std::string firstLine(const std::string& s) {
     size_t b = s.find_first_not_of(" \t\r\n");
     if (b == std::string::npos)
         return "unknown error";
-    return printable(s.substr(b, s.find('\n', b) - b));
+    return printable(clippedMessage(s.substr(b, s.find('\n', b) - b)));
 }
 
 std::string appUsage(const TAppInfo& info) {

@@ -46,7 +46,13 @@ struct TAppContext {
 int runApp(int argc, char** argv, const TAppInfo& info,
            const std::function<void(const TAppContext&)>& body);
 
-/** First line of an exception's text (MRPT exceptions carry a stack trace). */
+/** First line of an exception's text (MRPT exceptions carry a stack trace),
+ * printable and clipped (clippedMessage()). */
 std::string firstLine(const std::string& s);
+
+/** A message with every run of more than 256 bytes without a space (a path,
+ * a name) clipped to 200 as config values are (clippedText), and the whole
+ * kept under ~1.3 KB (head and tail). */
+std::string clippedMessage(const std::string& s);
 
 }  // namespace risknav::common
