@@ -16,6 +16,9 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <map>
+
+#include <sys/stat.h>
 
 using namespace risknav::common;
 namespace fs = std::filesystem;
@@ -59,6 +62,26 @@ std::string joinPathList(const std::vector<std::string>& paths) {
         t += (t.empty() ? "" : " ") + (space ? "\"" + p + "\"" : p);
     }
     return t;
+}
+
+// The same file twice (one path twice, a symbolic or a hard link to it)
+// would count its experience twice: files are compared by identity, the
+// device and inode numbers.
+void checkDistinctFiles(const std::string& section, const std::string& key,
+                        const std::vector<std::string>& files) {
+    std::map<std::pair<dev_t, ino_t>, size_t> seen;
+    for (size_t i = 0; i < files.size(); i++) {
+        struct stat st {};
+        if (::stat(files[i].c_str(), &st) != 0)
+            continue;  // (reported as not found)
+        const auto [it, fresh] = seen.emplace(std::make_pair(st.st_dev, st.st_ino), i);
+        checkRule(fresh, section, key, files[i],
+                  "entry " + std::to_string(i + 1) +
+                      " given twice: the same file as entry " +
+                      std::to_string(it->second + 1) + " '" + files[it->second] +
+                      "' (the same path, or a link to it); its experience would "
+                      "count twice");
+    }
 }
 
 bool endsWith(const std::string& s, const std::string& suffix) {
@@ -131,18 +154,17 @@ void CAfraidLearner::TOptions::validate() const {
     std::error_code ec;
     for (const auto& r : rawlogs)
         checkRule(fs::is_regular_file(r, ec), s, "rawlogs", r, "rawlog not found");
-    std::vector<std::string> seen;
-    for (const auto& a : afraid_in) {
+    checkDistinctFiles(s, "rawlogs", rawlogs);
+    for (const auto& a : afraid_in)
         checkRule(fs::is_regular_file(a, ec), s, "afraid_in", a, "file not found");
-        // The same file twice would count its experience twice.
-        const std::string canon = fs::weakly_canonical(a, ec).string();
-        checkRule(std::find(seen.begin(), seen.end(), canon) == seen.end(), s,
-                  "afraid_in", a, "given twice (its experience would count twice)");
-        seen.push_back(canon);
-    }
+    checkDistinctFiles(s, "afraid_in", afraid_in);
     checkRule(afraid_name.find('/') == std::string::npos && afraid_name.size() >= 8 &&
                   endsWith(afraid_name, ".afraid"),
               s, "afraid_name", afraid_name, "must be a file name ending in .afraid");
+    // after a partial replay the file is <name>.partial.afraid
+    checkOutputFileName(
+        s, "afraid_name", afraid_name,
+        afraid_name.substr(0, afraid_name.size() - 7) + ".partial.afraid");
     for (const auto& g : groundtruth_files)
         checkRule(fs::is_regular_file(g, ec), s, "groundtruth_file", g, "file not found");
     // One ground truth per rawlog, in the same order: a second rawlog must not

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <numeric>
 #include <set>
 
@@ -31,6 +32,32 @@ TPoint2D readPoint(const mrpt::config::CConfigFileBase& c, const std::string& s,
 
 std::string fmtPoint(const TPoint2D& p) {
     return pointText(p.x, p.y);
+}
+
+// The longest cov_ file a run may write: the longest route name with the
+// longest names of as many sensing points as a row may visit, and the sensing
+// point to name in a message (nullptr: no sensing points).
+std::pair<const TSensingPointOptions*, std::string> longestCovFile(
+    const CRiskEvaluator& ev) {
+    if (ev.sensingPoints.empty() || ev.options.max_sensing_subset <= 0)
+        return {nullptr, ""};
+    std::vector<const TSensingPointOptions*> longest;
+    for (const auto& p : ev.sensingPoints)
+        longest.push_back(&p);
+    std::stable_sort(longest.begin(), longest.end(), [](const auto* a, const auto* b) {
+        return a->name.size() > b->name.size();
+    });
+    longest.resize(std::min(longest.size(), size_t(ev.options.max_sensing_subset)));
+    std::vector<std::string> visit;
+    for (const auto* p : longest)
+        visit.push_back(p->name);
+    std::string route = ev.options.gvg_routes > 0
+                            ? CRiskEvaluator::gvgRouteName(size_t(ev.options.gvg_routes))
+                            : "";
+    for (const auto& r : ev.configRoutes)
+        if (r.name.size() > route.size())
+            route = r.name;
+    return {longest.front(), CRiskEvaluator::covFileName(route, visit)};
 }
 }  // namespace
 
@@ -135,18 +162,45 @@ void CRiskEvaluator::validate() const {
     odometry.validate();
     propagation.validate();
     std::set<std::string> routeNames;
+    // Names become file names (cov_<name>.csv, ellipses_<name>.png): two that
+    // give one file name would overwrite each other's files. Refused rather
+    // than numbered, so that the files keep the names the config gives.
+    std::map<std::string, std::string> routeFiles;  // file part -> "[RouteN] name = 'x'"
+    for (size_t k = 1; k <= size_t(std::max(0, options.gvg_routes)); k++)
+        routeFiles[fileNamePart(gvgRouteName(k))] =
+            "GVG route " + gvgRouteName(k) + " ([" + options.section +
+            "] gvg_routes = " + std::to_string(options.gvg_routes) + ")";
+    routeFiles["best"] = "the best row (ellipses_best.png)";
     for (const auto& r : configRoutes) {
         r.validate();
         // (risknav-navigate's risk_route picks a route by its name)
         checkRule(routeNames.insert(r.name).second, r.section, "name", r.name,
                   "another route has this name");
+        const std::string part = fileNamePart(r.name);
+        const auto [it, fresh] =
+            routeFiles.emplace(part, "[" + r.section + "] name = '" + r.name + "'");
+        checkRule(fresh, r.section, "name", r.name,
+                  "its files " + covFileName(r.name, {}) + " and " +
+                      ellipsesFileName(r.name) + " would be those of " + it->second +
+                      " (file names keep letters, digits, '-' and '_'); rename one");
+        checkOutputFileName(r.section, "name", r.name, covFileName(r.name, {}));
+        checkOutputFileName(r.section, "name", r.name, ellipsesFileName(r.name));
     }
     std::set<std::string> names;
+    std::map<std::string, std::string> pointFiles;
     for (const auto& p : sensingPoints) {
         p.validate();
         checkRule(names.insert(p.name).second, p.section, "name", p.name,
                   "another sensing point has this name");
+        const auto [it, fresh] = pointFiles.emplace(
+            fileNamePart(p.name), "[" + p.section + "] name = '" + p.name + "'");
+        checkRule(fresh, p.section, "name", p.name,
+                  "in file names (cov_<route>+" + fileNamePart(p.name) +
+                      ".csv) it would be " + it->second +
+                      " (file names keep letters, digits, '-' and '_'); rename one");
     }
+    if (const auto [p, file] = longestCovFile(*this); p)
+        checkOutputFileName(p->section, "name", p->name, file);
     checkRule(!configRoutes.empty() || options.gvg_routes > 0, options.section,
               "gvg_routes", std::to_string(options.gvg_routes),
               "no candidate routes: add [RouteN] sections or set [RiskEval] gvg_routes "
@@ -262,7 +316,7 @@ void CRiskEvaluator::evaluate() {
         m_gvg = std::make_unique<CGvgRoutes>(*m_field, options.gvg);
         const auto g = m_gvg->routes(start, goal, size_t(options.gvg_routes));
         for (size_t i = 0; i < g.size(); i++)
-            m_routes.push_back({"G" + std::to_string(i + 1), g[i], true});
+            m_routes.push_back({gvgRouteName(i + 1), g[i], true});
     }
     // Every subset of sensing points up to max_sensing_subset, smallest first,
     // each size in colexicographic order (validate() bounded their number).
@@ -374,6 +428,40 @@ void CRiskEvaluator::evaluate() {
         if (!row.excluded && beats(m_best))
             m_best = long(k);
     }
+}
+
+std::string CRiskEvaluator::fileNamePart(const std::string& name) {
+    std::string s = name;
+    for (char& ch : s)
+        if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_')
+            ch = '_';
+    return s;
+}
+
+std::string CRiskEvaluator::covFileName(const std::string& route,
+                                        const std::vector<std::string>& sensing) {
+    std::string s = "cov_" + fileNamePart(route);
+    for (const auto& p : sensing)
+        s += "+" + fileNamePart(p);
+    return s + ".csv";
+}
+
+std::string CRiskEvaluator::ellipsesFileName(const std::string& route) {
+    return "ellipses_" + fileNamePart(route) + ".png";
+}
+
+std::string CRiskEvaluator::gvgRouteName(size_t k) {
+    return "G" + std::to_string(k);
+}
+
+void CRiskEvaluator::checkOutputPaths(const mrpt::config::CConfigFileBase& c,
+                                      const std::string& outDir) const {
+    for (const auto& r : configRoutes) {
+        checkOutputPath(c, r.section, "name", r.name, outDir, covFileName(r.name, {}));
+        checkOutputPath(c, r.section, "name", r.name, outDir, ellipsesFileName(r.name));
+    }
+    if (const auto [p, file] = longestCovFile(*this); p)
+        checkOutputPath(c, p->section, "name", p->name, outDir, file);
 }
 
 std::string CRiskEvaluator::sensingName(const TRow& r) const {

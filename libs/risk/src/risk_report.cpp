@@ -18,14 +18,6 @@ using risknav::geometry::polylineLength;
 
 namespace risknav::risk {
 namespace {
-std::string safeName(std::string s) {
-    for (char& ch : s)
-        if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_' &&
-            ch != '+')
-            ch = '_';
-    return s;
-}
-
 json finite(double v) {
     return std::isfinite(v) ? json(v) : json(nullptr);
 }
@@ -161,10 +153,11 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
     // rows that kept their samples, CRiskEvaluator::TRow::result).
     for (const auto& r : rows)
         if (r.feasible && !r.result.samples.empty()) {
-            const std::string suffix = r.sensing.empty() ? "" : "+" + ev.sensingName(r);
-            writeCovCsv(
-                r.result,
-                out.stage("cov_" + safeName(routes[r.route].name + suffix) + ".csv"));
+            std::vector<std::string> visited;
+            for (size_t i : r.sensing)
+                visited.push_back(ev.sensingPoints[i].name);
+            writeCovCsv(r.result, out.stage(CRiskEvaluator::covFileName(
+                                      routes[r.route].name, visited)));
         }
 
     // paths.png: every candidate, labelled; the best thick.
@@ -231,7 +224,7 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
                       routes[r].name.c_str(), plain.result.U, plain.result.uMax,
                       plain.result.length);
         ellipsesImage(ev, plain, title,
-                      out.stage("ellipses_" + safeName(routes[r].name) + ".png"));
+                      out.stage(CRiskEvaluator::ellipsesFileName(routes[r].name)));
     }
     if (best >= 0) {
         const auto& b = rows[size_t(best)];
@@ -331,6 +324,7 @@ void runRiskEvalApp(const TAppContext& ctx) {
         ev.options.seed = *ctx.args.seed;
     COutputDir out(ctx.args.outDir,
                    ctx.info.name);  // checked (and locked) before the work
+    ev.checkOutputPaths(ctx.cfg, out.dir());
     ev.evaluate();
     json summary = summaryHeader(ctx, ev.options.seed);
     summary.update(writeRiskReport(ev, out));

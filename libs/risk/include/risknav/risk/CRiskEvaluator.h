@@ -113,6 +113,26 @@ class CRiskEvaluator {
     /** Every options struct's validate(), and the rules between them (at least
      * one candidate, unique sensing point names). Throws CConfigKeyError. */
     void validate() const;
+    /** @name Output file names: a route's or sensing point's name with every
+     * byte but letters, digits, '-' and '_' made '_' (a '+' too: it joins the
+     * sensing points of a row). validate() refuses two routes (config or GVG,
+     * or a route and the best row's image) or two sensing points whose names
+     * give one file name, and names too long for the file system.
+     * @{ */
+    static std::string fileNamePart(const std::string& name);
+    /** cov_<route>[+<sensing point>...].csv */
+    static std::string covFileName(const std::string& route,
+                                   const std::vector<std::string>& sensing);
+    /** ellipses_<route>.png ("best" is the best row's image). */
+    static std::string ellipsesFileName(const std::string& route);
+    /** The name of the k-th GVG route (1-based). */
+    static std::string gvgRouteName(size_t k);
+    /** Throws CBadInputError naming the key when a file this run writes into
+     * `outDir` would have a path longer than PATH_MAX. */
+    void checkOutputPaths(const mrpt::config::CConfigFileBase& c,
+                          const std::string& outDir) const;
+    /** @} */
+
     /** validate(), loads the map and grows its obstacles, and checks start,
      * goal, sensing points and route points against it (off the map, inside a
      * grown obstacle: CConfigKeyError). Run again after changing options. */
