@@ -4,6 +4,7 @@
 #include <risknav/common/version.h>
 
 #include <mrpt/version.h>
+#include <opencv2/core/utils/logger.hpp>
 
 #include <algorithm>
 #include <cstdlib>
@@ -180,6 +181,9 @@ TAppArgs parseAppArgs(const std::vector<std::string>& args, const TAppInfo& info
 
 int runApp(int argc, char** argv, const TAppInfo& info,
            const std::function<void(const TAppContext&)>& body) {
+    // OpenCV logs its own lines on stderr (an image it cannot write, a codec
+    // it lacks); the app's failure is its one line below.
+    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
     try {
         const TAppArgs args =
             parseAppArgs(std::vector<std::string>(argv + 1, argv + argc), info);

@@ -3,8 +3,13 @@
 #include <risknav/common/CAppRunner.h>
 
 #include <gtest/gtest.h>
+#include <opencv2/core/utils/logger.hpp>
 
+#include <filesystem>
+#include <stdexcept>
 #include <string>
+
+#include "test_support.h"
 
 using namespace risknav::common;
 
@@ -39,4 +44,26 @@ TEST(AppMessage, ShortMessageUnchanged) {
     const std::string clipped = "a.ini: [S] k = '" + std::string(200, 'c') +
                                 "... (1048576 bytes)': file not found";
     EXPECT_EQ(firstLine(clipped), clipped);
+}
+
+// A failure inside the app is its one line: OpenCV's own log lines (such as
+// its warning when it cannot write an image) stay off stderr.
+TEST(AppMessage, OpenCvLinesStayOffStderr) {
+    const std::string dir = risknav::test::freshDir("cvlog");
+    risknav::test::writeFile(dir + "/a.ini", "[A]\n");
+    std::vector<std::string> args = {"risknav-demo", "-q", "-o", dir + "/out",
+                                     dir + "/a.ini"};
+    std::vector<char*> argv;
+    for (auto& a : args)
+        argv.push_back(a.data());
+    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_INFO);
+    ::testing::internal::CaptureStderr();
+    const int rc = runApp(int(argv.size()), argv.data(), {"risknav-demo", "", ""},
+                          [](const TAppContext&) {
+                              CV_LOG_WARNING(NULL, "imwrite_('x.png'): can't write data");
+                              throw std::runtime_error("cannot write x.png: disk full");
+                          });
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(rc, 1);
+    EXPECT_EQ(err, "risknav-demo: runtime error: cannot write x.png: disk full\n");
 }
