@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer targets of tests/fuzz (issue 9) for a bounded time each:
-#   scripts/fuzz.sh [SECONDS] [TARGET...]     (default 60 s, all seven targets)
+#   scripts/fuzz.sh [SECONDS] [TARGET...]     (default 60 s, all ten targets)
 # Installs clang if missing, builds into build-fuzz (clang, ASan+UBSan,
 # -DRISKNAV_BUILD_FUZZERS=ON; the normal build/ is not touched), seeds the
 # corpora from config/ and datasets/, runs each target in libFuzzer's fork
@@ -13,7 +13,8 @@ cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET=${1:-60}
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_config fuzz_rawlog fuzz_map fuzz_afraid fuzz_world fuzz_waypoints fuzz_ground_truth)
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_config fuzz_rawlog fuzz_map fuzz_afraid fuzz_world fuzz_waypoints fuzz_ground_truth
+                                   fuzz_simplemap fuzz_image fuzz_ros_yaml)
 BUILD_DIR=${BUILD_DIR:-build-fuzz}
 W=$BUILD_DIR/fuzz
 
@@ -25,14 +26,22 @@ fi
 CC=clang CXX=clang++ cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DRISKNAV_BUILD_FUZZERS=ON -DRISKNAV_BUILD_TESTS=OFF -DRISKNAV_BUILD_BENCHMARKS=OFF \
     -DRISKNAV_SANITIZE=ON >/dev/null
-cmake --build "$BUILD_DIR" --target fuzzers -j"$(nproc)" -- --no-print-directory 2>&1 \
+# only the targets asked for (and the seed maker, which links the afraid
+# library, when the map or .afraid corpora need it)
+BUILD_TARGETS=("${TARGETS[@]}")
+[[ " ${TARGETS[*]} " =~ " fuzz_map " || " ${TARGETS[*]} " =~ " fuzz_afraid " ]] && BUILD_TARGETS+=(fuzz_make_seeds)
+cmake --build "$BUILD_DIR" --target "${BUILD_TARGETS[@]}" -j"$(nproc)" -- --no-print-directory 2>&1 \
     | grep -v -E "^\[ *[0-9]+%\] (Building|Linking|Built)" || true
 BIN=$BUILD_DIR/bin
 
 # ---- seed corpora (rebuilt every run; the fuzzers add what they find) ----
 S=$W/seeds
 rm -rf "$S"
-mkdir -p "$S"/{fuzz_config,fuzz_rawlog,fuzz_map,fuzz_afraid,fuzz_world,fuzz_waypoints,fuzz_ground_truth} "$W"/logs "$W"/helper
+mkdir -p "$S"/{fuzz_config,fuzz_rawlog,fuzz_map,fuzz_afraid,fuzz_world,fuzz_waypoints,fuzz_ground_truth,fuzz_simplemap,fuzz_image,fuzz_ros_yaml} "$W"/logs "$W"/helper
+# the committed seeds (tests/fuzz/seeds, also replayed by ctest)
+for d in tests/fuzz/seeds/*/; do
+    cp "$d"* "$S/$(basename "$d")/"
+done
 for f in config/*.ini datasets/*/*.ini; do
     cp "$f" "$S/fuzz_config/$(echo "$f" | tr / _)"
 done
@@ -41,17 +50,27 @@ zcat datasets/corridor-doors/corridor.rawlog | head -c 200000 >"$S/fuzz_rawlog/c
 zcat datasets/corridor-doors/corridor.rawlog | head -c 20000 | gzip -1 >"$S/fuzz_rawlog/corridor-head-20k.rawlog.gz" || true
 zcat datasets/corridor-doors/corridor.rawlog | head -c 4000 >"$S/fuzz_rawlog/corridor-head-4k.rawlog" || true
 # map: first byte = format (0 bitmap, 1 .gridmap, 2 .gridmap.gz, 3 ROS yaml; see fuzz_map.cpp)
-"$BIN/fuzz_make_seeds" datasets/validation/narrow_doors.png "$W/helper"
+[ -x "$BIN/fuzz_make_seeds" ] && "$BIN/fuzz_make_seeds" datasets/validation/narrow_doors.png "$W/helper"
 for f in datasets/*/*.png; do
     { printf '\x00'; cat "$f"; } >"$S/fuzz_map/png-$(basename "$f")"
 done
 { printf '\x01'; zcat datasets/corridor-doors/corridor.gridmap.gz; } >"$S/fuzz_map/gridmap-corridor"
-{ printf '\x01'; zcat "$W/helper/small.gridmap.gz"; } >"$S/fuzz_map/gridmap-small"
-{ printf '\x02'; cat "$W/helper/small.gridmap.gz"; } >"$S/fuzz_map/gridmapgz-small"
+if [ -f "$W/helper/small.gridmap.gz" ]; then
+    { printf '\x01'; zcat "$W/helper/small.gridmap.gz"; } >"$S/fuzz_map/gridmap-small"
+    { printf '\x02'; cat "$W/helper/small.gridmap.gz"; } >"$S/fuzz_map/gridmapgz-small"
+fi
 { printf '\x03'; printf 'image: map.png\nresolution: 0.05\norigin: [-1.0, 2.5, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n'; } >"$S/fuzz_map/yaml-trinary"
 { printf '\x03'; printf 'image: map.png\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 1\nmode: scale\n'; } >"$S/fuzz_map/yaml-scale"
+# simplemap: MRPT's demo maps, decompressed (the committed seed is small)
+for f in /usr/share/mrpt/datasets/*.simplemap.gz; do
+    [ -f "$f" ] && zcat "$f" >"$S/fuzz_simplemap/$(basename "$f" .gz)"
+done
+# images: every dataset bitmap (PNG) besides the small PNG/JPEG/TIFF/BMP/PNM seeds
+for f in datasets/*/*.png; do
+    cp "$f" "$S/fuzz_image/$(echo "$f" | tr / _)"
+done
 # .afraid: uncompressed content (what decode() reads) made by the helper.
-cp "$W"/helper/small-*.afraid "$S/fuzz_afraid/"
+cp "$W"/helper/small-*.afraid "$S/fuzz_afraid/" 2>/dev/null || true
 # polygon worlds (viewpoint planner): every dataset's world.txt
 # (landmarks-two-routes, ...), and a small one with a hole, a landmark radius
 # and a trailing comment (lines the datasets may have none of).
@@ -85,6 +104,9 @@ max_len() {
         fuzz_world) echo 16384 ;;
         fuzz_waypoints) echo 16384 ;;
         fuzz_ground_truth) echo 16384 ;;
+        fuzz_simplemap) echo 204800 ;;
+        fuzz_image) echo 131072 ;;
+        fuzz_ros_yaml) echo 16384 ;;
     esac
 }
 

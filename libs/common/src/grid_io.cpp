@@ -786,8 +786,9 @@ COccupancyGridMap2D fromSimplemap(const std::string& file, double res,
                 if (!scan->getScanRangeValidity(k))
                     continue;
                 const float r = scan->getScanRange(k);
-                if (!std::isfinite(r))
-                    throw CBadInputError(at + ": a scan range is not finite");
+                // (MRPT draws a negative range backwards, off the grid)
+                if (!(r >= 0 && std::isfinite(r)))
+                    throw CBadInputError(at + ": a scan range is negative or not finite");
                 longest = std::max(longest, r);
             }
             const double reach = std::min(maxIns, longest);
@@ -820,8 +821,18 @@ COccupancyGridMap2D fromSimplemap(const std::string& file, double res,
             }() +
             " m, more than " + cellsText(kMaxGridCells) + " (a coarser resolution)");
     g.setSize(x0, x1, y0, y1, float(res), 0.5f);
-    for (const auto& s : scans)
-        g.insertObservation(*s.scan, s.robot);
+    try {
+        for (const auto& s : scans)
+            g.insertObservation(*s.scan, s.robot);
+    } catch (const std::exception& e) {
+        // MRPT's own checks (a ray off the grid): the file's scans are to blame
+        std::string why = e.what();
+        const auto m = why.find("Message:");
+        why = why.substr(m == std::string::npos ? 0 : m + 8);
+        why = trim(why.substr(0, why.find('\n')));
+        throw CBadInputError(file + ": MRPT cannot insert its scans into a grid (" +
+                             clippedText(why, 160) + ")");
+    }
     return g;
 }
 }  // namespace

@@ -346,3 +346,19 @@ TEST(MapReaders, RosYamlIsParsedAsYaml) {
         EXPECT_EQ(why.find('\n'), std::string::npos) << why;
     }
 }
+
+// A fuzzer finding (FuzzReplay.fuzz_simplemap): a scan with a negative range
+// made MRPT draw the ray backwards off the grid, an assertion escaping as
+// std::logic_error (exit 1, a multi-line MRPT message).
+TEST(MapReaders, SimplemapNegativeRangeIsBadInput) {
+    const std::string d = freshDir("smneg");
+    mrpt::maps::CSimpleMap sm;
+    auto sf = mrpt::obs::CSensoryFrame::Create(frameWithScan(2.0f));
+    auto scan = sf->getObservationByClass<mrpt::obs::CObservation2DRangeScan>();
+    scan->setScanRange(5, -500.0f);
+    sm.insert(mrpt::poses::CPose3DPDFGaussian::Create(), sf);
+    ASSERT_TRUE(sm.saveToFile(d + "/neg.simplemap.gz"));
+    const std::string why = refusal(d + "/neg.simplemap.gz");
+    EXPECT_TRUE(contains(why, "keyframe 0: a scan range is negative or not finite"))
+        << why;
+}
