@@ -13,9 +13,12 @@
 #include <risknav/common/grid_io.h>
 #include <risknav/mapping/TObstacleRule.h>
 #include <risknav/mapping/TSensorModel.h>
+#include <risknav/risk/CRiskEvaluator.h>
 #include <risknav/speed/TExploreOptions.h>
 #include <risknav/speed/TSpeedControlOptions.h>
 
+#include <cstdlib>
+#include <set>
 #include <stdexcept>
 
 using namespace risknav;
@@ -53,6 +56,20 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             load<mapping::TObstacleRule>(c, s);
             load<common::TMapSourceOptions>(c, s);
         }
+        // risknav-risk-eval's routes and sensing points ([RouteN],
+        // [SensingPointN]: names that become file names), through its own
+        // loader (validate() before the map is loaded)
+        tolerate([&] {
+            risk::CRiskEvaluator ev;
+            ev.loadFromConfigFile(c);
+            std::set<std::string> files;
+            for (const auto& r : ev.configRoutes)
+                if (!files.insert(risk::CRiskEvaluator::ellipsesFileName(r.name))
+                         .second ||
+                    risk::CRiskEvaluator::covFileName(r.name, {}).size() >
+                        common::kMaxOutputFileName)
+                    std::abort();  // two routes' files would collide, or not fit
+        });
         // risknav-explore's own sections (issue 10)
         load<speed::TExploreOptions>(c, "Explore");
         load<speed::TSpeedControlOptions>(c, "SpeedControl");

@@ -61,8 +61,10 @@ class CIniConfig : public mrpt::config::CConfigFile {
 
   private:
     /** Throws CBadInputError (file, line) for a key given twice in a section
-     * and for a line that is neither a section, a KEY = VALUE, a comment nor
-     * a preprocessor line: MRPT would keep the last key / drop the line. */
+     * and for a line that is neither a section, a KEY = VALUE nor a comment:
+     * MRPT would keep the last key / drop the line. Checked on the text MRPT
+     * reads: after its preprocessor (@define, ${}, $eval{}, line
+     * continuation), split at CR, LF and CR+LF as its SimpleIni splits it. */
     static void checkLines(const std::string& path);
     std::string m_path, m_folder;
     mutable std::set<std::pair<std::string, std::string>> m_read;
