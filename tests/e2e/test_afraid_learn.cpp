@@ -438,10 +438,13 @@ TEST(AfraidLearnBadInput, TruncatedRawlogSavesPartialResultsAndKeepsEarlierFiles
     const std::string out = freshDir("out"), prev = freshDir("prev");
     learn(prev, "--set AfraidLearn.rawlogs=" + sim + "/simulation.rawlog");
     learn(out, "--set AfraidLearn.rawlogs=" + sim + "/simulation.rawlog");
-    writeFile(out + "/.tmp-999999999-zones.csv", "left by a killed run");
+    // (a killed run's staging folder, as its owner marker says)
+    fs::create_directories(out + "/.risknav-stage-Kil1ed/new");
+    writeFile(out + "/.risknav-stage-Kil1ed/owner", "risknav staging folder 1\n");
+    writeFile(out + "/.risknav-stage-Kil1ed/new/zones.csv", "left by a killed run");
     std::map<std::string, std::string> before;
     for (const auto& f : listDir(out))
-        if (f.rfind(".tmp-", 0) != 0)
+        if (f.rfind(".risknav-stage-", 0) != 0)
             before[f] = readFile(out + "/" + f);
     const std::string earlier = readFile(prev + "/corridor.afraid");
     const auto r =
@@ -459,10 +462,13 @@ TEST(AfraidLearnBadInput, TruncatedRawlogSavesPartialResultsAndKeepsEarlierFiles
     EXPECT_TRUE(s["partial"].get<bool>());
     EXPECT_GT(s["frames"].get<int>(), 100);
     EXPECT_TRUE(fs::is_regular_file(out + "/partial/corridor.partial.afraid"));
-    // The complete earlier run: every file as it was, nothing added but partial/;
-    // the dead run's temporary is gone.
+    // The complete earlier run: every file as it was, nothing added but
+    // partial/ (in the manifest beside the earlier files); the dead run's
+    // staging folder is gone.
     for (const auto& [f, content] : before)
-        EXPECT_TRUE(readFile(out + "/" + f) == content) << f;
+        if (f != ".risknav-run")
+            EXPECT_TRUE(readFile(out + "/" + f) == content) << f;
+    EXPECT_EQ(readFile(out + "/.risknav-run"), before[".risknav-run"] + "dir partial\n");
     auto now = listDir(out);
     now.erase(std::remove(now.begin(), now.end(), "partial"), now.end());
     std::vector<std::string> names;
