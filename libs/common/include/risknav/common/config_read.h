@@ -138,8 +138,9 @@ void checkRule(bool ok, const std::string& section, const std::string& key,
 
 /** @name Config values that become output file names.
  * @{ */
-/** The longest name an output file may have [bytes]: NAME_MAX (255) less the
- * 20 bytes COutputDir's temporaries put before it (".tmp-<pid>-old-"). */
+/** The longest name an output file may have [bytes]: NAME_MAX (255) with
+ * room for the 12 bytes a writer's temporary beside it puts before it
+ * (exclusiveTempBeside(): ".tmp-XXXXXX-"). */
 constexpr size_t kMaxOutputFileName = 235;
 /** Throws CConfigKeyError "[section] key = 'value': ..." when `fileName`, the
  * output file name the key's value becomes, is longer than
