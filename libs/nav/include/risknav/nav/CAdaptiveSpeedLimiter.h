@@ -212,7 +212,10 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
     struct TKeptScan {
         mrpt::obs::CObservation2DRangeScan scan;
         mrpt::math::TPose2D pose;
-        double time = 0;
+        // no member initializer: clang then deems the struct not
+        // default-constructible inside the class (std::optional::emplace());
+        // emplace() value-initializes it to 0 all the same
+        double time;
     };
     /** What one cycle reads (the caller's thread fills it before the cycle
      * starts; the cycle owns it while it runs). */
