@@ -12,8 +12,10 @@
 #include <climits>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -90,11 +92,17 @@ void writeNewFile(const std::string& path, const std::string& content, bool sync
         throw writeFailure(path, errno);
 }
 
-// A small file read without following a symlink at its name; "" if absent.
+// A small regular file read without following a symlink at its name and
+// without blocking (a FIFO planted there); "" if absent or anything else.
 std::string readSmall(const std::string& path) {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0)
         return "";
+    struct stat st {};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        ::close(fd);
+        return "";
+    }
     std::string s;
     char buf[4096];
     for (;;) {
@@ -127,17 +135,27 @@ struct TEntry {
     std::string name;
 };
 
-/** The last run's files and folders. Only plain names of entries in the
- * folder itself count (a run writes no others): a name with a '/' (absolute,
- * "..", through a symlinked folder) or a hidden one is ignored, for the
- * manifest is data. Version 1 listed files only. */
+/** The last run's files and folders, and the files in those folders. Only
+ * plain names count (a run writes no others: a name that is absolute, "..",
+ * hidden or deeper than one folder is ignored, for the manifest is data),
+ * and only in a file that starts as a manifest does. Version 1 listed files
+ * only. */
 struct TManifest {
+    bool valid = false;
     std::string app;
     std::vector<TEntry> entries;
+    std::map<std::string, std::set<std::string>> inner;  // folder -> its files
 
+    static bool isManifest(const std::string& text) {
+        return text.rfind(kManifestHead, 0) == 0;
+    }
     static TManifest read(const std::string& dir) {
         TManifest m;
-        std::istringstream in(readSmall(join(dir, COutputDir::kManifest)));
+        const std::string text = readSmall(join(dir, COutputDir::kManifest));
+        m.valid = isManifest(text);
+        if (!m.valid)
+            return m;
+        std::istringstream in(text);
         std::string line;
         while (std::getline(in, line)) {
             if (line.rfind("app ", 0) == 0)
@@ -147,8 +165,15 @@ struct TManifest {
             if (!file && !folder)
                 continue;
             const std::string name = line.substr(file ? 5 : 4);
-            if (plainName(name))
+            const auto slash = name.find('/');
+            if (file && slash != std::string::npos) {
+                const std::string top = name.substr(0, slash),
+                                  rest = name.substr(slash + 1);
+                if (plainName(top) && plainName(rest))
+                    m.inner[top].insert(rest);
+            } else if (plainName(name)) {
                 m.entries.push_back({file ? TKind::File : TKind::Dir, name});
+            }
         }
         return m;
     }
@@ -159,8 +184,13 @@ struct TManifest {
     }
     std::string text() const {
         std::string t = std::string(kManifestHead) + "2\napp " + app + "\n";
-        for (const auto& e : entries)
+        for (const auto& e : entries) {
             t += (e.kind == TKind::Dir ? "dir " : "file ") + e.name + "\n";
+            if (const auto it = inner.find(e.name);
+                e.kind == TKind::Dir && it != inner.end())
+                for (const auto& f : it->second)
+                    t += "file " + e.name + "/" + f + "\n";
+        }
         return t;
     }
 };
@@ -203,11 +233,13 @@ std::optional<std::vector<TJournalOp>> parseJournal(const std::string& text) {
 void applyJournal(const std::string& dir, const std::string& stage,
                   const std::vector<TJournalOp>& ops, int& steps,
                   std::vector<std::pair<std::string, std::string>>& undo) {
-    auto move = [&](const std::string& from, const std::string& to) {
+    // (a failure names the result, never the staging folder's paths)
+    auto move = [&](const std::string& from, const std::string& to,
+                    const std::string& at) {
         step(steps);
         if (::rename(from.c_str(), to.c_str()) != 0)
-            throw std::runtime_error("cannot put " + shownOutputPath(to) +
-                                     " in place: " + std::strerror(errno));
+            throw std::runtime_error("cannot replace " + clippedText(at, 200) + ": " +
+                                     std::strerror(errno));
         undo.emplace_back(from, to);
     };
     for (const auto& op : ops) {
@@ -217,11 +249,27 @@ void applyJournal(const std::string& dir, const std::string& stage,
             if (kindOf(staged) == TKind::None)
                 continue;  // placed before the kill
             if (kindOf(at) != TKind::None && kindOf(aside) == TKind::None)
-                move(at, aside);
-            move(staged, at);
+                move(at, aside, at);
+            move(staged, at, at);
         } else if (kindOf(at) != TKind::None && kindOf(aside) == TKind::None) {
-            move(at, aside);
+            move(at, aside, at);
         }
+    }
+}
+
+/** Removes a staging folder, its owner marker last: a kill or a file that
+ * cannot be removed leaves a folder the next run still recognizes. */
+void removeStage(const std::string& stage) {
+    std::error_code ec;
+    bool all = true;
+    for (const auto& e : fs::directory_iterator(stage, ec))
+        if (e.path().filename() != "owner") {
+            fs::remove_all(e.path(), ec);  // never follows a symlink inside
+            all = all && !ec;
+        }
+    if (all && !ec) {
+        fs::remove(join(stage, "owner"), ec);
+        fs::remove(stage, ec);
     }
 }
 
@@ -238,8 +286,7 @@ void recoverStage(const std::string& dir, const std::string& stage) {
             applyJournal(dir, stage, *ops, steps, undo);
             syncDir(dir);
         }
-    std::error_code ec;
-    fs::remove_all(stage, ec);  // never follows a symlink inside
+    removeStage(stage);
 }
 
 struct TInput {
@@ -259,7 +306,7 @@ std::vector<TInput>& inputs() {
 
 void noteRunInput(const std::string& path) {
     struct stat st {};
-    if (::stat(path.c_str(), &st) != 0)
+    if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
         return;
     std::error_code ec;
     const fs::path abs = fs::weakly_canonical(fs::absolute(path, ec), ec);
@@ -337,9 +384,21 @@ void COutputDir::setCommitStepHook(std::function<void(int)> hook) {
     stepHook() = std::move(hook);
 }
 
-COutputDir::COutputDir(const std::string& dir, const std::string& app,
+namespace {
+// "out/", "out/." and "out/./" name the folder "out": a trailing slash would
+// make lstat() follow a symlink at that name.
+std::string folderName(const std::string& dir) {
+    std::string d = fs::path(dir).lexically_normal().string();
+    while (d.size() > 1 && d.back() == '/')
+        d.pop_back();
+    return d.empty() ? "." : d;
+}
+}  // namespace
+
+COutputDir::COutputDir(const std::string& given, const std::string& app,
                        const std::vector<std::string>& outputs)
-    : m_dir(dir), m_app(app) {
+    : m_dir(folderName(given)), m_app(app) {
+    const std::string& dir = m_dir;
     const std::string shown = clippedText(dir, 200);
     // Names the file system cannot hold fail here, not after the work.
     for (const auto& part : fs::path(dir))
@@ -378,35 +437,49 @@ COutputDir::COutputDir(const std::string& dir, const std::string& app,
         for (const auto& e : fs::directory_iterator(dir, ec))
             if (e.path().filename().string().rfind(kStagePrefix, 0) == 0)
                 recoverStage(dir, e.path().string());
+        // a folder the user may not write in is bad input; a full disk is not
+        auto cannot = [&](const std::string& what, int err) {
+            if (err == EACCES || err == EPERM || err == EROFS)
+                throw CBadInputError(shown + ": output folder is not writable (" +
+                                     std::strerror(err) + ")");
+            throw writeFailure(what, err);
+        };
         std::string tmpl = join(dir, std::string(kStagePrefix) + "XXXXXX");
         if (!::mkdtemp(tmpl.data()))
-            throw CBadInputError(shown + ": output folder is not writable (" +
-                                 std::strerror(errno) + ")");
+            cannot(dir, errno);
         m_stage = tmpl;
-        writeNewFile(join(m_stage, "owner"), kOwnerText, false);
+        try {
+            writeNewFile(join(m_stage, "owner"), kOwnerText, false);
+        } catch (const std::runtime_error&) {
+            cannot(dir, errno);
+        }
         for (const char* sub : {"new", "old", "scratch"})
             if (::mkdir(join(m_stage, sub).c_str(), 0700) != 0)
-                throw CBadInputError(shown + ": output folder is not writable (" +
-                                     std::strerror(errno) + ")");
+                cannot(dir, errno);
+        // Before the work: the names this run writes, and everything the
+        // last run's manifest lists (its commit replaces or removes each).
+        checkReplaceable(kManifest);
         checkReplaceable("summary.json");
         checkReplaceable("config_effective.ini");
         for (const auto& o : outputs)
             checkReplaceable(o.substr(0, o.find('/')));
-    } catch (const std::runtime_error& e) {
+        // (an entry now of another kind than listed is no longer the run's:
+        // left alone)
+        for (const auto& e : TManifest::read(dir).entries)
+            if (kindOf(finalPath(e.name)) == e.kind)
+                checkReplaceable(e.name);
+    } catch (const std::runtime_error&) {
         // (the destructor does not run for a throwing constructor)
         if (!m_stage.empty())
-            fs::remove_all(m_stage, ec);
+            removeStage(m_stage);
         ::close(m_lockFd);
-        if (dynamic_cast<const CBadInputError*>(&e))
-            throw;
-        throw CBadInputError(shown + ": " + e.what());
+        throw;
     }
 }
 
 COutputDir::~COutputDir() {
-    std::error_code ec;
-    if (!m_stage.empty())  // (after a commit: what is left if its last step failed)
-        fs::remove_all(m_stage, ec);
+    if (!m_stage.empty() && kindOf(m_stage) == TKind::Dir)
+        removeStage(m_stage);  // (after a commit: what is left if its last step failed)
     if (m_lockFd >= 0)
         ::close(m_lockFd);
 }
@@ -417,26 +490,56 @@ void COutputDir::checkReplaceable(const std::string& top) const {
     if (k == TKind::None)
         return;
     const std::string shown = clippedText(at, 200);
+    const std::string advice = "; move it or give another --out";
+    if (top == kManifest) {
+        if (k == TKind::File && TManifest::isManifest(readSmall(at)))
+            return;
+        throw CBadInputError(shown + ": " + kindName(k) +
+                             " that is not a risknav manifest is in the way of the "
+                             "run's manifest" +
+                             advice);
+    }
+    if (k == TKind::Other)
+        throw CBadInputError(shown +
+                             ": a symbolic link or special file (risknav writes "
+                             "none) is in the way of an output" +
+                             advice);
     if (isRunInput(at))
         throw CBadInputError(shown +
-                             ": is an input of this run; an output may not replace it "
-                             "(give another --out)");
-    if (k == TKind::Dir) {
-        std::lock_guard<std::mutex> lock(inputsMutex());
-        const std::string abs =
-            fs::weakly_canonical(fs::absolute(at)).lexically_normal().string() + "/";
-        for (const auto& i : inputs())
-            if (i.path.rfind(abs, 0) == 0)
-                throw CBadInputError(shown + ": holds " + clippedText(i.path, 200) +
-                                     ", an input of this run; an output may not "
-                                     "replace it (give another --out)");
-    }
-    if ((k == TKind::File || k == TKind::Dir) && TManifest::read(m_dir).lists(top, k))
+                             ": is an input of this run, which its results would replace "
+                             "or remove (give another --out)");
+    const TManifest last = TManifest::read(m_dir);
+    if (!last.lists(top, k))
+        throw CBadInputError(shown + ": " + kindName(k) +
+                             " that no risknav run wrote is in the way of an output (not "
+                             "listed in " +
+                             kManifest + ")" + advice);
+    if (k == TKind::File)
         return;
-    throw CBadInputError(shown + ": " + kindName(k) +
-                         " that no risknav run wrote is in the way of an output (not "
-                         "listed in " +
-                         kManifest + "); move it or give another --out");
+    // A folder of the last run's is replaced or removed whole: only if it
+    // holds nothing but the files that run wrote there, none of them read by
+    // this run (also through a symlink elsewhere).
+    std::lock_guard<std::mutex> lock(inputsMutex());
+    const std::string abs =
+        fs::weakly_canonical(fs::absolute(at)).lexically_normal().string() + "/";
+    for (const auto& i : inputs())
+        if (i.path.rfind(abs, 0) == 0)
+            throw CBadInputError(shown + ": holds " + clippedText(i.path, 200) +
+                                 ", an input of this run, which its results would "
+                                 "replace or remove (give another --out)");
+    const auto listed = last.inner.find(top);
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(at, ec)) {
+        const std::string name = e.path().filename().string();
+        if (kindOf(e.path().string()) != TKind::File || listed == last.inner.end() ||
+            !listed->second.count(name))
+            throw CBadInputError(clippedText(e.path().string(), 200) +
+                                 ": not written by a risknav run (not listed in " +
+                                 kManifest + "), in the folder " + top +
+                                 " that this run replaces" + advice);
+    }
+    if (ec)
+        throw CBadInputError(shown + ": cannot list the folder (" + ec.message() + ")");
 }
 
 std::string COutputDir::finalPath(const std::string& name) const {
@@ -518,6 +621,10 @@ void COutputDir::commit() {
             if (e.name != m_sub)
                 next.entries.push_back(e);
         next.entries.push_back({TKind::Dir, m_sub});
+        next.inner = last.inner;
+        next.inner.erase(m_sub);
+        for (const auto& [path, name] : m_staged)
+            next.inner[m_sub].insert(fs::path(name).filename().string());
     } else {
         next.app = m_app;
         for (const auto& s : m_staged) {
@@ -526,8 +633,11 @@ void COutputDir::commit() {
                 tops.push_back(top);
                 next.entries.push_back({kindOf(join(fresh, top)), top});
             }
+            if (top != s.second)
+                next.inner[top].insert(s.second.substr(top.size() + 1));
         }
     }
+    checkReplaceable(kManifest);
     for (const auto& top : tops)
         checkReplaceable(top);
     writeNewFile(join(fresh, kManifest), next.text(), false);
@@ -535,12 +645,12 @@ void COutputDir::commit() {
     for (const auto& top : tops)
         ops.push_back({true, top});
     if (m_sub.empty())
-        for (const auto& e : last.entries) {
-            const std::string at = finalPath(e.name);
+        for (const auto& e : last.entries)
             if (std::find(tops.begin(), tops.end(), e.name) == tops.end() &&
-                kindOf(at) == e.kind && !isRunInput(at))
+                kindOf(finalPath(e.name)) == e.kind) {
+                checkReplaceable(e.name);
                 ops.push_back({false, e.name});
-        }
+            }
     ops.push_back({true, kManifest});  // last: until it is in place, the last
                                        // manifest still names what is replaced
     // The point of no return: once the journal is in place (written whole and
@@ -566,8 +676,7 @@ void COutputDir::commit() {
     step(steps);
     ::unlink(journal.c_str());
     step(steps);
-    std::error_code ec;
-    fs::remove_all(m_stage, ec);
+    removeStage(m_stage);
 }
 
 std::vector<std::string> COutputDir::stagedNames() const {

@@ -296,6 +296,9 @@ std::string configRelativePath(const CConfigFileBase& c, const std::string& path
     if (p.is_relative())
         if (const auto* ini = dynamic_cast<const CIniConfig*>(&c))
             p = fs::path(ini->folder()) / p;
+    // a file a config names is an input of the run, whether or not its
+    // reader checks it through fileProblem()
+    noteRunInput(p.string());
     return p.lexically_normal().string();
 }
 

@@ -117,7 +117,8 @@ TEST(COutputDir, CommitIntoASubfolderLeavesTheFolderAlone) {
     std::filesystem::create_directories(d + "/partial");
     writeFile(d + "/partial/old.csv", "an older partial run");
     writeFile(d + "/.risknav-run",
-              "risknav output manifest 2\napp a\nfile zones.csv\ndir partial\n");
+              "risknav output manifest 2\napp a\nfile zones.csv\ndir "
+              "partial\nfile partial/old.csv\n");
     {
         COutputDir out(d);
         out.writeText("zones.csv", "partial run");
@@ -130,7 +131,8 @@ TEST(COutputDir, CommitIntoASubfolderLeavesTheFolderAlone) {
     EXPECT_EQ(listDir(d),
               (std::vector<std::string>{".risknav-run", "partial", "zones.csv"}));
     EXPECT_EQ(readFile(d + "/.risknav-run"),
-              "risknav output manifest 2\napp a\nfile zones.csv\ndir partial\n");
+              "risknav output manifest 2\napp a\nfile "
+              "zones.csv\ndir partial\nfile partial/zones.csv\n");
 }
 
 TEST(SummaryJson, NonUtf8TextIsReplacedNotThrown) {
@@ -247,7 +249,8 @@ TEST(COutputDir, ASecondRunReplacesTheWholeSetOfTheFirst) {
     const std::string outside = freshDir("elsewhere") + "/outside.txt";
     writeFile(outside, "outside");
     writeFile(d + "/.risknav-run",
-              "file summary.json\nfile .x\nfile ../elsewhere/outside.txt\nfile " +
+              "risknav output manifest 1\nfile summary.json\nfile .x\nfile "
+              "../elsewhere/outside.txt\nfile " +
                   outside + "\n");
     {
         COutputDir out(d);
@@ -268,7 +271,8 @@ TEST(COutputDir, ASecondRunReplacesTheWholeSetOfTheFirst) {
     writeFile(d + "/sub/keep.txt", "user's");
     writeFile(
         d + "/.risknav-run",
-        "file summary.json\nfile link/precious.txt\nfile sub/keep.txt\nfile filelink\n");
+        "risknav output manifest 1\nfile summary.json\nfile link/precious.txt\nfile "
+        "sub/keep.txt\nfile filelink\n");
     {
         COutputDir out(d);
         out.writeText("summary.json", "fourth");

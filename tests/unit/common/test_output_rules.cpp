@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -121,7 +122,9 @@ TEST(OutputRules, WhatNoRunWroteIsNeverReplacedNorMoved) {
     for (const char* name : {"world.png", "cycles.csv", "snapshots/cycle_1.png"}) {
         const std::string msg =
             expectBadInputFrom([&] { COutputDir out(d, "risknav-test", {name}); });
-        EXPECT_NE(msg.find("that no risknav run wrote is in the way of an output"),
+        EXPECT_NE(msg.find(std::string(name).rfind("snapshots", 0) == 0
+                               ? "a symbolic link or special file (risknav writes none)"
+                               : "that no risknav run wrote is in the way of an output"),
                   std::string::npos)
             << msg;
     }
@@ -151,11 +154,11 @@ TEST(OutputRules, AnInputOfTheRunIsNeverReplaced) {
     const std::string d = freshDir("out");
     writeEarlierOutput(d, {{"world.png", "the user's map"}});
     ASSERT_EQ(fileProblem(d + "/world.png"), "");  // what every reader calls
-    {
-        COutputDir out(d, "risknav-simulate");
-        const std::string msg = expectBadInputFrom([&] { out.stage("world.png"); });
-        EXPECT_NE(msg.find("is an input of this run"), std::string::npos) << msg;
-    }
+    // (refused before the work: the commit would replace it, or remove it as
+    // the last run's file this run does not write)
+    const std::string msg =
+        expectBadInputFrom([&] { COutputDir out(d, "risknav-simulate"); });
+    EXPECT_NE(msg.find("is an input of this run"), std::string::npos) << msg;
     EXPECT_EQ(readFile(d + "/world.png"), "the user's map");
     // also through a hard link or a symlink of another name
     const std::string inputs = freshDir("inputs");
@@ -195,7 +198,8 @@ TEST(OutputRules, ARerunReplacesASubfolderWhole) {
     EXPECT_EQ(readFile(d + "/snapshots/cycle_2.png"), "png second2");
     EXPECT_EQ(readFile(d + "/.risknav-run"),
               "risknav output manifest 2\napp risknav-explore\nfile summary.json\n"
-              "file cycles.csv\ndir snapshots\n");
+              "file cycles.csv\ndir snapshots\nfile snapshots/cycle_0.png\n"
+              "file snapshots/cycle_1.png\nfile snapshots/cycle_2.png\n");
     // a run without snapshots removes the earlier ones with its commit
     {
         COutputDir out(d, "risknav-explore");
@@ -333,6 +337,92 @@ TEST(OutputRules, AWriteThatFailsNamesTheFileAndTheReason) {
                 const std::string m = e.what();
                 code = m == "cannot write " + d + "/summary.json: File too large" ? 0 : 3;
             }
+        }
+        _exit(code);
+    }
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0);
+    EXPECT_TRUE(listDir(d).empty());
+}
+
+TEST(OutputRules, AManifestNameTheRunDidNotWriteIsRefusedNeverReplaced) {
+    // a folder, a FIFO (reading it would block) and a file that is no
+    // manifest, at the manifest's name
+    for (const std::string kind : {"folder", "fifo", "file"}) {
+        const std::string d = freshDir(kind);
+        if (kind == "folder") {
+            fs::create_directories(d + "/.risknav-run");
+            writeFile(d + "/.risknav-run/keep.txt", "user's");
+        } else if (kind == "fifo") {
+            ASSERT_EQ(::mkfifo((d + "/.risknav-run").c_str(), 0644), 0);
+        } else {
+            writeFile(d + "/.risknav-run", "my notes, not a manifest");
+        }
+        const auto before = tree(d);
+        const std::string msg = expectBadInputFrom([&] { COutputDir out(d, "x"); });
+        EXPECT_NE(msg.find("that is not a risknav manifest"), std::string::npos) << msg;
+        EXPECT_EQ(tree(d), before) << kind;
+    }
+}
+
+TEST(OutputRules, AUsersFileInsideTheLastRunsFolderIsNeverRemoved) {
+    const std::string d = freshDir("out");
+    {
+        COutputDir out(d, "risknav-explore");
+        writeRun(out, "first", 2);
+        out.commit();
+    }
+    writeFile(d + "/snapshots/my_notes.txt", "the user's");
+    const auto before = tree(d);
+    // whether this run writes snapshots/ (replaced) or not (removed)
+    for (const int snapshots : {2, 0}) {
+        const std::string msg = expectBadInputFrom([&] {
+            COutputDir out(d, "risknav-explore");
+            writeRun(out, "second", snapshots);
+            out.commit();
+        });
+        EXPECT_NE(msg.find("snapshots/my_notes.txt: not written by a risknav run"),
+                  std::string::npos)
+            << msg;
+        EXPECT_EQ(tree(d), before);
+    }
+}
+
+TEST(OutputRules, AFolderNamedWithATrailingSlashIsTheFolderItself) {
+    const std::string target = freshDir("target");
+    const std::string link = freshDir("links") + "/out";
+    fs::create_directory_symlink(target, link);
+    for (const std::string& name : {link + "/", link + "/.", link + "/./"})
+        EXPECT_THROW(COutputDir out(name), CBadInputError) << name;
+    EXPECT_TRUE(fs::is_empty(target));
+    const std::string d = freshDir("real");
+    {
+        COutputDir out(d + "/./");
+        EXPECT_EQ(out.dir(), d);
+        out.writeText("summary.json", "{}");
+        out.commit();
+    }
+    EXPECT_EQ(readFile(d + "/summary.json"), "{}");
+}
+
+TEST(OutputRules, AFullDiskWhileSettingUpIsARuntimeFailureNotBadInput) {
+    const std::string d = freshDir("out");
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        std::signal(SIGXFSZ, SIG_IGN);
+        const rlimit lim{0, 0};  // no byte may be written: the owner marker fails
+        setrlimit(RLIMIT_FSIZE, &lim);
+        int code = 4;
+        try {
+            COutputDir out(d, "x");
+        } catch (const CBadInputError&) {
+            code = 3;
+        } catch (const std::runtime_error& e) {
+            code =
+                std::string(e.what()).find("File too large") != std::string::npos ? 0 : 5;
         }
         _exit(code);
     }
