@@ -394,11 +394,15 @@ std::map<std::string, TYamlValue> parseMapYaml(const std::string& file) {
                 yaml_event_delete(&ev);
         }
     } evGuard{have, ev};
-    auto scalar = [](const yaml_event_t& e) {
-        return std::string(reinterpret_cast<const char*>(e.data.scalar.value),
-                           e.data.scalar.length);
-    };
     auto line = [](const yaml_event_t& e) { return size_t(e.start_mark.line) + 1; };
+    // ("\0" in a quoted scalar is a NUL, which a file name would end at)
+    auto scalar = [&](const yaml_event_t& e) {
+        std::string s(reinterpret_cast<const char*>(e.data.scalar.value),
+                      e.data.scalar.length);
+        if (s.find('\0') != std::string::npos)
+            throw bad(line(e), "a value with a NUL character");
+        return s;
+    };
     std::map<std::string, TYamlValue> kv;
     if (next().type != YAML_STREAM_START_EVENT ||
         next().type != YAML_DOCUMENT_START_EVENT)

@@ -49,15 +49,6 @@ std::string f32(float v) {
     return s;
 }
 
-std::string gunzip(const std::string& path) {
-    mrpt::io::CFileGZInputStream f(path);
-    std::string raw;
-    char buf[1 << 16];
-    for (size_t n; (n = f.Read(buf, sizeof(buf))) > 0;)
-        raw.append(buf, n);
-    return raw;
-}
-
 /** The bytes MRPT writes for `obj` (object header, data, end flag). */
 std::string serialized(const mrpt::serialization::CSerializable& obj) {
     mrpt::io::CMemoryStream m;
@@ -337,6 +328,8 @@ TEST(MapReaders, RosYamlIsParsedAsYaml) {
               ":2: resolution must be a single value"},
              {"image: corridor#1.png\nresolution: 0x10\norigin: [0, 0, 0]\n",
               ":2: resolution = '0x10' is not a number"},
+             {"image: \"corridor#1.png\\0.x\"\nresolution: 0.05\norigin: [0, 0, 0]\n",
+              ":1: a value with a NUL character"},
              {"image: [corridor\n", "not YAML"},
              {"- image\n", "not a mapping of keys"},
              {"image: m.png\n---\nimage: n.png\n", "more than one YAML document"}}) {
