@@ -13,6 +13,7 @@
 #include <mrpt/poses/CPose2D.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -290,10 +291,14 @@ json CWorldSimulator::run(COutputDir& out, bool quiet) {
                                 world.agents);
     }
     r.rawlog.close();
-    r.gtFile.close();
-    r.odoFile.close();
-    if (!r.gtFile || !r.odoFile)
-        throw std::runtime_error("cannot write groundtruth.txt / odometry.txt");
+    for (auto [f, name] : {std::pair{&r.gtFile, "groundtruth.txt"},
+                           std::pair{&r.odoFile, "odometry.txt"}}) {
+        f->flush();
+        const int err = errno;  // (the failed write's reason: a full disk)
+        f->close();
+        if (!*f)
+            throw writeFailure(out.stage(name), err);
+    }
     r.progress.finish();
 
     writeEventTables(r, out);
