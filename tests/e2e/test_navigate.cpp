@@ -887,19 +887,29 @@ TEST(NavigateE2E, AdaptiveLimiterReachesTheOfficeDestinationsThroughTheEngine) {
 }
 
 TEST(NavigateE2E, AStuckRobotIsTurnedToItsTargetAndGoesOn) {
-    // Office seed 9: after the first destination MRPT froze at the
-    // door-to-corridor turn (1e-4 m/s, heading fixed, 55 deg off the next
-    // destination) and the run ended stalled after 120 s with 1 of 4. With
-    // the unstick turn (unstick_time 5 s) it completes.
+    // Office seed 11: after the first destination MRPT froze at the
+    // door-to-corridor turn (heading fixed, 88 deg off the next destination)
+    // and, with unstick_time = 0, the run ends stalled after 120 s with 1 of
+    // 4. With the unstick turn (unstick_time 5 s) it completes.
     // Without the guide (guide_lookahead = 0): with it, MRPT is aimed round
     // that turn and the robot does not get stuck there.
-    const json s = navRun(sourcePath("datasets/office/navigate_m1.ini"), freshDir("m1s9"),
-                          "--seed 9 --set CRiskAwareReactiveNav.guide_lookahead=0");
+    // (Seed 9 froze there while MRPT's vehicle stepped past each dt; driven
+    // for exactly dt it passes the turn and needs no unstick.)
+    const json s =
+        navRun(sourcePath("datasets/office/navigate_m1.ini"), freshDir("m1s11"),
+               "--seed 11 --set CRiskAwareReactiveNav.guide_lookahead=0");
     EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
     EXPECT_EQ(s["waypoints_reached"], 4);
     EXPECT_EQ(s["collisions"], 0);
     ASSERT_TRUE(s["time_per_limiter_s"].contains("unstick"));
     EXPECT_GT(s["time_per_limiter_s"]["unstick"].get<double>(), 0.0);
+    // the scenario still holds a stuck robot: without the turn it stalls
+    const json off =
+        navRun(sourcePath("datasets/office/navigate_m1.ini"), freshDir("m1s11-off"),
+               "--seed 11 --set CRiskAwareReactiveNav.guide_lookahead=0 "
+               "--set CRiskAwareReactiveNav.unstick_time=0");
+    EXPECT_EQ(off["status"], "stalled") << off["navigation_error"];
+    EXPECT_EQ(off["waypoints_reached"], 1);
 }
 
 TEST(NavigateE2E, BadWaypointFileIsAClearError) {
@@ -1012,15 +1022,17 @@ TEST(NavigateE2E, TheM1ConfigHoldsItsWayAndLetsDetoursFinish) {
 }
 
 TEST(NavigateE2E, UnstickTurnsToOneTargetAreCappedSoMrptsErrorShows) {
-    // The same without the guide: the robot gets stuck at a wall with its
-    // second destination behind it. Turning it to that target for ever hid
-    // MRPT's verdict and ran to the end; after 3 turns MRPT is left to give it
-    // (with its shipped 30 s alarm: at the config's 60 s our stall check,
-    // 30 s on one spot, ends the run first).
+    // The rooms world without the guide, seed 7: the robot gets stuck at a
+    // wall with its second destination behind it, 18-67 deg off. Turning it
+    // to that target for ever hid MRPT's verdict and ran to the end; after 3
+    // turns MRPT is left to give it (with its shipped 30 s alarm: at the
+    // config's 60 s our stall check, 30 s on one spot, ends the run first).
+    // (Seed 5 did so while MRPT's vehicle stepped past each dt; driven for
+    // exactly dt it stops facing that target and MRPT creeps on.)
     const std::string out = freshDir("out");
     const json s =
         navRun(roomsM1Config(freshDir("w")), out,
-               "--seed 5 --set CRiskAwareReactiveNav.guide_lookahead=0 --set "
+               "--seed 7 --set CRiskAwareReactiveNav.guide_lookahead=0 --set "
                "CAbstractNavigator.alarm_seems_not_approaching_target_timeout=30");
     EXPECT_EQ(s["status"], "navigation_error") << s["navigation_error"];
     EXPECT_EQ(s["waypoints_reached"], 1);
