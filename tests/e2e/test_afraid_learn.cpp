@@ -534,8 +534,8 @@ TEST_P(AfraidLearnBadArgs, ExitTwoOneLineOutputUntouched) {
                   "[AfraidLearn]\nmap_file = "
                   "/usr/share/mrpt/datasets/localization_demo.simplemap.gz\n"
                   "rawlogs = /usr/share/mrpt/datasets/localization_demo.rawlog\n"
-                  "afraid_name = corridor.afraid\n[Localization]\ninit_pose = 0 -10 "
-                  "0\ninit_xy = 10\n");
+                  "afraid_name = corridor.afraid\n[Localization]\nparticles = "
+                  "40000\ninit_pose = 0 -10 0\ninit_xy = 10 5\n");
         const auto r =
             run(binPath(kLearn) + " -q -o '" + w + "/office' '" + w + "/demo.ini'");
         ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -602,7 +602,15 @@ INSTANTIATE_TEST_SUITE_P(
              "must be at least KLD_minSampleSize = 150"},
         TBad{"pf_algorithm_unknown", "--set PF_options.PF_algorithm=pfFoo",
              "[PF_options] PF_algorithm = 'pfFoo': must be one of: pfStandardProposal"},
-        TBad{"pf_beta_nan", "--set PF_options.BETA=nan", "[PF_options] BETA = 'nan'"}),
+        TBad{"pf_beta_nan", "--set PF_options.BETA=nan", "[PF_options] BETA = 'nan'"},
+        // Too few start particles for the initial region lost the robot, and
+        // the lost filter ran at KLD_maxSampleSize every frame (~25x the time).
+        TBad{
+            "particles_below_region", "--set Localization.particles=200",
+            "[Localization] particles = '200': must be in [1513, 1e+06] for init = pose"},
+        TBad{"particles_below_map", "--set Localization.init=global",
+             "[Localization] particles = '5000': must be in [45256, 1e+06] for init = "
+             "global"}),
     [](const ::testing::TestParamInfo<TBad>& i) { return i.param.name; });
 
 TEST(AfraidLearnE2E, GroundTruthIsReadStrictly) {
@@ -641,7 +649,7 @@ TEST(AfraidLearnE2E, GroundTruthIsReadStrictly) {
         const auto r =
             run(binPath(kLearn) + " -q -o '" + out + "' --set AfraidLearn.rawlogs='" + w +
                 "/short.rawlog' --set AfraidLearn.groundtruth_file='" + w + "/" + file +
-                "' --set Localization.particles=1000 '" +
+                "' --set Localization.particles=1000 --set Localization.init_xy=0.5 '" +
                 sourcePath("datasets/corridor-doors/afraid.ini") + "'");
         expectBadInput(r, expect, out, earlier);
     }

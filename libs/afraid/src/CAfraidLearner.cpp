@@ -151,12 +151,17 @@ void CAfraidLearner::TOptions::validate() const {
     checkRule(!rawlogs.empty() || !afraid_in.empty(), s, "rawlogs", "",
               "no rawlog: give [" + s + "] rawlogs or RAWLOG arguments (or afraid_in " +
                   "files to merge only)");
-    std::error_code ec;
+    // (fileProblem() also tells a FIFO or device from a missing file, and
+    // notes the file as an input of the run)
+    auto problem = [](const std::string& f, const std::string& what = "file") {
+        const std::string why = fileProblem(f);
+        return why == "not found" ? what + " not found" : why;
+    };
     for (const auto& r : rawlogs)
-        checkRule(fs::is_regular_file(r, ec), s, "rawlogs", r, "rawlog not found");
+        checkRule(fileProblem(r).empty(), s, "rawlogs", r, problem(r, "rawlog"));
     checkDistinctFiles(s, "rawlogs", rawlogs);
     for (const auto& a : afraid_in)
-        checkRule(fs::is_regular_file(a, ec), s, "afraid_in", a, "file not found");
+        checkRule(fileProblem(a).empty(), s, "afraid_in", a, problem(a));
     checkDistinctFiles(s, "afraid_in", afraid_in);
     checkRule(afraid_name.find('/') == std::string::npos && afraid_name.size() >= 8 &&
                   endsWith(afraid_name, ".afraid"),
@@ -166,7 +171,7 @@ void CAfraidLearner::TOptions::validate() const {
         s, "afraid_name", afraid_name,
         afraid_name.substr(0, afraid_name.size() - 7) + ".partial.afraid");
     for (const auto& g : groundtruth_files)
-        checkRule(fs::is_regular_file(g, ec), s, "groundtruth_file", g, "file not found");
+        checkRule(fileProblem(g).empty(), s, "groundtruth_file", g, problem(g));
     // One ground truth per rawlog, in the same order: a second rawlog must not
     // be scored against the first one's truth.
     checkRule(groundtruth_files.empty() || groundtruth_files.size() == rawlogs.size(), s,
@@ -227,6 +232,10 @@ void CAfraidLearner::validate() const {
 void CAfraidLearner::prepare() {
     validate();
     m_map = loadOccupancyGrid(options.map);
+    // Too few start particles for the initial region lose the robot, and a
+    // lost filter runs at KLD_maxSampleSize: refused before the replay.
+    if (!options.rawlogs.empty())
+        mcl.checkParticles(m_map);
     // Which cells are obstacles, and every cell's distance to the nearest one:
     // the map side of the scan-to-map agreement.
     m_field = mapping::CDistanceField(m_map, options.obstacles);

@@ -4,6 +4,10 @@
 
 #include <mrpt/random/RandomGenerators.h>
 
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
 using namespace risknav::common;
 
 namespace risknav::localization {
@@ -160,6 +164,55 @@ void CRawlogMcl::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
     writeKey(c, k, "KLD_minSampleSize", int(kldOptions.KLD_minSampleSize));
     writeKey(c, k, "KLD_maxSampleSize", int(kldOptions.KLD_maxSampleSize));
     writeKey(c, k, "KLD_minSamplesPerBin", kldOptions.KLD_minSamplesPerBin);
+}
+
+double CRawlogMcl::initialBins(const mrpt::maps::COccupancyGridMap2D& grid) const {
+    // The cells resetUniformFreeSpace() draws from, by its own index rule.
+    const bool global = options.init == "global";
+    const auto& p = options.initPose;
+    const int sx = int(grid.getSizeX()), sy = int(grid.getSizeY());
+    int x1 = 0, x2 = sx - 1, y1 = 0, y2 = sy - 1;
+    if (!global) {
+        const double xmin = p.x - options.init_xy, xmax = p.x + options.init_xy;
+        const double ymin = p.y - options.init_y, ymax = p.y + options.init_y;
+        if (xmin > grid.getXMin())
+            x1 = std::max(0, grid.x2idx(xmin));
+        if (xmax < grid.getXMax())
+            x2 = std::min(sx - 1, grid.x2idx(xmax));
+        if (ymin > grid.getYMin())
+            y1 = std::max(0, grid.y2idx(ymin));
+        if (ymax < grid.getYMax())
+            y2 = std::min(sy - 1, grid.y2idx(ymax));
+    }
+    size_t free = 0;
+    for (int x = x1; x <= x2; x++)
+        for (int y = y1; y <= y2; y++)
+            if (grid.getCell(x, y) >= 0.7)
+                free++;
+    const double res = grid.getResolution();
+    const double area = double(free) * res * res;
+    const double phiRange =
+        global ? 2 * M_PI : std::min(2 * M_PI, 2 * options.init_phi_deg * M_PI / 180);
+    const auto& k = kldOptions;
+    return std::max(1.0, area / (k.KLD_binSize_XY * k.KLD_binSize_XY)) *
+           std::max(1.0, phiRange / k.KLD_binSize_PHI);
+}
+
+int CRawlogMcl::minParticles(const mrpt::maps::COccupancyGridMap2D& grid) const {
+    return int(std::max(10.0, std::ceil(kMinParticlesPerBin * initialBins(grid))));
+}
+
+void CRawlogMcl::checkParticles(const mrpt::maps::COccupancyGridMap2D& grid) const {
+    const int n = minParticles(grid);
+    if (options.particles >= n)
+        return;
+    std::ostringstream why;
+    why << "must be in [" << n << ", 1e+06] for init = " << options.init
+        << " on this map (" << kMinParticlesPerBin
+        << " per KLD bin of the initial region: " << std::llround(initialBins(grid))
+        << " bins); fewer lose the robot and every frame then draws KLD_maxSampleSize";
+    throw common::CConfigKeyError("Localization", "particles",
+                                  std::to_string(options.particles), why.str());
 }
 
 void CRawlogMcl::initialize(const mrpt::maps::COccupancyGridMap2D& grid, uint64_t seed) {

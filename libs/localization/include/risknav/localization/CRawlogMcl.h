@@ -53,6 +53,28 @@ class CRawlogMcl {
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& c);
     /** Writes [Localization], [PF_options] and [KLD_options] back. */
     void saveToConfigFile(mrpt::config::CConfigFileBase& c) const;
+    /** Particles per KLD bin (KLD_binSize_XY^2 x KLD_binSize_PHI) of the
+     * initial region that the start set needs at least. The first steps only
+     * copy and shift the start poses, so with too few none is near the robot:
+     * the filter is lost, spreads over many bins and KLD draws
+     * KLD_maxSampleSize particles every frame. Measured on the corridor's
+     * 15129-bin box (seed 1): 10 to 3000 start particles (up to 0.2 per bin)
+     * were lost and took ~25x longer, 4000 and 5000 localized; MRPT's
+     * localization_demo (40000 in 259002 bins, 0.15 per bin) localizes. A
+     * necessary bound, below MRPT's own demo, not a sufficient one: how many
+     * a map needs also depends on its symmetry. */
+    static constexpr double kMinParticlesPerBin = 0.1;
+    /** KLD bins of the initial region: the free cells (P(free) >= 0.7, as
+     * resetUniformFreeSpace() draws them) of the whole map (init = global) or
+     * of the init box, times the heading range; at least one bin per axis. */
+    double initialBins(const mrpt::maps::COccupancyGridMap2D& grid) const;
+    /** The fewest `particles` that cover the initial region on this map:
+     * kMinParticlesPerBin x initialBins(), at least 10. */
+    int minParticles(const mrpt::maps::COccupancyGridMap2D& grid) const;
+    /** Throws CConfigKeyError ([Localization] particles) when options.particles
+     * is below minParticles(grid). Call once the map is known, before
+     * initialize(). */
+    void checkParticles(const mrpt::maps::COccupancyGridMap2D& grid) const;
     /** Sets the map and draws the initial particles (seeded). */
     void initialize(const mrpt::maps::COccupancyGridMap2D& grid, uint64_t seed);
     /** One prediction + update step. */
