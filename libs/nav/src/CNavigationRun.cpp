@@ -136,6 +136,18 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
         mcl.loadFromConfigFile(c);
     loadRoute(c);
     checkAgainstMap(c);
+    // Too few start particles around the start lose the robot, and a lost
+    // filter runs at KLD_maxSampleSize every cycle: refused before the run,
+    // as risknav-afraid-learn refuses them.
+    if (options.localization == "mcl") {
+        mcl.options.initPose = options.start;
+        try {
+            mcl.checkParticles(world.grid());
+        } catch (const CConfigKeyError& e) {
+            throw CBadInputError(configWhere(c, e.section, e.key) +
+                                 typedValueMessage(c, e));
+        }
+    }
     // The outputs, bounded before the run starts (a tester's 1e5 s run that
     // never arrived was on its way to ~28 GB of navlog, ~56 KB a cycle): at
     // most 36,000 navlog cycles (2 h at 0.2 s, ~2 GB) and a rawlog of at most
