@@ -166,15 +166,13 @@ namespace {
  * path until the straight line to it keeps the clearance the path keeps
  * there (on a door post's corner the chord would cut past the slowest
  * speed's 5 cm margin).
- * The turn rate is for the speed the robot drives, v0 [m/s], not only the
- * one it is told: braking takes time (1 m/s^2: 1 s from 1.1 m/s), and a
- * rate set for the lower command (or a full-rate turn "on the spot" at
- * 0.5-1 m/s, an arc of 0.3-0.6 m radius) swings the robot off the path into
- * what the path passes. So while it still rolls it brakes on the pursuit
- * arc, w = kappa max(v, v0), and turns on the spot once it stands. */
+ * And no faster than the arc to the look-ahead point can be turned at maxW
+ * (regulated pure pursuit): at 1.1 m/s and 90 deg/s the tightest arc has a
+ * 0.70 m radius, and a bend the path takes tighter was driven wide of the
+ * path by more than the fastest speed's 0.30 m margin, then braked from
+ * 1 m/s into the door post beside it. */
 std::pair<double, double> follow(const TPlannedPath& path, const TPlanningField& field,
-                                 const TPose2D& p, double v, double v0, double maxW,
-                                 double radius) {
+                                 const TPose2D& p, double v, double maxW, double radius) {
     const auto& pts = path.points;
     if (pts.size() < 2)
         return {0.0, 0.0};
@@ -182,17 +180,16 @@ std::pair<double, double> follow(const TPlannedPath& path, const TPlanningField&
     const size_t t = lookaheadPoint(path, field, {p.x, p.y}, L).ahead;
     const double alpha =
         mrpt::math::wrapToPi(std::atan2(pts[t].y - p.y, pts[t].x - p.x) - p.phi);
-    const double dist = std::max(std::hypot(pts[t].x - p.x, pts[t].y - p.y), 1e-3);
-    const double kappa = 2 * std::sin(alpha) / dist;  // the arc to the look-ahead point
-    // below 5 cm/s it stands: a full-rate turn there sweeps a 3 cm arc
-    const bool rolling = v0 > 0.05;
     // where the robot has less than 10 cm to spare, an arc that starts off
     // the chord can touch what the chord passes: it turns on the spot first
     const double maxAlpha = field.clearanceAt(p.x, p.y) < radius + 0.1 ? 0.15 : 1.0;
     if (v <= 0 || std::abs(alpha) > maxAlpha)
-        return {0.0, rolling ? std::clamp(kappa * v0, -maxW, maxW)
-                             : std::clamp(1.5 * alpha, -maxW, maxW)};
-    return {v, std::clamp(kappa * std::max(v, v0), -maxW, maxW)};
+        return {0.0, std::clamp(1.5 * alpha, -maxW, maxW)};
+    const double dist = std::max(std::hypot(pts[t].x - p.x, pts[t].y - p.y), 1e-3);
+    const double kappa = 2 * std::sin(alpha) / dist;  // the arc to the look-ahead point
+    if (std::abs(kappa) * v > maxW)
+        v = maxW / std::abs(kappa);
+    return {v, std::clamp(kappa * v, -maxW, maxW)};
 }
 }  // namespace
 
@@ -408,7 +405,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
             const auto [vc, wc] =
                 lookingAround
                     ? std::pair<double, double>(0.0, lookAroundW)
-                    : follow(d.path, field, egoPose(), v, world.speed(),
+                    : follow(d.path, field, egoPose(), v,
                              world.robot.max_w_deg * M_PI / 180, world.robot.radius);
             world.command(vc, wc);
             world.step(dt);
