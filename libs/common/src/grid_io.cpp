@@ -187,10 +187,11 @@ TImageHeader imageHeader(const std::string& file) {
                 while (i < n && h[i] != '\n')
                     i++;
             } else if (std::isdigit(static_cast<unsigned char>(h[i]))) {
+                // every digit is the one number's (saturated at 2^40: a
+                // longer one is not split into two)
                 uint64_t x = 0;
-                while (i < n && std::isdigit(static_cast<unsigned char>(h[i])) &&
-                       x < (uint64_t(1) << 40))
-                    x = x * 10 + uint64_t(h[i++] - '0');
+                for (; i < n && std::isdigit(static_cast<unsigned char>(h[i])); i++)
+                    x = std::min(x * 10 + uint64_t(h[i] - '0'), uint64_t(1) << 40);
                 v.push_back(x);
                 continue;
             } else if (!std::isspace(static_cast<unsigned char>(h[i]))) {

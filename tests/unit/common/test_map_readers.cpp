@@ -274,12 +274,14 @@ TEST(MapReaders, ImageSizesAreReadFromEveryHeaderBeforeDecoding) {
     writeFile(d + "/huge.ppm",
               "P6\n# a comment longer than the old 64-byte window of the reader\n9000 "
               "9000\n255\n");
+    writeFile(d + "/long.pgm", "P5 99999999999999999999 1 255\n");  // one number, not two
     writeFile(d + "/map.gif", "GIF89a\x10\x00\x10\x00");
     for (const auto& [f, what] : std::vector<std::pair<std::string, std::string>>{
              {"huge.jpg", "30000 x 30000 px, more than 25 M cells"},
              {"huge.tif", "8000 x 8000 px, more than 25 M cells"},
              {"wide.tiff", "a TIFF header without its size"},
              {"huge.ppm", "9000 x 9000 px, more than 25 M cells"},
+             {"long.pgm", "1099511627776 x 1 px, more than 25 M cells"},
              {"map.gif", "cannot read the map image (not a PNG"}}) {
         const std::string why = refusal(d + "/" + f);
         EXPECT_TRUE(contains(why, d + "/" + f + ": ") && contains(why, what))
