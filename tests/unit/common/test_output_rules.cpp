@@ -13,6 +13,7 @@
 
 #include <csignal>
 #include <filesystem>
+#include <functional>
 
 #include "test_support.h"
 
@@ -44,6 +45,25 @@ std::string expectBadInputFrom(const std::function<void()>& f) {
     }
     ADD_FAILURE() << "no CBadInputError";
     return "";
+}
+
+// Runs `work` in a child process (a run that may be killed, or that changes
+// its own limits) and returns how it ended: its exit code, or -signal.
+int inChild(const std::function<int()>& work) {
+    const pid_t pid = fork();
+    if (pid == 0)
+        _exit(work());
+    int status = 0;
+    if (pid < 0 || waitpid(pid, &status, 0) != pid)
+        return -1000;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+}
+
+// The file size limit makes writes fail as a full disk does (EFBIG).
+void limitFileSize(rlim_t bytes) {
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit lim{bytes, bytes};
+    setrlimit(RLIMIT_FSIZE, &lim);
 }
 
 // An app's run, as the apps write: files, a subfolder of snapshots, a
@@ -238,16 +258,13 @@ TEST(OutputRules, OnlyAStagingFolderWithItsOwnerMarkerIsRemoved) {
 
 TEST(OutputRules, AKilledRunsScratchIsRemovedByTheNextRun) {
     const std::string d = freshDir("out");
-    const pid_t pid = fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-        COutputDir out(d, "risknav-navigate");
-        writeRun(out, "killed", 5);
-        ::raise(SIGKILL);
-    }
-    int status = 0;
-    waitpid(pid, &status, 0);
-    ASSERT_TRUE(WIFSIGNALED(status));
+    ASSERT_EQ(inChild([&] {
+                  COutputDir out(d, "risknav-navigate");
+                  writeRun(out, "killed", 5);
+                  ::raise(SIGKILL);
+                  return 0;
+              }),
+              -SIGKILL);
     ASSERT_EQ(listDir(d).size(), 1u);  // the killed run's staging folder
     { COutputDir out(d); }
     EXPECT_TRUE(listDir(d).empty());
@@ -283,9 +300,7 @@ TEST(OutputRules, ACommitIsAllOrNothingAcrossAKillAtEveryStep) {
     int sawA = 0, sawB = 0, steps = 0;
     for (int killAt = 1; killAt < 200; killAt++) {
         earlier();
-        const pid_t pid = fork();
-        ASSERT_GE(pid, 0);
-        if (pid == 0) {
+        const int ended = inChild([&] {
             COutputDir::setCommitStepHook([killAt](int step) {
                 if (step == killAt)
                     ::raise(SIGKILL);
@@ -294,12 +309,10 @@ TEST(OutputRules, ACommitIsAllOrNothingAcrossAKillAtEveryStep) {
             writeRun(out, "B", 2);
             out.writeText("only_in_b.csv", "B");
             out.commit();
-            _exit(0);
-        }
-        int status = 0;
-        waitpid(pid, &status, 0);
-        if (WIFEXITED(status)) {  // no step killAt: every step was covered
-            EXPECT_EQ(WEXITSTATUS(status), 0);
+            return 0;
+        });
+        if (ended != -SIGKILL) {  // no step killAt: every step was covered
+            EXPECT_EQ(ended, 0);
             steps = killAt - 1;
             break;
         }
@@ -322,28 +335,19 @@ TEST(OutputRules, AWriteThatFailsNamesTheFileAndTheReason) {
     // A full disk, as the file size limit makes it (EFBIG): one line naming
     // the result's final path and the system's reason.
     const std::string d = freshDir("out");
-    const pid_t pid = fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-        std::signal(SIGXFSZ, SIG_IGN);
-        const rlimit lim{1000, 1000};
-        setrlimit(RLIMIT_FSIZE, &lim);
-        int code = 4;
-        {
+    EXPECT_EQ(
+        inChild([&] {
+            limitFileSize(1000);
             COutputDir out(d, "x");
             try {
                 out.writeText("summary.json", std::string(5000, 'x'));
             } catch (const std::runtime_error& e) {
                 const std::string m = e.what();
-                code = m == "cannot write " + d + "/summary.json: File too large" ? 0 : 3;
+                return m == "cannot write " + d + "/summary.json: File too large" ? 0 : 3;
             }
-        }
-        _exit(code);
-    }
-    int status = 0;
-    waitpid(pid, &status, 0);
-    ASSERT_TRUE(WIFEXITED(status));
-    EXPECT_EQ(WEXITSTATUS(status), 0);
+            return 4;
+        }),
+        0);
     EXPECT_TRUE(listDir(d).empty());
 }
 
@@ -409,26 +413,20 @@ TEST(OutputRules, AFolderNamedWithATrailingSlashIsTheFolderItself) {
 
 TEST(OutputRules, AFullDiskWhileSettingUpIsARuntimeFailureNotBadInput) {
     const std::string d = freshDir("out");
-    const pid_t pid = fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-        std::signal(SIGXFSZ, SIG_IGN);
-        const rlimit lim{0, 0};  // no byte may be written: the owner marker fails
-        setrlimit(RLIMIT_FSIZE, &lim);
-        int code = 4;
-        try {
-            COutputDir out(d, "x");
-        } catch (const CBadInputError&) {
-            code = 3;
-        } catch (const std::runtime_error& e) {
-            code =
-                std::string(e.what()).find("File too large") != std::string::npos ? 0 : 5;
-        }
-        _exit(code);
-    }
-    int status = 0;
-    waitpid(pid, &status, 0);
-    ASSERT_TRUE(WIFEXITED(status));
-    EXPECT_EQ(WEXITSTATUS(status), 0);
+    EXPECT_EQ(inChild([&] {
+                  limitFileSize(0);  // no byte may be written: the owner marker fails
+                  try {
+                      COutputDir out(d, "x");
+                  } catch (const CBadInputError&) {
+                      return 3;
+                  } catch (const std::runtime_error& e) {
+                      return std::string(e.what()).find("File too large") !=
+                                     std::string::npos
+                                 ? 0
+                                 : 5;
+                  }
+                  return 4;
+              }),
+              0);
     EXPECT_TRUE(listDir(d).empty());
 }
