@@ -9,9 +9,16 @@ Runs the adaptive mode on:
   with a dead-end room, the same with a destination behind it), none of which
   the controller was tuned on;
 each over seeds 1..N, and prints per world: runs with every destination
-reached, collisions, near misses, time (mean and range), min clearance and
-the destinations given up. Extra `--set` options apply to every run (e.g.
-`--set Explore.ego_motion=ground_truth`).
+reached (judged on the true pose: within goal_tolerance where the robot
+believed it had arrived), runs where the robot believed it had arrived at
+every destination (the speed controller's own result: M1 does not localize,
+its belief is odometry), collisions, near misses, time (mean and range), min
+clearance, the largest belief error at an arrival, and each destination not
+reached with its status (localization_error: the belief arrived, the truth is
+out of tolerance; unreachable: given up; not_reached: out of time) and its
+true and belief errors. Extra `--set` options apply to every run (e.g.
+`--set Explore.ego_motion=ground_truth`). Exits 1 if any run collides or
+misses a destination in truth.
 
 Usage: python3 scripts/validate_explore.py [--seeds 5] [--jobs 2]
        [--out out/validate-explore] [--set Section.key=value ...]
@@ -79,29 +86,54 @@ def main():
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as ex:
         results = list(ex.map(run, jobs))
     rows, summary = [], {}
+    # where the robot believed it had arrived (judged on the truth after)
+    arrived = ("reached", "localization_error", "fell_short")
+
+    def missed(s, k, m):
+        st = m["destinations"][k]
+        text = "seed %d D%d %s" % (s, k + 1, st)
+        true_e = (m.get("destination_error_m") or [None] * (k + 1))[k]
+        belief_e = (m.get("destination_belief_error_m") or [None] * (k + 1))[k]
+        if true_e is not None and belief_e is not None:
+            text += " (%.2f m off, belief %.2f m off)" % (true_e, belief_e)
+        return text
+
     for name, _ in worlds:
         ms = [(s, m) for n, s, m in results if n == name]
         times = [m["time_s"] for _, m in ms]
-        given_up = ["seed %d D%d" % (s, k + 1) for s, m in ms
-                    for k, st in enumerate(m["destinations"]) if st != "reached"]
+        not_reached = [missed(s, k, m) for s, m in ms
+                       for k, st in enumerate(m["destinations"]) if st != "reached"]
+        belief = [e for _, m in ms for e in m.get("destination_belief_error_m", [])
+                  if e is not None]
         w = {
             "runs": len(ms),
             "all_reached": sum(1 for _, m in ms if m["all_reached"]),
+            "all_arrived_in_belief": sum(
+                1 for _, m in ms if all(st in arrived for st in m["destinations"])),
+            "localization_errors": sum(m["destinations"].count("localization_error")
+                                       for _, m in ms),
+            "max_belief_error_m": max(belief) if belief else None,
             "collisions": sum(m["collisions"] for _, m in ms),
             "near_misses": sum(m["near_misses"] for _, m in ms),
             "time_mean_s": sum(times) / len(times),
             "time_min_s": min(times),
             "time_max_s": max(times),
             "min_clearance_m": min(m["min_clearance_m"] for _, m in ms),
-            "not_reached": given_up,
+            "not_reached": not_reached,
         }
         summary[name] = w
-        rows.append("| %s | %d/%d | %d | %d | %.1f s (%.1f-%.1f) | %.3f m | %s |" % (
-            name, w["all_reached"], w["runs"], w["collisions"], w["near_misses"],
-            w["time_mean_s"], w["time_min_s"], w["time_max_s"],
-            w["min_clearance_m"], ", ".join(given_up) or "-"))
-    table = ["| world | all reached | collisions | near misses | time mean (range) "
-             "| min clearance | not reached |", "|---|---|---|---|---|---|---|"] + rows
+        rows.append("| %s | %d/%d | %d/%d | %d | %d | %.1f s (%.1f-%.1f) | %.3f m "
+                    "| %s | %s |" % (
+                        name, w["all_reached"], w["runs"], w["all_arrived_in_belief"],
+                        w["runs"], w["collisions"], w["near_misses"],
+                        w["time_mean_s"], w["time_min_s"], w["time_max_s"],
+                        w["min_clearance_m"],
+                        "-" if w["max_belief_error_m"] is None
+                        else "%.2f m" % w["max_belief_error_m"],
+                        ", ".join(not_reached) or "-"))
+    table = ["| world | all reached (true pose) | all arrived (belief) | collisions "
+             "| near misses | time mean (range) | min clearance | max belief error "
+             "| not reached |", "|---|---|---|---|---|---|---|---|---|"] + rows
     print("\n".join(table))
     with open(os.path.join(a.out, "summary.md"), "w") as f:
         f.write("\n".join(table) + "\n")

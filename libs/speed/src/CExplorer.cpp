@@ -159,6 +159,23 @@ bool pathBlocked(const TPlannedPath& path, const std::vector<TPoint2D>& sensed, 
     return false;
 }
 
+TArrival judgeArrival(const mrpt::math::TPoint2D& destination,
+                      const mrpt::math::TPose2D& truePose,
+                      const mrpt::math::TPose2D& believedPose, double tolerance,
+                      double nearestPossible) {
+    TArrival a;
+    a.trueError = std::hypot(destination.x - truePose.x, destination.y - truePose.y);
+    a.beliefError = std::hypot(believedPose.x - truePose.x, believedPose.y - truePose.y);
+    a.believedDistance =
+        std::hypot(destination.x - believedPose.x, destination.y - believedPose.y);
+    a.allowed = std::max(tolerance, std::max(0.0, nearestPossible) + tolerance / 2);
+    a.reached = a.trueError < a.allowed;
+    a.status = a.reached                        ? "reached"
+               : a.believedDistance < a.allowed ? "localization_error"
+                                                : "fell_short";
+    return a;
+}
+
 namespace {
 /** Pure pursuit along the path at speed v; v = 0 (or a sharp turn) turns in
  * place towards the path, so that the robot looks where it will go.
@@ -212,13 +229,25 @@ TModeResult CExplorer::runMode(int fixedIndex,
     // destinations in the ego frame: ego = ego0 + (start^-1 + world point)
     const mrpt::poses::CPose2D e0(ego0), s0(start);
     std::vector<TPoint2D> goalsWorld, goalsEgo;
+    // how near the robot may truly come to each destination: 0 in the open,
+    // more where it lies nearer an obstacle than the robot's radius and the
+    // slowest speed's margin (judgeArrival())
+    std::vector<double> nearestPossible;
     for (size_t k = 0; k + 1 < explore.destinations.size(); k += 2) {
         goalsWorld.emplace_back(explore.destinations[k], explore.destinations[k + 1]);
         const mrpt::poses::CPoint2D local =
             mrpt::poses::CPoint2D(goalsWorld.back().x, goalsWorld.back().y) - s0;
         const auto ge = e0 + local;
         goalsEgo.emplace_back(ge.x(), ge.y());
+        nearestPossible.push_back(std::max(
+            0.0, world.robot.radius + speed.margins.back() -
+                     world.pointClearance(goalsWorld.back().x, goalsWorld.back().y)));
     }
+    // the belief in the world frame: world = start + (ego0^-1 + ego), as the
+    // destinations were placed in the ego frame
+    auto believedInWorld = [&](const TPose2D& ego) {
+        return (s0 + (mrpt::poses::CPose2D(ego) - e0)).asTPose();
+    };
     std::optional<TPoint2D> previousTarget;  // temporary, of this destination
     // the point nearest this destination; none: one at infinity, never arrived at
     // (not a std::optional: gcc 12 warned it might be read uninitialized)
@@ -241,6 +270,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
     r.destinationStatus.assign(goalsWorld.size(), "not_reached");
     r.destinationError.assign(goalsWorld.size(),
                               std::numeric_limits<double>::quiet_NaN());
+    r.destinationBeliefError = r.destinationError;
     r.timeAtSpeed.assign(speed.speeds.size(), 0.0);
     sim::CSafetyMonitor safety;
     safety.reset();
@@ -262,19 +292,24 @@ TModeResult CExplorer::runMode(int fixedIndex,
         const auto t0 = std::chrono::steady_clock::now();
         pipeline.update(ego, scans.laser.get(), scans.range2.get());
         const TPlanningField& field = pipeline.field();
-        // reached: within the tolerance, or (a destination nearer an
-        // obstacle than the robot may come) at the point nearest it
+        // arrived, as the robot believes: within arrival_radius, or (a
+        // destination nearer an obstacle than the robot may come) at the
+        // point nearest it. It halts and goes on: it cannot know the truth.
         auto arrived = [&] {
             return std::hypot(goalsEgo[dest].x - ego.x, goalsEgo[dest].y - ego.y) <
-                       explore.goal_tolerance ||
+                       explore.arrival_radius ||
                    std::hypot(nearestTarget.x - ego.x, nearestTarget.y - ego.y) <
-                       explore.goal_tolerance / 2;
+                       std::min(explore.arrival_radius, explore.goal_tolerance / 2);
         };
+        // reached is judged on the true pose; a belief that arrived where
+        // the truth is not within goal_tolerance is a localization error
         while (dest < goalsEgo.size() && arrived()) {
-            const TPose2D tp = world.truePose();
-            r.destinationError[dest] =
-                std::hypot(goalsWorld[dest].x - tp.x, goalsWorld[dest].y - tp.y);
-            nextDestination("reached");
+            const TArrival a =
+                judgeArrival(goalsWorld[dest], world.truePose(), believedInWorld(ego),
+                             explore.goal_tolerance, nearestPossible[dest]);
+            r.destinationError[dest] = a.trueError;
+            r.destinationBeliefError[dest] = a.beliefError;
+            nextDestination(a.status);
         }
         if (dest == goalsEgo.size())
             break;

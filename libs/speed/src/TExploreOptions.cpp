@@ -36,6 +36,7 @@ void TExploreOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
     sim_dt = readDouble(c, s, "sim_dt", sim_dt);
     time_limit = readDouble(c, s, "time_limit", time_limit);
     goal_tolerance = readDouble(c, s, "goal_tolerance", goal_tolerance);
+    arrival_radius = readDouble(c, s, "arrival_radius", arrival_radius);
     unreachable_after = readDouble(c, s, "unreachable_after", unreachable_after);
     not_approaching_timeout =
         readDouble(c, s, "not_approaching_timeout", not_approaching_timeout);
@@ -57,6 +58,7 @@ void TExploreOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
     writeKey(c, s, "sim_dt", sim_dt);
     writeKey(c, s, "time_limit", time_limit);
     writeKey(c, s, "goal_tolerance", goal_tolerance);
+    writeKey(c, s, "arrival_radius", arrival_radius);
     writeKey(c, s, "unreachable_after", unreachable_after);
     writeKey(c, s, "not_approaching_timeout", not_approaching_timeout);
     writeKey(c, s, "look_around", look_around);
@@ -99,6 +101,10 @@ void TExploreOptions::validate() const {
     checkKey(section, "sim_dt", sim_dt, TRange{0, 1, true, false, "s"});
     checkKey(section, "time_limit", time_limit, TRange{0, 36000, true, false, "s"});
     checkKey(section, "goal_tolerance", goal_tolerance, TRange{0, 10, true, false, "m"});
+    checkKey(section, "arrival_radius", arrival_radius, TRange{0, 10, true, false, "m"});
+    checkRule(arrival_radius <= goal_tolerance, section, "arrival_radius",
+              numberText(arrival_radius),
+              "must be at most goal_tolerance = " + numberText(goal_tolerance));
     checkKey(section, "unreachable_after", unreachable_after,
              TRange::closed(0, 3600, "s"));
     checkKey(section, "not_approaching_timeout", not_approaching_timeout,

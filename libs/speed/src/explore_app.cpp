@@ -62,12 +62,20 @@ json modeSummary(const TModeResult& r, const TSpeedControlOptions& o) {
     j["time_at_speed_s"] = ts;
     j["time_stopped_or_turning_s"] = r.timeStopped;
     j["destinations"] = r.destinationStatus;
-    json err = json::array();  // null: not reached (no arrival to measure)
-    for (double e : r.destinationError)
-        err.push_back(std::isfinite(e) ? json(e) : json());
-    j["destination_error_m"] = err;
+    // where the robot believed it had arrived: the true distance to the
+    // destination, and the belief's own error there (null: never arrived)
+    auto metres = [](const std::vector<double>& v) {
+        json a = json::array();
+        for (double e : v)
+            a.push_back(std::isfinite(e) ? json(e) : json());
+        return a;
+    };
+    j["destination_error_m"] = metres(r.destinationError);
+    j["destination_belief_error_m"] = metres(r.destinationBeliefError);
     j["destinations_reached"] =
         std::count(r.destinationStatus.begin(), r.destinationStatus.end(), "reached");
+    j["destinations_localization_error"] = std::count(
+        r.destinationStatus.begin(), r.destinationStatus.end(), "localization_error");
     j["all_reached"] = r.allReached();
     json reasons = json::object();
     for (const auto& c : r.cycles)

@@ -843,3 +843,55 @@ TEST(SpeedController, TheGoalShortcutAndTheCostBoundGiveTheFullSearchesDecision)
     }
     EXPECT_GE(escapedToTheGoal, 2);
 }
+
+// risknav-explore judges "reached" on the true pose: a belief that says
+// arrived where the truth is 1 m off is a localization error, not reached.
+TEST(ExploreArrival, ABeliefAtTheDestinationWithTheTruth1mOffIsNotReached) {
+    using mrpt::math::TPoint2D;
+    using mrpt::math::TPose2D;
+    const TPoint2D dest(5, 2);
+    // the belief 0.1 m from the destination, the truth 1 m from it
+    const TPose2D believed(5.1, 2, 0), truth(5, 3, 0);
+    const auto a = judgeArrival(dest, truth, believed, 0.3);
+    EXPECT_FALSE(a.reached);
+    EXPECT_STREQ(a.status, "localization_error");
+    EXPECT_NEAR(a.trueError, 1.0, 1e-12);
+    EXPECT_NEAR(a.beliefError, std::hypot(0.1, 1.0), 1e-12);
+    EXPECT_NEAR(a.believedDistance, 0.1, 1e-12);
+    EXPECT_DOUBLE_EQ(a.allowed, 0.3);
+    // the truth within the tolerance: reached, whatever the belief's error
+    const auto b = judgeArrival(dest, TPose2D(5, 2.25, 1), believed, 0.3);
+    EXPECT_TRUE(b.reached);
+    EXPECT_STREQ(b.status, "reached");
+    EXPECT_NEAR(b.beliefError, std::hypot(0.1, 0.25), 1e-12);
+    // exactly at the tolerance is out of it (as the robot's own rule)
+    EXPECT_FALSE(
+        judgeArrival(TPoint2D(0, 0), TPose2D(0.25, 0, 0), TPose2D(), 0.25).reached);
+    // a perfect belief: the truth is where the belief is
+    const auto c = judgeArrival(dest, believed, believed, 0.3);
+    EXPECT_TRUE(c.reached);
+    EXPECT_EQ(c.beliefError, 0.0);
+}
+
+// A destination nearer an obstacle than the robot may come: reached within
+// tolerance / 2 of the nearest point the robot may truly come to; a robot
+// that halted short of that in its own belief "fell_short".
+TEST(ExploreArrival, ADestinationByAWallCountsAtTheNearestPointTheRobotMayCome) {
+    using mrpt::math::TPoint2D;
+    using mrpt::math::TPose2D;
+    const TPoint2D dest(0, 0);
+    // it may come to 0.25 m: allowed 0.25 + 0.15 = 0.40 m
+    const auto a =
+        judgeArrival(dest, TPose2D(0.38, 0, 0), TPose2D(0.38, 0, 0), 0.3, 0.25);
+    EXPECT_TRUE(a.reached);
+    EXPECT_DOUBLE_EQ(a.allowed, 0.4);
+    // 0.5 m away in truth and in belief: the robot knew it was short
+    const auto b = judgeArrival(dest, TPose2D(0.5, 0, 0), TPose2D(0.5, 0, 0), 0.3, 0.25);
+    EXPECT_FALSE(b.reached);
+    EXPECT_STREQ(b.status, "fell_short");
+    // 0.5 m away in truth, the belief at 0.3 m: the belief's error
+    const auto c = judgeArrival(dest, TPose2D(0.5, 0, 0), TPose2D(0.3, 0, 0), 0.3, 0.25);
+    EXPECT_STREQ(c.status, "localization_error");
+    // a negative nearest distance is none
+    EXPECT_DOUBLE_EQ(judgeArrival(dest, TPose2D(), TPose2D(), 0.3, -1).allowed, 0.3);
+}

@@ -8,6 +8,7 @@
 #include <risknav/speed/CAdaptiveSpeedPipeline.h>
 #include <risknav/speed/TExploreOptions.h>
 
+#include <mrpt/math/TPoint2D.h>
 #include <mrpt/math/TPose2D.h>
 
 #include <functional>
@@ -28,6 +29,44 @@ bool pathBlocked(const TPlannedPath& path,
                  const std::vector<mrpt::math::TPoint2D>& sensed, double v,
                  const common::TRobotOptions& robot, double margin, double lateralMargin,
                  double noiseTolerance = 0.01);
+
+/** How an arrival the robot believed in went, in truth. */
+struct TArrival {
+    /** The robot truly stands within the allowed distance of the destination. */
+    bool reached = false;
+    /** What happened where the robot believed it had arrived (it halts there
+     * and goes on: it cannot know better):
+     *  - "reached": truly within the allowed distance;
+     *  - "localization_error": not, though the belief was within it: the
+     *    belief's error (beliefError: odometry, the robot's own map) put
+     *    the robot out of tolerance;
+     *  - "fell_short": not, and the belief was not within it either: the
+     *    robot halted at the point nearest the destination that its own map
+     *    let it come to. */
+    const char* status = "localization_error";
+    double trueError = 0;         ///< [m] true position to the destination
+    double beliefError = 0;       ///< [m] believed position to the true position
+    double believedDistance = 0;  ///< [m] believed position to the destination
+    double allowed = 0;           ///< [m] the true distance that counts as reached
+};
+
+/** Judges, on the TRUE pose (the simulator's ground truth), an arrival at
+ * `destination` (world frame) that the robot believed in at `believedPose`
+ * (its belief placed in the world frame). Reached iff
+ *
+ *   |destination - true| < allowed = max(tolerance, nearestPossible + tolerance / 2)
+ *
+ * where nearestPossible [m] is how near the robot's centre may truly come to
+ * a destination closer to an obstacle than the robot's radius and slowest
+ * margin (0 in the open; the robot's own rule halts within tolerance / 2 of
+ * the point nearest it). A miss is a "localization_error" when the belief
+ * was within `allowed` (|destination - true| <= believedDistance +
+ * beliefError: the belief's error exceeded allowed - believedDistance), else
+ * "fell_short". A pure function. */
+TArrival judgeArrival(const mrpt::math::TPoint2D& destination,
+                      const mrpt::math::TPose2D& truePose,
+                      const mrpt::math::TPose2D& believedPose, double tolerance,
+                      double nearestPossible = 0);
 
 /** One control cycle of a mode, as cycles.csv shows it. */
 struct TCycleRecord {
@@ -60,8 +99,16 @@ struct TModeResult {
     std::vector<TCycleRecord> cycles;
     std::vector<mrpt::math::TPose2D> observations;  ///< true pose per cycle
     std::vector<TSnapshot> snapshots;
-    std::vector<std::string> destinationStatus;  ///< reached | unreachable | not_reached
-    std::vector<double> destinationError;  ///< [m] true distance when reached, NaN if not
+    /** reached | localization_error | fell_short | unreachable |
+     * not_reached (the first three: judgeArrival() on the true pose, where
+     * the robot believed it had arrived). */
+    std::vector<std::string> destinationStatus;
+    /** [m] true distance to the destination where the robot believed it had
+     * arrived (judgeArrival()); NaN where it never did. */
+    std::vector<double> destinationError;
+    /** [m] the belief's position error there (believed vs true position, the
+     * belief placed in the world by the start); NaN where it never arrived. */
+    std::vector<double> destinationBeliefError;
     double time = 0, distance = 0;
     int collisions = 0, collisionsStatic = 0, nearMisses = 0, marginBrokenCycles = 0;
     double minClearance = 0;          ///< [m] robot edge to the map

@@ -23,7 +23,18 @@ struct TExploreOptions : public common::CValidatedOptions {
     double memory_resolution = 0.25;  ///< [m]
     double sim_dt = 0.05;             ///< [s] physics step inside a cycle
     double time_limit = 300;          ///< [s] simulated, per mode
-    double goal_tolerance = 0.3;      ///< [m] a destination counts as reached
+    /** [m] a destination counts as reached when the robot's TRUE pose (the
+     * simulator's ground truth) is within this where it believed it had
+     * arrived (judgeArrival()). */
+    double goal_tolerance = 0.3;
+    /** [m] the robot believes it has arrived (and halts, and goes on) when
+     * its believed pose is within this of the destination (or within
+     * min(this, goal_tolerance / 2) of the point nearest it that it may come
+     * to); at most goal_tolerance. Below it, so
+     * that a small belief error does not by itself put the true pose out of
+     * goal_tolerance: halting at the tolerance's edge in belief, the robot
+     * was truly outside it about every other time. */
+    double arrival_radius = 0.15;
     double unreachable_after = 5;
     /** [s] a destination the robot has not come 0.5 m nearer to (in the ego
      * frame) for this long is given up as unreachable (MRPT's reactive
