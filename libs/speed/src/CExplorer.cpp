@@ -170,9 +170,12 @@ TArrival judgeArrival(const mrpt::math::TPoint2D& destination,
         std::hypot(destination.x - believedPose.x, destination.y - believedPose.y);
     a.allowed = std::max(tolerance, std::max(0.0, nearestPossible) + tolerance / 2);
     a.reached = a.trueError < a.allowed;
-    a.status = a.reached                        ? "reached"
-               : a.believedDistance < a.allowed ? "localization_error"
-                                                : "fell_short";
+    // the belief's error at least the miss: it accounts for the miss (always
+    // so when the belief was within `allowed`: trueError <= believedDistance
+    // + beliefError)
+    a.status = a.reached                                  ? "reached"
+               : a.beliefError >= a.trueError - a.allowed ? "localization_error"
+                                                          : "fell_short";
     return a;
 }
 

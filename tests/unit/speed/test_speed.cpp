@@ -889,9 +889,19 @@ TEST(ExploreArrival, ADestinationByAWallCountsAtTheNearestPointTheRobotMayCome) 
     const auto b = judgeArrival(dest, TPose2D(0.5, 0, 0), TPose2D(0.5, 0, 0), 0.3, 0.25);
     EXPECT_FALSE(b.reached);
     EXPECT_STREQ(b.status, "fell_short");
-    // 0.5 m away in truth, the belief at 0.3 m: the belief's error
+    // 0.5 m away in truth, the belief at 0.3 m: the belief's error (0.2 m)
+    // is at least the miss (0.1 m)
     const auto c = judgeArrival(dest, TPose2D(0.5, 0, 0), TPose2D(0.3, 0, 0), 0.3, 0.25);
     EXPECT_STREQ(c.status, "localization_error");
+    // the belief 0.05 m off, the miss 0.1 m: its own map held it short
+    EXPECT_STREQ(
+        judgeArrival(dest, TPose2D(0.5, 0, 0), TPose2D(0.45, 0, 0), 0.3, 0.25).status,
+        "fell_short");
+    // a destination in the open whose belief arrived at its nearest point
+    // 0.6 m off in belief, the truth 0.5 m away: the belief's
+    EXPECT_STREQ(
+        judgeArrival(dest, TPose2D(0.5, 0, 0), TPose2D(-0.1, 0.6, 0), 0.3).status,
+        "localization_error");
     // a negative nearest distance is none
     EXPECT_DOUBLE_EQ(judgeArrival(dest, TPose2D(), TPose2D(), 0.3, -1).allowed, 0.3);
 }

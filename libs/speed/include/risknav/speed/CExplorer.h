@@ -37,12 +37,14 @@ struct TArrival {
     /** What happened where the robot believed it had arrived (it halts there
      * and goes on: it cannot know better):
      *  - "reached": truly within the allowed distance;
-     *  - "localization_error": not, though the belief was within it: the
-     *    belief's error (beliefError: odometry, the robot's own map) put
-     *    the robot out of tolerance;
-     *  - "fell_short": not, and the belief was not within it either: the
-     *    robot halted at the point nearest the destination that its own map
-     *    let it come to. */
+     *  - "localization_error": not, and the belief's error (beliefError:
+     *    odometry, the robot's own map) is at least the miss (trueError -
+     *    allowed): the belief put the robot out of tolerance (always so
+     *    when the belief was within it), or put the destination by a wall
+     *    where the robot halted at the nearest point it believed it may
+     *    come to;
+     *  - "fell_short": not, with a smaller belief error: the robot halted
+     *    where its own map (not its pose) said it could come no nearer. */
     const char* status = "localization_error";
     double trueError = 0;         ///< [m] true position to the destination
     double beliefError = 0;       ///< [m] believed position to the true position
@@ -59,10 +61,10 @@ struct TArrival {
  * where nearestPossible [m] is how near the robot's centre may truly come to
  * a destination closer to an obstacle than the robot's radius and slowest
  * margin (0 in the open; the robot's own rule halts within tolerance / 2 of
- * the point nearest it). A miss is a "localization_error" when the belief
- * was within `allowed` (|destination - true| <= believedDistance +
- * beliefError: the belief's error exceeded allowed - believedDistance), else
- * "fell_short". A pure function. */
+ * the point nearest it). A miss is a "localization_error" when
+ * beliefError >= |destination - true| - allowed (always so when the belief
+ * was within allowed, as |destination - true| <= believedDistance +
+ * beliefError), else "fell_short". A pure function. */
 TArrival judgeArrival(const mrpt::math::TPoint2D& destination,
                       const mrpt::math::TPose2D& truePose,
                       const mrpt::math::TPose2D& believedPose, double tolerance,
