@@ -269,6 +269,30 @@ TEST(SimulateE2E, MapFormatsGiveTheSameRun) {
     EXPECT_TRUE(readFile(c + "/simulation.rawlog") == ref) << "ROS YAML differs from PNG";
 }
 
+// MRPT's own dataset map (mrpt-common; serialization version 3, an object
+// header without namespace, 1888 x 2738 cells) is a world the simulator
+// drives in: loaded (cell for cell as MRPT reads it: MapReaders
+// .MrptMalagaCampusGridmapVersion3) and written back as the run's map.
+TEST(SimulateE2E, MrptMalagaCampusGridmapIsAWorld) {
+    const std::string map = "/usr/share/mrpt/datasets/2006-MalagaCampus.gridmap.gz";
+    ASSERT_TRUE(fs::is_regular_file(map)) << "mrpt-common is not installed";
+    const std::string w = freshDir("malaga");
+    writeFile(w + "/world.ini",
+              "[Simulation]\nduration_max = 60\n\n[World]\nmap_file = " + map +
+                  "\n\n[Route]\nwaypoints = 4.0 -112.0  10.0 -112.0\n"
+                  "speed = 0.5\nlaps = 1\n");
+    const std::string out = w + "/out";
+    const auto r =
+        run(binPath("risknav-simulate") + " -q -o '" + out + "' '" + w + "/world.ini'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    const auto s = readJson(out + "/summary.json");
+    EXPECT_EQ(s["status"], "completed");
+    EXPECT_EQ(s["collisions"], 0);
+    EXPECT_GT(s["frames"].get<int>(), 50);
+    EXPECT_GT(fs::file_size(out + "/map.gridmap.gz"), 100000u);
+}
+
 TEST(SimulateE2E, EffectiveConfigReproducesTheRun) {
     const std::string a =
         simulate("corridor-doors", freshDir("a"), "--set Route.laps=1 --seed 3");

@@ -199,8 +199,14 @@ TEST(MapReaders, MrptMalagaCampusGridmapVersion3) {
     ASSERT_EQ(ours.getSizeX(), ref.getSizeX());
     ASSERT_EQ(ours.getSizeY(), ref.getSizeY());
     EXPECT_EQ(ours.getXMin(), ref.getXMin());
+    EXPECT_EQ(ours.getYMin(), ref.getYMin());
+    EXPECT_EQ(ours.getXMax(), ref.getXMax());
     EXPECT_EQ(ours.getYMax(), ref.getYMax());
     EXPECT_EQ(ours.getResolution(), ref.getResolution());
+    // the dataset's own figures (MRPT_NOTES: 1888 x 2738 cells at 0.08 m)
+    EXPECT_EQ(ours.getSizeX(), 1888u);
+    EXPECT_EQ(ours.getSizeY(), 2738u);
+    EXPECT_FLOAT_EQ(ours.getResolution(), 0.08f);
     EXPECT_EQ(ours.getRawMap(), ref.getRawMap());
 }
 
