@@ -58,14 +58,14 @@ void BM_LaserScan181(benchmark::State& state) {
     common::TMapSourceOptions m;
     m.map_file =
         std::string(RISKNAV_SOURCE_DIR) + "/datasets/corridor-doors/corridor.png";
-    const auto grid = common::loadOccupancyGrid(m);
+    const sim::CRayCastMap map(common::loadOccupancyGrid(m), mapping::TObstacleRule());
     sim::CRangeSensorSim laser;
     std::mt19937_64 rng(1);
     const std::vector<sim::TDisc> people = {{12, 4, 0.25, 1}, {16, 3.5, 0.25, 2}};
     double x = 2;
     for (auto _ : state) {
         benchmark::DoNotOptimize(
-            laser.simulate(grid, {x, 4.5, 0}, people, mrpt::Clock::now(), rng));
+            laser.simulate(map, {x, 4.5, 0}, people, mrpt::Clock::now(), rng));
         x = x > 27 ? 2 : x + 0.04;
     }
 }

@@ -78,6 +78,11 @@ INSTANTIATE_TEST_SUITE_P(
               "[Route] speed = '-0.2': must be in (0, 5] m/s"},
         TCase{"zero_resolution", "", "", "--set World.map_resolution=0",
               "[World] map_resolution = '0': must be in [0.001, 10] m"},
+        // the obstacle rule's switches are booleans (laser and collisions
+        // both follow them: a misread one would change what is a wall)
+        TCase{"unknown_is_obstacle_not_a_bool", "\\[World\\]\n",
+              "[World]\nunknown_is_obstacle = maybe\n", "",
+              "world.ini: [World] unknown_is_obstacle = 'maybe': must be true or false"},
         TCase{"negative_person_speed", "speed     = 0.8", "speed     = -0.8", "",
               "[DoorPedestrian1] speed = '-0.8': must be in (0, 10] m/s"},
         TCase{"not_a_number", "", "", "--set Robot.radius=0.25cm",

@@ -58,7 +58,7 @@ void CRangeSensorSim::TOptions::validate() const {
 }
 
 mrpt::obs::CObservation2DRangeScan::Ptr CRangeSensorSim::simulate(
-    const mrpt::maps::COccupancyGridMap2D& grid, const mrpt::math::TPose2D& robot,
+    const CRayCastMap& map, const mrpt::math::TPose2D& robot,
     const std::vector<TDisc>& discs, mrpt::Clock::time_point t,
     std::mt19937_64& rng) const {
     const auto& o = options;
@@ -72,9 +72,10 @@ mrpt::obs::CObservation2DRangeScan::Ptr CRangeSensorSim::simulate(
     scan->sensorPose =
         mrpt::poses::CPose3D(o.x, o.y, o.z, o.yaw_deg * M_PI / 180.0, 0, 0);
     // Static map, noise-free: noise is added once below, from our own seeded
-    // generator (laserScanSimulator would draw from MRPT's global one).
-    grid.laserScanSimulator(*scan, mrpt::poses::CPose2D(robot), 0.5f,
-                            static_cast<size_t>(o.beams), 0.0f);
+    // generator (laserScanSimulator would draw from MRPT's global one). The
+    // map's cells are 0 or 1 (CRayCastMap): the 0.5 decides nothing.
+    map.grid().laserScanSimulator(*scan, mrpt::poses::CPose2D(robot), 0.5f,
+                                  static_cast<size_t>(o.beams), 0.0f);
 
     // Which discs this scan sees (per-object dropout).
     std::uniform_real_distribution<double> u01(0.0, 1.0);

@@ -78,6 +78,7 @@ void CSimWorld::buildField() {
     m_field = mapping::CDistanceField(m_grid, obstacleRule);
     if (m_field.freeCount() == 0)
         throw CBadInputError(mapSource.map_file + ": the map has no free cell");
+    m_rayMap = CRayCastMap(m_grid, obstacleRule);
 }
 
 void CSimWorld::reset(const mrpt::math::TPose2D& start, uint64_t seed, double startTime) {
@@ -131,10 +132,10 @@ CSimWorld::TScans CSimWorld::sense() {
     const auto gt = truePose();
     const auto discs = agents.discs();
     TScans s;
-    s.laser = laser.simulate(m_grid, gt, discs, ts, m_rngLaser);
+    s.laser = laser.simulate(m_rayMap, gt, discs, ts, m_rngLaser);
     if (range2.options.enabled &&
         m_senses % size_t(range2.options.frame_decimation) == 0) {
-        s.range2 = range2.simulate(m_grid, gt, discs, ts, m_rngRange2);
+        s.range2 = range2.simulate(m_rayMap, gt, discs, ts, m_rngRange2);
         m_range2Scans++;
     }
     m_senses++;

@@ -314,3 +314,87 @@ TEST(SimWorld, PlacementIsCheckedInMetres) {
               "0.25 m)");
     EXPECT_TRUE(w.placement(-5.6, 0).free());
 }
+
+namespace {
+// A free 10 x 6 m map, [-2, 8] x [-3, 3], with a block of unknown cells
+// (grey, P(free) = 0.5: never seen) over x in [3, 4], y in [-1, 1].
+mrpt::maps::COccupancyGridMap2D mapWithUnknownBlock() {
+    mrpt::maps::COccupancyGridMap2D g(-2, 8, -3, 3, 0.05f);
+    g.fill(1.0f);
+    for (int cy = g.y2idx(-1.0 + 0.025); cy <= g.y2idx(1.0 - 0.025); cy++)
+        for (int cx = g.x2idx(3.0 + 0.025); cx <= g.x2idx(4.0 - 0.025); cx++)
+            g.setCell(cx, cy, 0.5f);
+    return g;
+}
+
+struct TDriveIntoBlock {
+    bool echo = false;
+    double range = 0;  ///< the middle beam's, when it echoes [m]
+    int collisions = 0;
+    double minGap = 0;
+};
+
+// The robot at (0, 0) facing the block senses once, then drives 5.5 m
+// straight on (through the block when it may), as the simulator counts
+// collisions (CWorldSimulator: pointClearance into CSafetyMonitor).
+TDriveIntoBlock driveIntoBlock(bool unknownIsObstacle) {
+    CSimWorld w;
+    fastRobot(w);
+    w.obstacleRule.unknown_is_obstacle = unknownIsObstacle;
+    w.laser.options.max_range = 5.0;  // the map's far edge (8 m) out of range
+    w.laser.options.noise_std = 0;
+    w.setMap(mapWithUnknownBlock());
+    w.reset(TPose2D(0, 0, 0), 1);
+    TDriveIntoBlock r;
+    const auto scan = w.sense().laser;
+    const size_t mid = scan->getScanSize() / 2;
+    r.echo = scan->getScanRangeValidity(mid);
+    r.range = scan->getScanRange(mid);
+    CSafetyMonitor m;
+    const double dt = 0.05;
+    for (int i = 0; i < 220; i++) {  // 0.5 m/s for 11 s
+        w.step(0.5, 0, dt);
+        const auto p = w.truePose();
+        m.update(w.time(), p, w.robot.radius, w.agents, w.pointClearance(p.x, p.y));
+    }
+    r.collisions = m.collisionsStatic();
+    r.minGap = m.minGapStatic();
+    return r;
+}
+}  // namespace
+
+// [World] unknown_is_obstacle = true (the default): the unknown block is a
+// wall for the laser (an echo at its edge) and for the collisions.
+TEST(SimWorld, UnknownCellsAreWallsForTheLaserAndTheCollisions) {
+    EXPECT_TRUE(CSimWorld().obstacleRule.unknown_is_obstacle);  // the default
+    const auto r = driveIntoBlock(true);
+    ASSERT_TRUE(r.echo);
+    EXPECT_NEAR(r.range, 3.0 - 0.2, 0.05);  // the block's edge, from the sensor
+    EXPECT_EQ(r.collisions, 1);
+    EXPECT_LT(r.minGap, 0);
+}
+
+// unknown_is_obstacle = false: the block is free for both, no echo (nothing
+// else within the laser's 5 m) and no collision driving through it.
+TEST(SimWorld, UnknownCellsAreFreeForTheLaserAndTheCollisionsWhenNotObstacles) {
+    const auto r = driveIntoBlock(false);
+    EXPECT_FALSE(r.echo);
+    EXPECT_EQ(r.collisions, 0);
+    EXPECT_GT(r.minGap, 1.5);  // the map's edge 2 m behind the start is the nearest
+}
+
+// Whatever the rule, the world's laser and its collision check classify
+// every cell alike (CRayCastMap and CDistanceField through one function).
+TEST(SimWorld, LaserAndCollisionsSeeTheSameCells) {
+    for (const bool unknown : {true, false}) {
+        CSimWorld w;
+        w.obstacleRule.unknown_is_obstacle = unknown;
+        w.setMap(mapWithUnknownBlock());
+        const auto& f = w.distanceField();
+        for (int cy = -1; cy <= f.sizeY(); cy++)
+            for (int cx = -1; cx <= f.sizeX(); cx++)
+                ASSERT_EQ(w.rayCastMap().isObstacleAt(f.idx2x(cx), f.idx2y(cy)),
+                          f.isObstacle(cx, cy))
+                    << cx << ", " << cy;
+    }
+}

@@ -5,7 +5,8 @@
 
 namespace risknav::mapping {
 /** Which cells of an occupancy grid are obstacles: the one rule that the
- * simulator, the risk evaluator and the afraid learner share. MRPT cells hold
+ * simulator (its collisions and what its range sensors echo on), the risk
+ * evaluator and the afraid learner share. MRPT cells hold
  * P(free); occupancy = 1 - P(free). A cell is
  *  - an obstacle if occupancy >= occupied_threshold,
  *  - free if occupancy <= free_threshold,
@@ -21,7 +22,9 @@ struct TObstacleRule : public common::CValidatedOptions {
     bool outside_is_obstacle = true;
     std::string section = "World";  ///< the host section (for messages)
 
-    /** The rule for one cell value (MRPT's P(free) in [0, 1]). */
+    /** The rule for one cell value (MRPT's P(free) in [0, 1]): the one
+     * function that makes a cell a wall for the collisions, the clearances
+     * and the simulated range sensors alike. */
     bool isObstacle(float pFree) const {
         const double occ = 1.0 - double(pFree);
         return occ >= occupied_threshold || (unknown_is_obstacle && occ > free_threshold);

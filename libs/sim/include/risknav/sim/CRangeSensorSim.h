@@ -1,5 +1,6 @@
 #pragma once
 #include <risknav/common/CValidatedOptions.h>
+#include <risknav/sim/CRayCastMap.h>
 #include <risknav/sim/range_geometry.h>
 
 #include <mrpt/config/CConfigFileBase.h>
@@ -12,8 +13,10 @@
 #include <vector>
 
 namespace risknav::sim {
-/** A planar range sensor: rays cast on the static grid with MRPT's
- * COccupancyGridMap2D::laserScanSimulator and against disc obstacles (people,
+/** A planar range sensor: rays cast on the static map's obstacles as the
+ * obstacle rule classifies them (CRayCastMap: the cells the collisions count,
+ * unknown cells by unknown_is_obstacle) with MRPT's
+ * COccupancyGridMap2D::laserScanSimulator, and against disc obstacles (people,
  * clutter) that the map does not contain; Gaussian range noise; optional
  * per-object dropout (each disc independently missed in a whole scan, as a
  * stereo or sonar sensor misses objects). Output: a CObservation2DRangeScan
@@ -42,10 +45,11 @@ class CRangeSensorSim {
     } options;
 
     /** One scan from the robot pose at timestamp t. */
-    mrpt::obs::CObservation2DRangeScan::Ptr simulate(
-        const mrpt::maps::COccupancyGridMap2D& grid, const mrpt::math::TPose2D& robot,
-        const std::vector<TDisc>& discs, mrpt::Clock::time_point t,
-        std::mt19937_64& rng) const;
+    mrpt::obs::CObservation2DRangeScan::Ptr simulate(const CRayCastMap& map,
+                                                     const mrpt::math::TPose2D& robot,
+                                                     const std::vector<TDisc>& discs,
+                                                     mrpt::Clock::time_point t,
+                                                     std::mt19937_64& rng) const;
 };
 
 }  // namespace risknav::sim

@@ -7,6 +7,7 @@
 #include <risknav/sim/CDiffDriveVehicle.h>
 #include <risknav/sim/COdometrySim.h>
 #include <risknav/sim/CRangeSensorSim.h>
+#include <risknav/sim/CRayCastMap.h>
 
 #include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/math/TPose2D.h>
@@ -30,6 +31,12 @@ namespace risknav::sim {
  * commands a velocity, step() advances physics, odometry and people, sense()
  * returns this instant's scans.
  *
+ * The obstacle rule ([World]) decides for the collisions, the clearances and
+ * the range sensors alike which cells are walls (CDistanceField and
+ * CRayCastMap, both through TObstacleRule::isObstacle): with
+ * unknown_is_obstacle an unknown cell echoes and is a collision, without it
+ * it is neither.
+ *
  * Sections: [World] (map source + obstacle rule), [Robot], [Odometry],
  * [Laser], [RangeSensor2], [DoorPedestrianN], [CorridorWalkerN], [ClutterN];
  * keys documented in config/risknav-simulate.ini. */
@@ -37,7 +44,7 @@ class CSimWorld {
   public:
     common::TMapSourceOptions mapSource;  ///< [World]
     mapping::TObstacleRule
-        obstacleRule;             ///< [World]: collisions, clearance, route checks
+        obstacleRule;  ///< [World]: collisions, clearance, route checks, sensors
     common::TRobotOptions robot;  ///< [Robot]
     COdometrySim odometry;        ///< [Odometry]
     CRangeSensorSim laser;        ///< [Laser]: the main sensor, every sense()
@@ -128,6 +135,8 @@ class CSimWorld {
 
     const mrpt::maps::COccupancyGridMap2D& grid() const { return m_grid; }
     const risknav::mapping::CDistanceField& distanceField() const { return m_field; }
+    /** The map the range sensors cast their rays on (the same obstacles). */
+    const CRayCastMap& rayCastMap() const { return m_rayMap; }
     /** Distance [m] from (x, y) to the nearest map obstacle (0 inside one or off the
      * map). */
     double clearance(double x, double y) const { return m_field.clearanceAt(x, y); }
@@ -145,6 +154,7 @@ class CSimWorld {
     void buildField();
     mrpt::maps::COccupancyGridMap2D m_grid;
     risknav::mapping::CDistanceField m_field;
+    CRayCastMap m_rayMap;
     CDiffDriveVehicle m_vehicle;
     std::mt19937_64 m_rngLaser, m_rngRange2;
     std::vector<TAgentEvent> m_agentEvents;
