@@ -7,13 +7,17 @@
 #include <risknav/common/stopping.h>
 #include <risknav/nav/CAdaptiveSpeedLimiter.h>
 #include <risknav/nav/CAfraidSpeedLimiter.h>
+#include <risknav/nav/CLayeredConfig.h>
 #include <risknav/nav/CNavigationRun.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
 #include <risknav/risk/CRiskEvaluator.h>
 #include <risknav/sim/CRawlogWriter.h>
 
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/kinematics/CVehicleSimul_DiffDriven.h>
 #include <mrpt/math/CPolygon.h>
 #include <mrpt/math/wrap2pi.h>
+#include <mrpt/nav/reactive/CRobot2NavInterfaceForSimulator.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/system/filesystem.h>
@@ -134,8 +138,17 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
         m_engine = std::make_unique<CIniConfig>(options.engine_config);
     if (options.localization == "mcl")
         mcl.loadFromConfigFile(c);
+    if (options.global_planner != "none")
+        loadOptions(plannerOptions, c, "GlobalPlanner");
     loadRoute(c);
     checkAgainstMap(c);
+    m_planner.reset();
+    if (options.global_planner == "grid") {
+        m_planner = std::make_shared<CGlobalPlanner>();
+        m_planner->options = plannerOptions;
+        m_planner->setMap(world.grid(), world.distanceField().rule(),
+                          world.robot.radius + options.shape_margin);
+    }
     // Too few start particles around the start lose the robot, and a lost
     // filter runs at KLD_maxSampleSize every cycle: refused before the run,
     // as risknav-afraid-learn refuses them.
@@ -252,6 +265,8 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
         for (const auto* s : {"Navigate", "World", "Robot", "Odometry", "Laser",
                               "RangeSensor2", "CRiskAwareReactiveNav"})
             known.insert(s);
+        if (options.global_planner != "none")
+            known.insert("GlobalPlanner");
         if (options.localization == "mcl")
             for (const auto* s : {"Localization", "PF_options", "KLD_options"})
                 known.insert(s);
@@ -271,7 +286,8 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
                 c.throwUnknownSection(
                     s,
                     "Navigate, World, Robot, Odometry, Laser, RangeSensor2, "
-                    "people and clutter, CRiskAwareReactiveNav and the sections of the "
+                    "people and clutter, CRiskAwareReactiveNav, GlobalPlanner (with "
+                    "global_planner = grid) and the sections of the "
                     "limiters it names, MRPT's engine sections" +
                         std::string(options.localization == "mcl"
                                         ? ", Localization, PF_options, KLD_options"
@@ -304,6 +320,8 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
 
 void CNavigationRun::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
     options.saveToConfigFile(c, kSec);
+    if (options.global_planner != "none")
+        plannerOptions.saveToConfigFile(c, "GlobalPlanner");
     world.saveToConfigFile(c);
     if (options.localization == "mcl")
         mcl.saveToConfigFile(c);
@@ -438,15 +456,19 @@ void CNavigationRun::checkAgainstMap(const CIniConfig& c) const {
                         pointText(s.x, s.y) + " " + pl.why);
     // the people's paths and the clutter against the map (as risknav-simulate)
     world.checkAgentsAgainstMap(c);
-    for (const auto& w : waypoints.waypoints)
-        if (!onMap(w.target.x, w.target.y))
+    for (const auto& w : waypoints.waypoints) {
+        const bool inside = onMap(w.target.x, w.target.y);
+        if (!inside || world.pointClearance(w.target.x, w.target.y) <= 0)
             throwBadKey(
                 c, kSec,
                 !options.goals.empty()
                     ? "goals"
                     : (!options.route_file.empty() ? "route_file" : "risk_config"),
                 !options.goals.empty() ? readString(c, kSec, "goals", "") : routeName,
-                "waypoint " + pointText(w.target.x, w.target.y) + " is outside the map");
+                "waypoint " + pointText(w.target.x, w.target.y) +
+                    (inside ? " is inside an obstacle of the map"
+                            : " is outside the map"));
+    }
 }
 
 mrpt::nav::TWaypointSequence CNavigationRun::lapWaypoints(int laps) const {
@@ -490,8 +512,80 @@ mrpt::math::CPolygon CNavigationRun::robotShape() const {
     return shape;
 }
 
-// MRPT failing on each of this many first cycles of a run: a config error.
+// MRPT failing on each of this many first cycles of a run: a config error
+// if it fails so in open space too (engineFailsInOpenSpace()).
 constexpr int kFailedCyclesForBadConfig = 5;
+
+namespace {
+/** MRPT's own simulated differential robot with a laser that senses
+ * nothing: open space. */
+class COpenSpaceRobot : public mrpt::nav::CRobot2NavInterfaceForSimulator_DiffDriven {
+  public:
+    using CRobot2NavInterfaceForSimulator_DiffDriven::
+        CRobot2NavInterfaceForSimulator_DiffDriven;
+    bool senseObstacles(mrpt::maps::CSimplePointsMap& obstacles,
+                        mrpt::system::TTimeStamp& timestamp) override {
+        obstacles.clear();
+        timestamp = mrpt::Clock::now();
+        return true;
+    }
+};
+}  // namespace
+
+std::string CNavigationRun::engineFailsInOpenSpace(const std::string& cacheDir,
+                                                   double clockNow) const {
+    // the engine as configured, without the limiters (they may need the
+    // world), on MRPT's simulated robot in open space, 3 m to a target
+    // straight ahead: the cycles a config error fails on wherever it is
+    mrpt::config::CConfigFileMemory noLimiters;
+    noLimiters.write("CRiskAwareReactiveNav", "speed_limiters", "");
+    const CLayeredConfig layered(noLimiters, *m_cfg);
+    mrpt::kinematics::CVehicleSimul_DiffDriven vehicle;
+    vehicle.setCurrentGTPose(mrpt::math::TPose2D(0, 0, 0));
+    COpenSpaceRobot robot(vehicle);
+    robot.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+    CRiskAwareReactiveNav nav(robot);
+    nav.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+    nav.logging_enable_console_output = false;
+    int errors = 0;
+    std::string first;
+    nav.logRegisterCallback([&](std::string_view msg, mrpt::system::VerbosityLevel lvl,
+                                std::string_view, mrpt::Clock::time_point) {
+        if (lvl < mrpt::system::LVL_ERROR)
+            return;
+        errors++;
+        if (first.empty())
+            first = mrptErrorText(std::string(msg));
+    });
+    const_cast<mrpt::system::CTimeLogger&>(nav.getDelaysTimeLogger()).disable();
+    nav.setEngineConfig(m_engine.get());
+    try {
+        nav.loadConfigFile(layered);
+        nav.params_abstract_ptg_navigator.ptg_cache_files_directory = cacheDir;
+        nav.changeRobotShape(robotShape());
+        {
+            const TFileLock lock((fs::path(cacheDir) / ".lock").string());
+            nav.initialize();
+        }
+        mrpt::nav::CAbstractNavigator::TNavigationParams np;
+        np.target.target_coords = mrpt::math::TPose2D(3, 0, 0);
+        np.target.targetAllowedDistance = options.goal_tolerance;
+        nav.navigate(&np);
+        double t = clockNow;
+        for (int k = 0; k < kFailedCyclesForBadConfig; k++) {
+            const int before = errors;
+            nav.navigationStep();
+            if (errors == before)
+                return "";
+            t += options.nav_period;
+            vehicle.simulateOneTimeStep(options.nav_period);
+            mrpt::Clock::setSimulatedTime(mrpt::Clock::fromDouble(t));
+        }
+    } catch (const std::exception& e) {
+        return firstLine(e.what());
+    }
+    return first.empty() ? std::string("(no message)") : first;
+}
 
 TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     const auto wall0 = std::chrono::steady_clock::now();
@@ -545,6 +639,10 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     });
     const_cast<mrpt::system::CTimeLogger&>(nav.getDelaysTimeLogger()).disable();
     nav.setEngineConfig(m_engine.get());
+    if (m_planner) {
+        m_planner->resetFollowing();
+        nav.setGlobalPlanner(m_planner);
+    }
     nav.loadConfigFile(c);
     if (setup.maxSpeed)
         nav.changeCurrentRobotSpeedLimits().robotMax_V_mps = *setup.maxSpeed;
@@ -710,6 +808,10 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
         const double stepS =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - s0).count();
         r.navStepSeconds += stepS;
+        if (m_planner && r.firstPlan.empty() && m_planner->current().found) {
+            r.firstPlan = m_planner->current().points;
+            r.firstPlanLength = m_planner->current().length;
+        }
 
         TNavCycle rec;
         rec.cycle = cycle;
@@ -730,6 +832,11 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
         rec.distance = r.distance;
         rec.stepMs = 1e3 * stepS;
         r.maxPoseError = std::max(r.maxPoseError, rec.poseError);
+        if (!wps.waypoints.empty() && rec.waypoint == int(wps.waypoints.size()) - 1) {
+            const auto& g = wps.waypoints.back().target;
+            r.goalTrueDistance =
+                std::min(r.goalTrueDistance, std::hypot(truth.x - g.x, truth.y - g.y));
+        }
         r.cycles.push_back(rec);
 
         // The navigator's events of this step, and what tagged waypoints do.
@@ -772,14 +879,27 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
         // is a value of its config that MRPT takes without a check
         const bool failedNow = r.mrptErrors > mrptErrorsSeen;
         everyCycleFailed = everyCycleFailed && failedNow;
-        if (everyCycleFailed && cycle + 1 == kFailedCyclesForBadConfig)
-            throw CBadInputError(
-                m_cfg->path() +
-                (m_engine ? " (engine_config " + m_engine->path() + ")" : "") +
-                ": MRPT's reactive engine failed on each of its first " +
-                std::to_string(kFailedCyclesForBadConfig) +
-                " cycles (a value of its config it takes without a check): " +
-                clippedText(r.firstMrptError));
+        if (everyCycleFailed && cycle + 1 == kFailedCyclesForBadConfig) {
+            // A config error fails so anywhere; a start MRPT's PTGs find no
+            // motion from (beside a wall, the target off to the side) is
+            // the run's outcome, not the config's: told in summary.json
+            const std::string open = engineFailsInOpenSpace(cacheDir, world.time() + t0);
+            clock.set(t0 + world.time());
+            if (!open.empty())
+                throw CBadInputError(
+                    m_cfg->path() +
+                    (m_engine ? " (engine_config " + m_engine->path() + ")" : "") +
+                    ": MRPT's reactive engine failed on each of its first " +
+                    std::to_string(kFailedCyclesForBadConfig) +
+                    " cycles, in open space too (a value of its config it takes without "
+                    "a check): " +
+                    clippedText(r.firstMrptError));
+            r.events.push_back(TNavRunEvent{
+                t, "mrpt_error", -1, truth.x, truth.y,
+                "MRPT's engine failed on each of the first " +
+                    std::to_string(kFailedCyclesForBadConfig) +
+                    " cycles here (not in open space: the start's surroundings)"});
+        }
         // MRPT's errors of this step (caught inside navigationStep()): one
         // event with their count and the last one's message
         if (failedNow) {
@@ -795,6 +915,11 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
             r.status = "navigation_error";
             const auto& er = nav.getErrorReason();
             r.navError = std::to_string(int(er.error_code)) + ": " + er.error_msg;
+            if (const auto& f = nav.planFailure()) {
+                r.status = "no_path";
+                r.noPathFailure = f->failure;
+                r.navError = f->failure + ": " + f->reason;
+            }
             break;
         }
         if (st == mrpt::nav::CAbstractNavigator::IDLE && cycle > 0) {
@@ -858,6 +983,43 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     }
     progress.finish();
     r.time = world.time();
+    // the robot's own track between the cycles: MRPT reached the last
+    // waypoint when its move passed within the allowed distance
+    if (!wps.waypoints.empty() && r.goalTrueDistance < 1e300) {
+        const auto& g = wps.waypoints.back().target;
+        size_t from = 0;
+        for (const auto& cy : r.cycles)
+            if (cy.waypoint == int(wps.waypoints.size()) - 1)
+                break;
+            else
+                from += stepsPerCycle;
+        for (size_t k = std::min(from, r.track.size()); k < r.track.size(); k++)
+            r.goalTrueDistance = std::min(
+                r.goalTrueDistance, std::hypot(r.track[k].x - g.x, r.track[k].y - g.y));
+    }
+    if (r.status == "goal_reached" &&
+        !(r.goalTrueDistance <= wps.waypoints.back().allowed_distance + 0.05)) {
+        char b[300];
+        std::snprintf(b, sizeof(b),
+                      "MRPT reached the goal on the believed pose, but the robot truly "
+                      "came no nearer than %.2f m to it (pose error at the end %.2f m)",
+                      r.goalTrueDistance,
+                      r.cycles.empty() ? 0.0 : r.cycles.back().poseError);
+        r.status = "localization_error";
+        r.navError = b;
+    }
+    if (m_planner) {
+        r.plans = m_planner->replans();
+        for (const auto& e : r.plans)
+            r.events.push_back(TNavRunEvent{
+                e.t - t0, e.why == "new_target" ? "plan" : "replan", -1, e.x, e.y,
+                e.why + (e.length > 0
+                             ? ": " + numberText(std::round(e.length * 100) / 100) + " m"
+                             : ": no way")});
+        std::stable_sort(
+            r.events.begin(), r.events.end(),
+            [](const TNavRunEvent& a, const TNavRunEvent& b) { return a.t < b.t; });
+    }
     r.finalPoseError = r.cycles.empty() ? 0 : r.cycles.back().poseError;
     r.agentEvents = world.agentEvents();
     // Static clutter is a disc too: keep the tracks of things that moved.

@@ -815,6 +815,7 @@ void CRiskAwareReactiveNav::TOptions::loadFromConfigFile(
         speed_limiters.push_back(name);
     turn_in_place_deg = readDouble(c, s, "turn_in_place_deg", turn_in_place_deg);
     turn_rate_deg = readDouble(c, s, "turn_rate_deg", turn_rate_deg);
+    start_turn_deg = readDouble(c, s, "start_turn_deg", start_turn_deg);
     unstick_time = readDouble(c, s, "unstick_time", unstick_time);
     unstick_heading_deg = readDouble(c, s, "unstick_heading_deg", unstick_heading_deg);
     guide_lookahead = readDouble(c, s, "guide_lookahead", guide_lookahead);
@@ -828,6 +829,7 @@ void CRiskAwareReactiveNav::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     writeKey(c, s, "speed_limiters", list);
     writeKey(c, s, "turn_in_place_deg", turn_in_place_deg);
     writeKey(c, s, "turn_rate_deg", turn_rate_deg);
+    writeKey(c, s, "start_turn_deg", start_turn_deg);
     writeKey(c, s, "unstick_time", unstick_time);
     writeKey(c, s, "unstick_heading_deg", unstick_heading_deg);
     writeKey(c, s, "guide_lookahead", guide_lookahead);
@@ -850,6 +852,7 @@ void CRiskAwareReactiveNav::TOptions::validate() const {
     checkKey(kSection, "turn_in_place_deg", turn_in_place_deg,
              TRange::closed(0, 180, "deg"));
     checkKey(kSection, "turn_rate_deg", turn_rate_deg, TRange::closed(1, 360, "deg/s"));
+    checkKey(kSection, "start_turn_deg", start_turn_deg, TRange::closed(0, 180, "deg"));
     checkKey(kSection, "unstick_time", unstick_time, TRange::closed(0, 1e5, "s"));
     // below 2 s a robot driving 0.25 m/s (5 cm a 0.2 s cycle) would count as stuck
     checkRule(unstick_time == 0 || unstick_time >= 2, kSection, "unstick_time",
@@ -891,7 +894,8 @@ void CRiskAwareReactiveNav::navigationStep() {
     std::optional<mrpt::math::TPoint2D> target;
     double targetAllowed = 0;
     std::optional<mrpt::math::TPoint2D> lastStepPose;
-    if (limitDeg > 0 || riskOptions.unstick_time > 0) {
+    if (limitDeg > 0 || riskOptions.unstick_time > 0 || riskOptions.start_turn_deg > 0 ||
+        m_planner) {
         const auto st = getWaypointNavStatus();  // one copy for both
         if (const auto ct = currentTarget(st)) {
             target = ct->point;
@@ -919,6 +923,8 @@ void CRiskAwareReactiveNav::navigationStep() {
         };
         if (m_robot.getCurrentPoseAndSpeeds(pose, vel, ts, odo, frame) &&
             !reachedByMrpt(pose)) {
+            if (m_planner && !updatePlanner(pose, *target))
+                return;  // no way: stopped
             // stuck: neither 5 cm nor 5 deg of motion for unstick_time (a
             // robot MRPT dithers by +-5 deg is not caught: turned to a
             // target behind a corner, MRPT's way round it was lost); a clock
@@ -982,12 +988,19 @@ void CRiskAwareReactiveNav::navigationStep() {
                                            m_unstuck->turns + 1}
                                 : TUnstick{*target, dist, 1};
             };
+            const double startDeg = riskOptions.start_turn_deg;
+            const bool standing = std::hypot(vel.vx, vel.vy) < 0.05;
             if (m_turning) {
-                m_turning = deg > (m_unsticking ? unstickDeg : limitDeg) / 3;
+                m_turning = deg > (m_unsticking     ? unstickDeg
+                                   : m_startTurning ? startDeg
+                                                    : limitDeg) /
+                                      3;
                 if (!m_turning)
                     m_escapeHeading.reset();
             } else if (limitDeg > 0 && deg > limitDeg) {
-                m_turning = true, m_unsticking = false;
+                m_turning = true, m_unsticking = false, m_startTurning = false;
+            } else if (startDeg > 0 && deg > startDeg && standing && !m_escapeHeading) {
+                m_turning = true, m_unsticking = false, m_startTurning = true;
             } else if (stuck && deg > unstickDeg && mayUnstick) {
                 m_turning = true, m_unsticking = true;
                 countTurn();
@@ -1031,15 +1044,19 @@ void CRiskAwareReactiveNav::navigationStep() {
                 m_last = {};
                 m_last.turning = true;
                 m_last.unsticking = m_unsticking;
-                m_last.reason = m_unsticking
-                                    ? m_unstickReason
+                m_last.startTurn = m_startTurning && !m_unsticking;
+                m_last.reason = m_unsticking ? m_unstickReason
+                                : m_startTurning
+                                    ? "aim " + numberText(std::round(deg)) +
+                                          " deg off a standing robot, more than "
+                                          "start_turn_deg"
                                     : "target " + numberText(std::round(deg)) +
                                           " deg off, more than turn_in_place_deg";
                 return;
             }
         }
     }
-    m_turning = m_unsticking = false;
+    m_turning = m_unsticking = m_startTurning = false;
     m_escapeHeading.reset();
     m_last = {};  // set by generate_vel_cmd() when MRPT sends a new command
     m_observeDue = !m_limiters.empty();
@@ -1052,6 +1069,37 @@ void CRiskAwareReactiveNav::navigationStep() {
     }
     m_observeDue = false;
     finishObserved(false);
+    if (m_planner && target) {
+        // what MRPT sensed this step (robot frame of its pose then)
+        const auto& xs = m_WS_Obstacles.getPointsBufferRef_x();
+        const auto& ys = m_WS_Obstacles.getPointsBufferRef_y();
+        std::vector<mrpt::math::TPoint2D> pts(xs.size());
+        for (size_t k = 0; k < xs.size(); k++)
+            pts[k] = mrpt::math::TPoint2D(xs[k], ys[k]);
+        m_planner->addSensed(m_curPoseVel.pose, pts,
+                             mrpt::Clock::toDouble(mrpt::Clock::now()));
+    }
+}
+
+bool CRiskAwareReactiveNav::updatePlanner(const mrpt::math::TPose2D& pose,
+                                          const mrpt::math::TPoint2D& target) {
+    const double now = mrpt::Clock::toDouble(mrpt::Clock::now());
+    if (const auto ev = m_planner->update(pose, target, now))
+        m_planBest = std::numeric_limits<double>::infinity();
+    const auto& plan = m_planner->current();
+    if (!plan.found) {
+        m_planFailure = plan;
+        doEmergencyStop("[CGlobalPlanner] no way to the target: " + plan.reason);
+        return false;
+    }
+    // MRPT's "not approaching the target" alarm on the way left along the
+    // plan: a detour round a wall leads away from the target for a while
+    const double left = m_planner->remainingLength(pose);
+    if (left < m_planBest - 0.1) {
+        m_planBest = left;
+        m_badNavAlarm_lastMinDistTime = mrpt::Clock::now();
+    }
+    return true;
 }
 
 void CRiskAwareReactiveNav::STEP3_WSpaceToTPSpace(
@@ -1116,6 +1164,14 @@ std::vector<mrpt::math::TPoint2D> CRiskAwareReactiveNav::pointsNearShape() const
 
 std::optional<mrpt::math::TPoint2D> CRiskAwareReactiveNav::guidePoint(
     const mrpt::math::TPose2D& pose, const mrpt::math::TPoint2D& target) const {
+    if (m_planner) {
+        const auto pt = m_planner->currentTarget();
+        if (pt && std::hypot(pt->x - target.x, pt->y - target.y) < 1e-9 &&
+            std::hypot(target.x - pose.x, target.y - pose.y) >
+                m_planner->options.lookahead)
+            if (auto g = m_planner->guidePoint(pose))
+                return g;
+    }
     const double L = riskOptions.guide_lookahead;
     if (!(L > 0) || m_guidePausedAt ||
         std::hypot(target.x - pose.x, target.y - pose.y) <= L)

@@ -66,6 +66,7 @@ void TNavigateOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
     rawlog = readBool(c, s, "rawlog", rawlog);
     engine_config = optionalFile(c, s, "engine_config", engine_config);
     ptg_cache_dir = readPath(c, s, "ptg_cache_dir", ptg_cache_dir, false);
+    global_planner = readChoice(c, s, "global_planner", global_planner, {"grid", "none"});
 }
 
 void TNavigateOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
@@ -96,6 +97,7 @@ void TNavigateOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
     writeKey(c, s, "rawlog", rawlog);
     writeKey(c, s, "engine_config", engine_config);
     writeKey(c, s, "ptg_cache_dir", ptg_cache_dir);
+    writeKey(c, s, "global_planner", global_planner);
 }
 
 void TNavigateOptions::validate() const {

@@ -280,6 +280,27 @@ json runSummary(const CNavigationRun& run, const TNavRunResult& r) {
     j["rawlog_frames"] = r.rawlogFrames;
     j["mrpt_errors"] = r.mrptErrors;
     j["mrpt_first_error"] = r.firstMrptError;
+    j["goal_true_distance_m"] = finiteOrNull(r.goalTrueDistance);
+    j["global_planner"] = run.options.global_planner;
+    if (run.options.global_planner != "none") {
+        json replans = json::object();
+        int plans = 0;
+        double msMax = 0, msSum = 0;
+        for (const auto& e : r.plans) {
+            if (e.why == "new_target")
+                plans++;
+            else
+                replans[e.why] = replans.value(e.why, 0) + 1;
+            msMax = std::max(msMax, e.ms);
+            msSum += e.ms;
+        }
+        j["plan"] = {{"first_length_m", r.firstPlanLength},
+                     {"plans", plans},
+                     {"replans", replans},
+                     {"plan_ms_max", msMax},
+                     {"plan_ms_mean", r.plans.empty() ? 0.0 : msSum / r.plans.size()},
+                     {"no_path", r.noPathFailure}};
+    }
     j["timing"] = {
         {"wall_time_s", r.wallSeconds},
         {"navigation_step_s", r.navStepSeconds},

@@ -1,4 +1,5 @@
 #include <risknav/common/CQuadHeap.h>
+#include <risknav/geometry/polyline.h>
 #include <risknav/speed/IPathPlanner.h>
 
 #include <algorithm>
@@ -242,40 +243,8 @@ bool clearanceHoldsAhead(const TPlannedPath& path, const TPlanningField& field,
 }
 TLookahead lookaheadPoint(const TPlannedPath& path, const TPlanningField& field,
                           const mrpt::math::TPoint2D& p, double L) {
-    TLookahead r;
-    const auto& pts = path.points;
-    if (pts.size() < 2)
-        return r;
-    double best = 1e18;
-    for (size_t k = 0; k < pts.size(); k++) {
-        const double d = std::hypot(pts[k].x - p.x, pts[k].y - p.y);
-        if (d < best) {
-            best = d;
-            r.nearest = k;
-        }
-    }
-    const size_t c = r.nearest;
-    size_t t = c;
-    while (t + 1 < pts.size() && std::hypot(pts[t].x - p.x, pts[t].y - p.y) < L)
-        t++;
-    const double res = field.map.resolution;
-    auto chordKeepsClearance = [&](size_t to) {
-        double pathClear = std::numeric_limits<double>::infinity();
-        for (size_t k = c; k <= to; k++)
-            pathClear = std::min(pathClear, field.clearanceAt(pts[k].x, pts[k].y));
-        const double len = std::hypot(pts[to].x - p.x, pts[to].y - p.y);
-        const int n = int(std::ceil(len / (0.5 * res)));
-        for (int s = 1; s <= n; s++) {
-            const double f = double(s) / n;
-            if (field.clearanceAt(p.x + f * (pts[to].x - p.x),
-                                  p.y + f * (pts[to].y - p.y)) < pathClear - 0.5 * res)
-                return false;
-        }
-        return true;
-    };
-    while (t > c + 1 && !chordKeepsClearance(t))
-        t--;
-    r.ahead = t;
-    return r;
+    return geometry::lookaheadOnPolyline(
+        path.points, p, L, 0.5 * field.map.resolution,
+        [&](double x, double y) { return field.clearanceAt(x, y); });
 }
 }  // namespace risknav::speed

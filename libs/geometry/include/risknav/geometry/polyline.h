@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -49,6 +50,60 @@ bool segmentFree(double x0, double y0, double x1, double y1, double step,
         if (isObstacle(x0 + (x1 - x0) * k / n, y0 + (y1 - y0) * k / n))
             return false;
     return true;
+}
+
+/** Pure pursuit's look-ahead point on a polyline, as indices into `pts`:
+ * `nearest`, the point nearest `from`, and `ahead`, the first point from
+ * there on at least `lookahead` [m] from `from` (the last point if none is),
+ * pulled back towards `nearest` until the straight line from `from` to it
+ * keeps the clearance the polyline keeps between the two (or the clearance
+ * at `from`, if less), to within `step` (a chord across a door post's corner would cut
+ * past the margin). `clearanceAt(x, y)` [m] is the map's clearance; `step` [m] the
+ * sampling of the chord (half a cell). Fewer than 2 points: both 0. Shared by the
+ * adaptive controller's local paths and the global planner's routes. */
+struct TLookahead {
+    size_t nearest = 0, ahead = 0;
+};
+template <class ClearanceAt>
+TLookahead lookaheadOnPolyline(const std::vector<mrpt::math::TPoint2D>& pts,
+                               const mrpt::math::TPoint2D& from, double lookahead,
+                               double step, ClearanceAt&& clearanceAt) {
+    TLookahead r;
+    if (pts.size() < 2)
+        return r;
+    double best = 1e18;
+    for (size_t k = 0; k < pts.size(); k++) {
+        const double d = std::hypot(pts[k].x - from.x, pts[k].y - from.y);
+        if (d < best) {
+            best = d;
+            r.nearest = k;
+        }
+    }
+    const size_t c = r.nearest;
+    size_t t = c;
+    while (t + 1 < pts.size() &&
+           std::hypot(pts[t].x - from.x, pts[t].y - from.y) < lookahead)
+        t++;
+    auto chordKeepsClearance = [&](size_t to) {
+        // a robot off the polyline (nearer a wall than it) starts the chord
+        // with its own clearance: the chord need not keep more
+        double pathClear = clearanceAt(from.x, from.y);
+        for (size_t k = c; k <= to; k++)
+            pathClear = std::min(pathClear, double(clearanceAt(pts[k].x, pts[k].y)));
+        const double len = std::hypot(pts[to].x - from.x, pts[to].y - from.y);
+        const int n = int(std::ceil(len / step));
+        for (int s = 1; s <= n; s++) {
+            const double f = double(s) / n;
+            if (clearanceAt(from.x + f * (pts[to].x - from.x),
+                            from.y + f * (pts[to].y - from.y)) < pathClear - step)
+                return false;
+        }
+        return true;
+    };
+    while (t > c + 1 && !chordKeepsClearance(t))
+        t--;
+    r.ahead = t;
+    return r;
 }
 
 }  // namespace risknav::geometry

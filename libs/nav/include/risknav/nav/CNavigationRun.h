@@ -1,6 +1,7 @@
 #pragma once
 #include <risknav/common/CIniConfig.h>
 #include <risknav/localization/CRawlogMcl.h>
+#include <risknav/nav/CGlobalPlanner.h>
 #include <risknav/nav/TNavigateOptions.h>
 #include <risknav/nav/waypoint_file.h>
 #include <risknav/sim/CAgentsSim.h>
@@ -14,6 +15,7 @@
 #include <mrpt/nav/reactive/TWaypoint.h>
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -51,7 +53,9 @@ struct TNavRunEvent {
 
 /** Everything one closed-loop run produced. */
 struct TNavRunResult {
-    std::string status;    ///< goal_reached | navigation_error | stalled | timeout
+    /** goal_reached | navigation_error | no_path | localization_error |
+     * stalled | timeout */
+    std::string status;
     std::string navError;  ///< MRPT's error code and message ("" if none)
     std::vector<TNavCycle> cycles;
     std::vector<TNavRunEvent> events;
@@ -69,6 +73,16 @@ struct TNavRunResult {
     int mrptErrors = 0;          ///< errors MRPT's navigator logged
     std::string firstMrptError;  ///< the first one's message
     std::string navlogFile;      ///< MRPT's file (in the run's log folder), "" if none
+    /** The global planner's plans (global_planner = grid): every (re)plan. */
+    std::vector<TReplanEvent> plans;
+    std::vector<mrpt::math::TPoint2D> firstPlan;  ///< the first plan's points
+    double firstPlanLength = 0;                   ///< [m]
+    std::string noPathFailure;  ///< no way to a target: start_blocked | ...
+    /** [m] the least true distance of the robot to the last waypoint while
+     * it was the target (+inf: never its target). "goal_reached" is MRPT's
+     * verdict on the believed pose; farther than goal_tolerance (+ 5 cm)
+     * it becomes status "localization_error". */
+    double goalTrueDistance = std::numeric_limits<double>::infinity();
     int collisions() const { return safety.collisions() + safety.collisionsStatic(); }
 };
 
@@ -109,6 +123,8 @@ class CNavigationRun {
     mrpt::nav::TWaypointSequence waypoints;  ///< one lap of the route
     std::map<size_t, TWaypointTag> tags;     ///< by waypoint index
     std::string routeName;                   ///< where the route came from
+    /** [GlobalPlanner] (global_planner = grid). */
+    CGlobalPlanner::TOptions plannerOptions;
 
     /** Loads and checks everything (the world, the route against the map,
      * MRPT's engine and the limiters through a probe navigator), before any
@@ -134,8 +150,15 @@ class CNavigationRun {
     std::unique_ptr<common::CIniConfig> m_engine;  // [Navigate] engine_config
     // the probe navigator's saveConfigFile(): the engine and limiter sections
     mrpt::config::CConfigFileMemory m_navigatorConfig;
+    std::shared_ptr<CGlobalPlanner> m_planner;  // its map set up once
     void loadRoute(common::CIniConfig& c);
     void checkAgainstMap(const common::CIniConfig& c) const;
+    /** MRPT's engine as configured (limiters aside) on MRPT's own simulated
+     * robot in open space, a target 3 m ahead: the error it fails with on
+     * each of its first cycles, "" when it moves. Tells a config MRPT takes
+     * unchecked from a start its PTGs find no motion from. */
+    std::string engineFailsInOpenSpace(const std::string& cacheDir,
+                                       double clockNow) const;
     /** The robot shape MRPT gets: [Robot] radius grown by shape_margin. */
     mrpt::math::CPolygon robotShape() const;
 };

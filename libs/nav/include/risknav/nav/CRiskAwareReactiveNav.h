@@ -2,9 +2,11 @@
 #include <risknav/common/CSpeedLimiter.h>
 #include <risknav/common/CValidatedOptions.h>
 #include <risknav/common/TRobotOptions.h>
+#include <risknav/nav/CGlobalPlanner.h>
 
 #include <mrpt/nav/reactive/CReactiveNavigationSystem.h>
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +39,13 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
          * PTG would drive a robot with a forward laser backwards blind. */
         double turn_in_place_deg = 100;
         double turn_rate_deg = 30;  ///< [deg/s] of that turn
+        /** [deg] a robot standing still (under 5 cm/s) whose aim (the
+         * global plan's guide point, else the target) is farther off its
+         * heading than this turns to it in place first, until within a third
+         * of it (0 = off). Beyond MRPT: its forward PTGs from a standstill
+         * find no motion toward a point 40-100 deg to the side of a robot
+         * beside a wall, and fail cycle after cycle. */
+        double start_turn_deg = 45;
         /** [s] Beyond MRPT: a robot that has neither left a 5 cm circle
          * nor turned 5 deg for this long while MRPT navigates (MRPT 2.5.8
          * can creep at 1e-4 m/s for minutes at a turn, its own "not
@@ -76,6 +85,7 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
         double limit = 0;      ///< [m/s] the smallest limit (desired when none limited)
         bool turning = false;  ///< this cycle turned in place (MRPT did not plan)
         bool unsticking = false;  ///< that turn is an unstick turn (unstick_time)
+        bool startTurn = false;   ///< that turn is a start turn (start_turn_deg)
     };
 
     CRiskAwareReactiveNav(mrpt::nav::CRobot2NavInterface& robot,
@@ -120,6 +130,18 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     }
 
     const std::vector<common::CSpeedLimiter::Ptr>& limiters() const { return m_limiters; }
+
+    /** A global planner on the known map (nullptr: none, MRPT's engine aims
+     * straight at each waypoint or at a limiter's guide point). Each cycle
+     * it replans as needed (CGlobalPlanner::update()), takes in what the
+     * engine sensed, and MRPT's engine is aimed at its guide point; MRPT's
+     * "not approaching the target" alarm then watches the way left along
+     * the plan, not the straight distance. A target it finds no way to
+     * stops the navigation (NAV_ERROR), planFailure() says why. */
+    void setGlobalPlanner(std::shared_ptr<CGlobalPlanner> p) { m_planner = std::move(p); }
+    const std::shared_ptr<CGlobalPlanner>& globalPlanner() const { return m_planner; }
+    /** The plan that found no way, when that stopped the navigation. */
+    const std::optional<TGlobalPlan>& planFailure() const { return m_planFailure; }
     const TLimitRecord& lastLimit() const { return m_last; }
 
     /** What MRPT aims at while navigating: the first waypoint not yet
@@ -187,6 +209,14 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
      * target then. */
     std::optional<std::pair<mrpt::math::TPoint2D, mrpt::math::TPoint2D>> m_guidePausedAt;
     const mrpt::config::CConfigFileBase* m_engine = nullptr;
+    std::shared_ptr<CGlobalPlanner> m_planner;
+    std::optional<TGlobalPlan> m_planFailure;
+    double m_planBest = 0;  ///< [m] the least way left along the plan so far
+    /** The planner's cycle: replan for `pose` going to `target`. False: no
+     * way (the navigation was stopped). */
+    bool updatePlanner(const mrpt::math::TPose2D& pose,
+                       const mrpt::math::TPoint2D& target);
+    bool m_startTurning = false;
     bool m_turning = false;
     bool m_unsticking = false;
     /** Where and when the robot last moved 5 cm or turned 5 deg (unstick_time). */

@@ -53,6 +53,11 @@ struct TNavigateOptions : public common::CValidatedOptions {
      * are in this file); keys of this file override it. */
     std::string engine_config;
     std::string ptg_cache_dir;  ///< MRPT's PTG grid cache ("" = system temp)
+    /** grid: every waypoint is reached along a global plan on the known map
+     * (CGlobalPlanner, [GlobalPlanner]); none: MRPT's engine aims straight
+     * at each waypoint (the papers' experiments, and a world the robot
+     * does not know: CAdaptiveSpeedLimiter plans on its own map). */
+    std::string global_planner = "grid";
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                             const std::string& s) override;

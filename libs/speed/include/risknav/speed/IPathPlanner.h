@@ -1,4 +1,5 @@
 #pragma once
+#include <risknav/geometry/polyline.h>
 #include <risknav/speed/TPlanningField.h>
 
 #include <mrpt/math/TPoint2D.h>
@@ -104,18 +105,12 @@ double distanceToUndecided(const TPlannedPath& path, const TPlanningField& field
  * a clearance of at least `inflation` ((000) section 4.2 check). */
 bool clearanceHoldsAhead(const TPlannedPath& path, const TPlanningField& field,
                          double inflation, double distance);
-/** Pure pursuit's look-ahead point on a path, as indices into path.points:
- * `nearest`, the point nearest `from`, and `ahead`, the first point from
- * there on at least `lookahead` [m] from `from` (the last point if none is),
- * pulled back towards `nearest` until the straight line from `from` to it
- * keeps the clearance the path keeps between the two (a chord across a door
- * post's corner would cut past the margin). Beyond the paper (its robot
+/** Pure pursuit's look-ahead point on a path (geometry::lookaheadOnPolyline()
+ * on the field's clearance, chords sampled every half cell). Beyond the paper (its robot
  * follows its arcs); risknav-explore's controller steers to it and
  * CRiskAwareReactiveNav gives it to MRPT's engine as its local target.
  * Paths of fewer than 2 points: both 0. */
-struct TLookahead {
-    size_t nearest = 0, ahead = 0;
-};
+using geometry::TLookahead;
 TLookahead lookaheadPoint(const TPlannedPath& path, const TPlanningField& field,
                           const mrpt::math::TPoint2D& from, double lookahead);
 }  // namespace risknav::speed

@@ -1,0 +1,138 @@
+#pragma once
+#include <risknav/common/CValidatedOptions.h>
+#include <risknav/mapping/CDistanceField.h>
+#include <risknav/nav/grid_search.h>
+
+#include <mrpt/maps/COccupancyGridMap2D.h>
+#include <mrpt/math/TPoint2D.h>
+#include <mrpt/math/TPose2D.h>
+
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace risknav::nav {
+/** One global plan. */
+struct TGlobalPlan {
+    bool found = false;
+    std::vector<mrpt::math::TPoint2D> points;  ///< world [m], from the start to the goal
+    double length = 0;                         ///< [m]
+    double cost = 0;                           ///< [m x cost per metre] (the search's)
+    double minClearance = 0;  ///< [m] robot centre to the nearest obstacle cell on it
+    /** No path: start_blocked | goal_blocked | narrow_gap | disconnected. */
+    std::string failure;
+    std::string reason;  ///< one sentence for the summary ("" when found)
+    double ms = 0;       ///< [ms] wall time of the plan
+    size_t expanded = 0;
+};
+
+/** A replan and why. */
+struct TReplanEvent {
+    double t = 0;     ///< [s] the navigator's clock
+    std::string why;  ///< new_target | blocked | strayed | pose_jump
+    double x = 0, y = 0;
+    double length = 0;  ///< [m] of the new plan (0: none found)
+    double ms = 0;
+};
+
+/** risknav-navigate's global planner on a known map (beyond the papers:
+ * they assume a route; a reactive engine alone does not find a way round a
+ * wall). A least-cost path for the disc MRPT's engine plans for, on the
+ * map's cells: 8-connected grid A* (gridAStar()) over cells whose clearance
+ * (CDistanceField, the map's own obstacle rule) holds the disc, each metre
+ * costing 1 + clearance_weight * ((soft - c) / (soft - disc))^2 for a
+ * clearance c below soft = disc + clearance_soft (so the path keeps to the
+ * middle of a corridor and off door posts, and still takes a door the disc
+ * fits through). Grid A* rather than a sampling planner or a visibility
+ * graph: exact (optimal on its graph, tested against Bellman-Ford), complete
+ * on the grid, and it works on any occupancy map as it is (SLAM speckle,
+ * unknown cells), where the GVG of the risk evaluator needs cleaning.
+ *
+ * Following: MRPT's engine is aimed at the point `lookahead` ahead on the
+ * plan (geometry::lookaheadOnPolyline()); the plan is made again when the
+ * target changes, when sensed obstacles the map does not hold lie on the
+ * way ahead (people, clutter: remembered for obstacle_memory seconds, and
+ * forgotten where a later scan sees through them), when the robot strays
+ * from it, and when the pose jumps (a localization correction). */
+class CGlobalPlanner {
+  public:
+    struct TOptions : public common::CValidatedOptions {
+        double clearance_soft = 0.5;   ///< [m] beyond the disc, nearer costs more
+        double clearance_weight = 4;   ///< cost per metre at the disc's edge = 1 + this
+        double lookahead = 2.0;        ///< [m] MRPT's engine aims this far ahead
+        double stray_distance = 1.0;   ///< [m] from the plan: replan
+        double pose_jump = 0.5;        ///< [m] in one cycle: replan
+        double check_ahead = 4.0;      ///< [m] of the plan checked for sensed obstacles
+        double obstacle_memory = 30;   ///< [s] a sensed obstacle is kept
+        double replan_interval = 1.0;  ///< [s] at least between replans for blocking
+
+        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                const std::string& section) override;
+        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                              const std::string& section) const override;
+        void validate() const override;
+    };
+    TOptions options;  ///< [GlobalPlanner]
+
+    /** The map to plan on, with its obstacle rule, and the radius [m] of the
+     * disc the engine plans for. Computes the clearance and cost grids once. */
+    void setMap(const mrpt::maps::COccupancyGridMap2D& grid,
+                const mapping::TObstacleRule& rule, double discRadius);
+    bool hasMap() const { return m_cost.w > 0; }
+    const mapping::CDistanceField& field() const { return m_field; }
+    double discRadius() const { return m_disc; }
+
+    /** A plan from `from` to `to` on the map, and (`withSensed`) around the
+     * sensed obstacles remembered now. A start or goal nearer an obstacle
+     * than the disc may leave or reach it through cells no nearer than
+     * itself. */
+    TGlobalPlan plan(const mrpt::math::TPoint2D& from, const mrpt::math::TPoint2D& to,
+                     bool withSensed = false) const;
+
+    /** Sensed points (robot frame of `pose`) at time `now` [s]: those the
+     * map does not explain are remembered; cells the beams crossed are
+     * forgotten. */
+    void addSensed(const mrpt::math::TPose2D& pose,
+                   const std::vector<mrpt::math::TPoint2D>& robotFrame, double now);
+
+    /** Before each engine step: replans as needed for the robot at `pose`
+     * going to `target` at time `now`. Returns the replan made (if any). */
+    std::optional<TReplanEvent> update(const mrpt::math::TPose2D& pose,
+                                       const mrpt::math::TPoint2D& target, double now);
+    /** The plan being followed (found = false: none for this target). */
+    const TGlobalPlan& current() const { return m_plan; }
+    /** The target the current plan leads to. */
+    std::optional<mrpt::math::TPoint2D> currentTarget() const { return m_target; }
+    /** The point lookahead ahead of `pose` on the plan; nullopt without one. */
+    std::optional<mrpt::math::TPoint2D> guidePoint(const mrpt::math::TPose2D& pose) const;
+    /** [m] what is left of the plan from `pose` (+inf without one). */
+    double remainingLength(const mrpt::math::TPose2D& pose) const;
+
+    const std::vector<TReplanEvent>& replans() const { return m_events; }
+    void resetFollowing();
+
+  private:
+    mapping::CDistanceField m_field;
+    double m_disc = 0;
+    TCostGrid m_cost;                // the map alone
+    std::vector<float> m_clearEdge;  // [m] cell centre to the nearest obstacle's edge
+    mutable TCostGrid m_work;        // the map and the sensed obstacles
+    std::vector<float> m_seenAt;     // [s] when a cell was sensed as an obstacle
+    std::vector<int32_t> m_seenCells;
+    std::optional<mrpt::math::TPoint2D> m_target;
+    std::optional<mrpt::math::TPose2D> m_lastPose;
+    double m_lastBlockedReplan = -1e18;
+    TGlobalPlan m_plan;
+    std::vector<TReplanEvent> m_events;
+    float costOf(double clearanceEdge) const;
+    bool liveSeen(size_t i, double now) const {
+        return now - double(m_seenAt[i]) <= options.obstacle_memory;
+    }
+    bool blockedAhead(const mrpt::math::TPose2D& pose, double now) const;
+    double m_now = 0;
+    size_t m_progress = 0;  ///< the plan's point the robot was nearest last
+    size_t nearestIndex(const mrpt::math::TPose2D& pose) const;
+};
+}  // namespace risknav::nav

@@ -1,0 +1,418 @@
+#include <risknav/common/config_read.h>
+#include <risknav/geometry/polyline.h>
+#include <risknav/nav/CGlobalPlanner.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+using namespace risknav::common;
+using mrpt::math::TPoint2D;
+using mrpt::math::TPose2D;
+
+namespace risknav::nav {
+namespace {
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kNever = -std::numeric_limits<float>::infinity();
+std::string metres(double v) {
+    char b[32];
+    std::snprintf(b, sizeof(b), "%.2f m", v);
+    return b;
+}
+std::string pointText(const TPoint2D& p) {
+    char b[64];
+    std::snprintf(b, sizeof(b), "(%.2f, %.2f)", p.x, p.y);
+    return b;
+}
+}  // namespace
+
+void CGlobalPlanner::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                                  const std::string& s) {
+    clearance_soft = readDouble(c, s, "clearance_soft", clearance_soft);
+    clearance_weight = readDouble(c, s, "clearance_weight", clearance_weight);
+    lookahead = readDouble(c, s, "lookahead", lookahead);
+    stray_distance = readDouble(c, s, "stray_distance", stray_distance);
+    pose_jump = readDouble(c, s, "pose_jump", pose_jump);
+    check_ahead = readDouble(c, s, "check_ahead", check_ahead);
+    obstacle_memory = readDouble(c, s, "obstacle_memory", obstacle_memory);
+    replan_interval = readDouble(c, s, "replan_interval", replan_interval);
+}
+
+void CGlobalPlanner::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                                const std::string& s) const {
+    writeKey(c, s, "clearance_soft", clearance_soft);
+    writeKey(c, s, "clearance_weight", clearance_weight);
+    writeKey(c, s, "lookahead", lookahead);
+    writeKey(c, s, "stray_distance", stray_distance);
+    writeKey(c, s, "pose_jump", pose_jump);
+    writeKey(c, s, "check_ahead", check_ahead);
+    writeKey(c, s, "obstacle_memory", obstacle_memory);
+    writeKey(c, s, "replan_interval", replan_interval);
+}
+
+void CGlobalPlanner::TOptions::validate() const {
+    const std::string s = "GlobalPlanner";
+    checkKey(s, "clearance_soft", clearance_soft, TRange::closed(0, 10, "m"));
+    checkKey(s, "clearance_weight", clearance_weight, TRange::closed(0, 1000));
+    checkKey(s, "lookahead", lookahead, TRange::closed(0.2, 20, "m"));
+    checkKey(s, "stray_distance", stray_distance, TRange::closed(0.1, 100, "m"));
+    checkKey(s, "pose_jump", pose_jump, TRange::closed(0.05, 100, "m"));
+    checkKey(s, "check_ahead", check_ahead, TRange::closed(0, 100, "m"));
+    checkKey(s, "obstacle_memory", obstacle_memory, TRange::closed(0, 3600, "s"));
+    checkKey(s, "replan_interval", replan_interval, TRange::closed(0, 3600, "s"));
+}
+
+float CGlobalPlanner::costOf(double e) const {
+    if (!(e >= m_disc))
+        return kInf;
+    const double soft = options.clearance_soft;
+    if (!(soft > 0) || e >= m_disc + soft)
+        return 1.0f;
+    const double f = (m_disc + soft - e) / soft;
+    return float(1.0 + options.clearance_weight * f * f);
+}
+
+void CGlobalPlanner::setMap(const mrpt::maps::COccupancyGridMap2D& grid,
+                            const mapping::TObstacleRule& rule, double discRadius) {
+    m_field = mapping::CDistanceField(grid, rule);
+    m_disc = discRadius;
+    m_cost.w = m_field.sizeX();
+    m_cost.h = m_field.sizeY();
+    m_cost.resolution = m_field.resolution();
+    const auto& d = m_field.clearances();
+    const size_t n = d.size();
+    const float half = float(0.5 * m_cost.resolution);
+    m_clearEdge.resize(n);
+    m_cost.cost.resize(n);
+    for (size_t i = 0; i < n; i++) {
+        // the centre's distance to the nearest obstacle cell's centre, less
+        // half a cell: to that cell's near edge (0 on an obstacle)
+        m_clearEdge[i] = m_field.obstacles()[i] ? 0.0f : std::max(0.0f, d[i] - half);
+        m_cost.cost[i] = costOf(m_clearEdge[i]);
+    }
+    m_seenAt.assign(n, kNever);
+    m_seenCells.clear();
+    resetFollowing();
+}
+
+void CGlobalPlanner::resetFollowing() {
+    m_target.reset();
+    m_lastPose.reset();
+    m_plan = TGlobalPlan{};
+    m_events.clear();
+    m_lastBlockedReplan = -1e18;
+    m_progress = 0;
+}
+
+TGlobalPlan CGlobalPlanner::plan(const TPoint2D& from, const TPoint2D& to,
+                                 bool withSensed) const {
+    const auto t0 = std::chrono::steady_clock::now();
+    TGlobalPlan p;
+    auto done = [&] {
+        p.ms =
+            1e3 *
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return p;
+    };
+    if (!hasMap()) {
+        p.failure = "start_blocked";
+        p.reason = "no map to plan on";
+        return done();
+    }
+    const int sx = m_field.x2idx(from.x), sy = m_field.y2idx(from.y);
+    const int gx = m_field.x2idx(to.x), gy = m_field.y2idx(to.y);
+    if (!m_cost.inside(sx, sy)) {
+        p.failure = "start_blocked";
+        p.reason = "the start " + pointText(from) + " is outside the map";
+        return done();
+    }
+    if (!m_cost.inside(gx, gy)) {
+        p.failure = "goal_blocked";
+        p.reason = "the goal " + pointText(to) + " is outside the map";
+        return done();
+    }
+    const int32_t si = int32_t(m_cost.index(sx, sy)), gi = int32_t(m_cost.index(gx, gy));
+    if (m_clearEdge[size_t(si)] <= 0) {
+        p.failure = "start_blocked";
+        p.reason = "the start " + pointText(from) + " is on an obstacle cell of the map";
+        return done();
+    }
+    if (m_clearEdge[size_t(gi)] <= 0) {
+        p.failure = "goal_blocked";
+        p.reason = "the goal " + pointText(to) + " is on an obstacle cell of the map";
+        return done();
+    }
+    // the grid searched: the map's, or a copy with the sensed obstacles and
+    // the ways out of a start (into a goal) nearer an obstacle than the disc
+    const TCostGrid* g = &m_cost;
+    auto work = [&]() -> TCostGrid& {
+        if (g != &m_work) {
+            m_work = m_cost;
+            g = &m_work;
+        }
+        return m_work;
+    };
+    if (withSensed) {
+        const double res = m_cost.resolution;
+        const int reach = int(std::ceil((m_disc + options.clearance_soft) / res));
+        for (const int32_t c : m_seenCells) {
+            if (!liveSeen(size_t(c), m_now))
+                continue;
+            auto& w = work();
+            const int cx = c % w.w, cy = c / w.w;
+            for (int dy = -reach; dy <= reach; dy++)
+                for (int dx = -reach; dx <= reach; dx++) {
+                    const int x = cx + dx, y = cy + dy;
+                    if (!w.inside(x, y))
+                        continue;
+                    // to the sensed cell's edge, as the map's clearance
+                    const double e = std::max(0.0, std::hypot(dx, dy) * res - 0.5 * res);
+                    float& cc = w.cost[w.index(x, y)];
+                    cc = std::max(cc, costOf(e));
+                }
+        }
+    }
+    const float edgeCost = costOf(m_disc);
+    auto openAround = [&](int cx, int cy) {
+        // a start or goal nearer an obstacle than the disc: the cells within
+        // the disc (+2 cells) of it that are no nearer an obstacle than it
+        const float e0 = m_clearEdge[m_cost.index(cx, cy)];
+        if (e0 >= m_disc)
+            return;
+        auto& w = work();
+        const double res = w.resolution;
+        const int reach = int(std::ceil(m_disc / res)) + 2;
+        for (int dy = -reach; dy <= reach; dy++)
+            for (int dx = -reach; dx <= reach; dx++) {
+                const int x = cx + dx, y = cy + dy;
+                if (!w.inside(x, y) || std::hypot(dx, dy) > reach)
+                    continue;
+                const size_t i = w.index(x, y);
+                if (m_clearEdge[i] >= e0 - 0.5 * res && m_clearEdge[i] > 0 &&
+                    !(w.cost[i] < kInf))
+                    w.cost[i] = edgeCost;
+            }
+    };
+    openAround(sx, sy);
+    openAround(gx, gy);
+    const TGridPath path = gridAStar(*g, si, gi);
+    p.expanded = path.expanded;
+    if (path.cells.empty()) {
+        const double widest = widestWayClearance(m_clearEdge, m_cost.w, m_cost.h, si, gi);
+        if (!(widest > 0)) {
+            p.failure = "disconnected";
+            p.reason = "no way on the map's free space joins " + pointText(from) +
+                       " and " + pointText(to);
+        } else if (widest < m_disc) {
+            p.failure = "narrow_gap";
+            p.reason = "the widest way from " + pointText(from) + " to " + pointText(to) +
+                       " passes " + metres(widest) +
+                       " from an obstacle, a gap of about " + metres(2 * widest) +
+                       "; the robot's disc needs " + metres(m_disc) +
+                       " (radius + shape_margin)";
+        } else {
+            p.failure = "blocked";
+            p.reason = "the sensed obstacles block every way from " + pointText(from) +
+                       " to " + pointText(to);
+        }
+        return done();
+    }
+    p.found = true;
+    p.cost = path.cost;
+    p.points.reserve(path.cells.size() + 1);
+    p.points.push_back(from);
+    p.minClearance = kInf;
+    for (size_t k = 0; k < path.cells.size(); k++) {
+        const int32_t c = path.cells[k];
+        const int cx = c % m_cost.w, cy = c / m_cost.w;
+        p.minClearance = std::min(p.minClearance, double(m_clearEdge[size_t(c)]));
+        if (k > 0 && k + 1 < path.cells.size())
+            p.points.emplace_back(m_field.idx2x(cx), m_field.idx2y(cy));
+    }
+    p.points.push_back(to);
+    p.length = geometry::polylineLength(p.points);
+    return done();
+}
+
+void CGlobalPlanner::addSensed(const TPose2D& pose, const std::vector<TPoint2D>& pts,
+                               double now) {
+    m_now = now;
+    if (!hasMap())
+        return;
+    const double res = m_cost.resolution;
+    const double c = std::cos(pose.phi), s = std::sin(pose.phi);
+    // what the map explains: within a cell and a half of its obstacles
+    const float explained = float(1.5 * res);
+    const bool anyRemembered = !m_seenCells.empty();
+    for (const auto& q : pts) {
+        const double x = pose.x + c * q.x - s * q.y, y = pose.y + s * q.x + c * q.y;
+        const int cx = m_field.x2idx(x), cy = m_field.y2idx(y);
+        if (anyRemembered) {
+            // forget what the beam to this point saw through (up to 0.15 m
+            // before it: the point's own cell and its neighbour stay)
+            const double len = std::hypot(x - pose.x, y - pose.y);
+            const int n = int((len - 0.15) / res);
+            for (int k = 1; k <= n; k++) {
+                const double f = k * res / len;
+                const int bx = m_field.x2idx(pose.x + f * (x - pose.x)),
+                          by = m_field.y2idx(pose.y + f * (y - pose.y));
+                if (m_cost.inside(bx, by))
+                    m_seenAt[m_cost.index(bx, by)] = kNever;
+            }
+        }
+        if (!m_cost.inside(cx, cy))
+            continue;
+        const size_t i = m_cost.index(cx, cy);
+        if (m_clearEdge[i] <= explained)
+            continue;
+        if (!liveSeen(i, now))
+            m_seenCells.push_back(int32_t(i));
+        m_seenAt[i] = float(now);
+    }
+    m_seenCells.erase(
+        std::remove_if(m_seenCells.begin(), m_seenCells.end(),
+                       [&](int32_t i) { return !liveSeen(size_t(i), now); }),
+        m_seenCells.end());
+    std::sort(m_seenCells.begin(), m_seenCells.end());
+    m_seenCells.erase(std::unique(m_seenCells.begin(), m_seenCells.end()),
+                      m_seenCells.end());
+}
+
+size_t CGlobalPlanner::nearestIndex(const TPose2D& pose) const {
+    // searched from the progress made on, over the next ~5 m of the plan (a
+    // plan that turns round a thin wall passes near itself: the global
+    // nearest point could lie on its far side)
+    const auto& pts = m_plan.points;
+    if (pts.empty())
+        return 0;
+    const size_t from = std::min(m_progress, pts.size() - 1);
+    size_t best = from;
+    double bestD = 1e300, along = 0;
+    for (size_t k = from; k < pts.size(); k++) {
+        if (k > from)
+            along += std::hypot(pts[k].x - pts[k - 1].x, pts[k].y - pts[k - 1].y);
+        if (along > 5.0 + options.stray_distance)
+            break;
+        const double d = std::hypot(pts[k].x - pose.x, pts[k].y - pose.y);
+        if (d < bestD)
+            bestD = d, best = k;
+    }
+    return best;
+}
+
+bool CGlobalPlanner::blockedAhead(const TPose2D& pose, double now) const {
+    if (m_seenCells.empty() || !m_plan.found)
+        return false;
+    const auto& pts = m_plan.points;
+    const double res = m_cost.resolution;
+    const int reach = int(std::ceil(m_disc / res));
+    double along = 0;
+    for (size_t k = nearestIndex(pose); k < pts.size(); k++) {
+        if (k > 0)
+            along += std::hypot(pts[k].x - pts[k - 1].x, pts[k].y - pts[k - 1].y);
+        if (along > options.check_ahead)
+            break;
+        // the robot's own surroundings: its engine's business
+        if (std::hypot(pts[k].x - pose.x, pts[k].y - pose.y) < m_disc + 0.2)
+            continue;
+        const int cx = m_field.x2idx(pts[k].x), cy = m_field.y2idx(pts[k].y);
+        for (int dy = -reach; dy <= reach; dy++)
+            for (int dx = -reach; dx <= reach; dx++) {
+                const int x = cx + dx, y = cy + dy;
+                if (!m_cost.inside(x, y) ||
+                    std::hypot(dx, dy) * res - 0.5 * res >= m_disc)
+                    continue;
+                if (liveSeen(m_cost.index(x, y), now))
+                    return true;
+            }
+    }
+    return false;
+}
+
+std::optional<TReplanEvent> CGlobalPlanner::update(const TPose2D& pose,
+                                                   const TPoint2D& target, double now) {
+    m_now = now;
+    if (!hasMap())
+        return std::nullopt;
+    std::string why;
+    if (!m_target || std::hypot(target.x - m_target->x, target.y - m_target->y) > 1e-9)
+        why = "new_target";
+    else if (!m_plan.found)
+        why = "";  // no way to this target: the navigator was told
+    else if (m_lastPose && std::hypot(pose.x - m_lastPose->x, pose.y - m_lastPose->y) >
+                               options.pose_jump)
+        why = "pose_jump";
+    else if (const size_t k = nearestIndex(pose);
+             std::hypot(m_plan.points[k].x - pose.x, m_plan.points[k].y - pose.y) >
+             options.stray_distance)
+        why = "strayed";
+    else if (now - m_lastBlockedReplan >= options.replan_interval &&
+             blockedAhead(pose, now)) {
+        why = "blocked";
+        m_lastBlockedReplan = now;
+    }
+    m_lastPose = pose;
+    if (why.empty()) {
+        if (m_plan.found)
+            m_progress = nearestIndex(pose);
+        return std::nullopt;
+    }
+    const TPoint2D from(pose.x, pose.y);
+    TGlobalPlan p = plan(from, target, true);
+    if (!p.found && !m_seenCells.empty()) {
+        // the sensed obstacles close every way: the map's way, round which
+        // the engine avoids what it senses (people move on)
+        TGlobalPlan q = plan(from, target, false);
+        q.ms += p.ms;
+        if (q.found || why == "new_target")
+            p = std::move(q);
+    }
+    TReplanEvent ev{now, why, pose.x, pose.y, p.found ? p.length : 0.0, p.ms};
+    if (why == "new_target" || p.found) {
+        m_plan = std::move(p);
+        m_progress = 0;
+        m_target = target;
+    }
+    m_events.push_back(ev);
+    return ev;
+}
+
+std::optional<TPoint2D> CGlobalPlanner::guidePoint(const TPose2D& pose) const {
+    if (!m_plan.found || m_plan.points.size() < 2)
+        return std::nullopt;
+    const auto& pts = m_plan.points;
+    const size_t k0 = nearestIndex(pose);
+    // the stretch from the nearest point on (the look-ahead searches from
+    // its own nearest point: a plan passing near itself must not let it jump)
+    double along = 0;
+    size_t k1 = k0;
+    while (k1 + 1 < pts.size() && along < 2 * options.lookahead + 1) {
+        along += std::hypot(pts[k1 + 1].x - pts[k1].x, pts[k1 + 1].y - pts[k1].y);
+        k1++;
+    }
+    const std::vector<TPoint2D> stretch(pts.begin() + long(k0),
+                                        pts.begin() + long(k1) + 1);
+    if (stretch.size() < 2)
+        return pts.back();
+    const auto la = geometry::lookaheadOnPolyline(
+        stretch, TPoint2D(pose.x, pose.y), options.lookahead, 0.5 * m_cost.resolution,
+        [&](double x, double y) {
+            const int cx = m_field.x2idx(x), cy = m_field.y2idx(y);
+            return m_cost.inside(cx, cy) ? double(m_clearEdge[m_cost.index(cx, cy)])
+                                         : 0.0;
+        });
+    return stretch[la.ahead];
+}
+
+double CGlobalPlanner::remainingLength(const TPose2D& pose) const {
+    if (!m_plan.found || m_plan.points.empty())
+        return std::numeric_limits<double>::infinity();
+    const auto& pts = m_plan.points;
+    const size_t k0 = nearestIndex(pose);
+    double rest = std::hypot(pts[k0].x - pose.x, pts[k0].y - pose.y);
+    for (size_t k = k0 + 1; k < pts.size(); k++)
+        rest += std::hypot(pts[k].x - pts[k - 1].x, pts[k].y - pts[k - 1].y);
+    return rest;
+}
+}  // namespace risknav::nav

@@ -1,0 +1,290 @@
+// The global planner: grid A* against Bellman-Ford, the widest way, and
+// CGlobalPlanner's plans, replans and reasons on synthetic maps.
+#include <risknav/nav/CGlobalPlanner.h>
+#include <risknav/nav/grid_search.h>
+
+#include <mrpt/maps/COccupancyGridMap2D.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+using namespace risknav;
+using mrpt::math::TPoint2D;
+using mrpt::math::TPose2D;
+
+namespace {
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Bellman-Ford over the same graph as gridAStar (8-connected, a move costs
+// its length times the mean of the two cells' costs, no corner cutting):
+// relax every edge until nothing changes. Independent of the A* code.
+double bellmanFord(const nav::TCostGrid& g, int s, int t) {
+    const size_t n = g.cost.size();
+    std::vector<double> d(n, std::numeric_limits<double>::infinity());
+    if (!(g.cost[size_t(s)] < kInf) || !(g.cost[size_t(t)] < kInf))
+        return d[0];
+    d[size_t(s)] = 0;
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (int y = 0; y < g.h; y++)
+            for (int x = 0; x < g.w; x++) {
+                const size_t a = g.index(x, y);
+                if (!(g.cost[a] < kInf) || !(d[a] < 1e300))
+                    continue;
+                for (int dy = -1; dy <= 1; dy++)
+                    for (int dx = -1; dx <= 1; dx++) {
+                        if (!dx && !dy)
+                            continue;
+                        const int nx = x + dx, ny = y + dy;
+                        if (!g.inside(nx, ny))
+                            continue;
+                        const size_t b = g.index(nx, ny);
+                        if (!(g.cost[b] < kInf))
+                            continue;
+                        if (dx && dy &&
+                            (!(g.cost[g.index(nx, y)] < kInf) ||
+                             !(g.cost[g.index(x, ny)] < kInf)))
+                            continue;
+                        const double len =
+                            (dx && dy ? std::sqrt(2.0) : 1.0) * g.resolution;
+                        const double nd = d[a] + len * 0.5 * (g.cost[a] + g.cost[b]);
+                        if (nd < d[b] - 1e-9) {
+                            d[b] = nd;
+                            changed = true;
+                        }
+                    }
+            }
+    }
+    return d[size_t(t)];
+}
+
+// A map of w x h metres at 5 cm, free, with a border wall; `wall` marks
+// rectangles [x0, x1] x [y0, y1] as occupied.
+struct TRect {
+    double x0, y0, x1, y1;
+};
+mrpt::maps::COccupancyGridMap2D makeMap(double w, double h,
+                                        const std::vector<TRect>& walls) {
+    mrpt::maps::COccupancyGridMap2D g(0, float(w), 0, float(h), 0.05f);
+    g.fill(1.0f);
+    for (unsigned cy = 0; cy < g.getSizeY(); cy++)
+        for (unsigned cx = 0; cx < g.getSizeX(); cx++) {
+            const double x = g.idx2x(cx), y = g.idx2y(cy);
+            bool occ =
+                cx == 0 || cy == 0 || cx + 1 == g.getSizeX() || cy + 1 == g.getSizeY();
+            for (const auto& r : walls)
+                occ = occ || (x >= r.x0 && x <= r.x1 && y >= r.y0 && y <= r.y1);
+            if (occ)
+                g.setCell(int(cx), int(cy), 0.0f);
+        }
+    return g;
+}
+
+nav::CGlobalPlanner plannerOn(const mrpt::maps::COccupancyGridMap2D& g,
+                              double disc = 0.35) {
+    nav::CGlobalPlanner p;
+    mapping::TObstacleRule rule;
+    p.setMap(g, rule, disc);
+    return p;
+}
+}  // namespace
+
+TEST(GridSearch, AStarCostEqualsBellmanFordOnRandomGrids) {
+    std::mt19937 rng(7);
+    int found = 0, none = 0;
+    for (int trial = 0; trial < 60; trial++) {
+        nav::TCostGrid g;
+        g.w = 6 + int(rng() % 10);
+        g.h = 5 + int(rng() % 10);
+        g.resolution = 0.1;
+        std::uniform_real_distribution<float> cost(1.0f, 6.0f);
+        g.cost.resize(size_t(g.w * g.h));
+        for (auto& c : g.cost)
+            c = (rng() % 100) < 28 ? kInf : cost(rng);
+        const int s = int(rng() % g.cost.size()), t = int(rng() % g.cost.size());
+        const auto p = nav::gridAStar(g, s, t);
+        const double bf = bellmanFord(g, s, t);
+        if (std::isinf(bf)) {
+            EXPECT_TRUE(p.cells.empty()) << trial;
+            none++;
+            continue;
+        }
+        found++;
+        ASSERT_FALSE(p.cells.empty()) << trial;
+        EXPECT_NEAR(p.cost, bf, 1e-4 * bf) << trial;
+        // the cells are a chain of neighbours from s to t, costing p.cost
+        EXPECT_EQ(p.cells.front(), s);
+        EXPECT_EQ(p.cells.back(), t);
+        double sum = 0;
+        for (size_t k = 1; k < p.cells.size(); k++) {
+            const int a = p.cells[k - 1], b = p.cells[k];
+            const int dx = std::abs(a % g.w - b % g.w), dy = std::abs(a / g.w - b / g.w);
+            ASSERT_TRUE(dx <= 1 && dy <= 1 && dx + dy > 0);
+            sum += (dx && dy ? std::sqrt(2.0) : 1.0) * g.resolution * 0.5 *
+                   (g.cost[size_t(a)] + g.cost[size_t(b)]);
+        }
+        EXPECT_NEAR(sum, p.cost, 1e-4 * sum);
+    }
+    // both kinds of case were tried
+    EXPECT_GT(found, 20);
+    EXPECT_GT(none, 3);
+}
+
+TEST(GridSearch, WidestWayIsTheNarrowestClearanceOfTheBestWay) {
+    // a 7 x 3 strip: the middle column's clearance 0.2 is the bottleneck of
+    // the top row (0.9 elsewhere); the bottom row is 0.5 throughout
+    const int w = 7, h = 3;
+    std::vector<float> c(w * h, 0.0f);
+    for (int x = 0; x < w; x++) {
+        c[size_t(2 * w + x)] = x == 3 ? 0.2f : 0.9f;
+        c[size_t(0 * w + x)] = 0.5f;
+        c[size_t(1 * w + x)] = x == 0 || x == w - 1 ? 0.9f : 0.0f;
+    }
+    EXPECT_FLOAT_EQ(float(nav::widestWayClearance(c, w, h, 2 * w, 2 * w + w - 1)), 0.5f);
+    c[size_t(0 * w + 3)] = 0.0f;  // the bottom row cut: only the top row's 0.2
+    EXPECT_FLOAT_EQ(float(nav::widestWayClearance(c, w, h, 2 * w, 2 * w + w - 1)), 0.2f);
+    c[size_t(2 * w + 3)] = 0.0f;  // both cut
+    EXPECT_EQ(nav::widestWayClearance(c, w, h, 2 * w, 2 * w + w - 1), 0.0);
+}
+
+TEST(CGlobalPlanner, AGoalBehindAWallIsPlannedAroundIt) {
+    // 10 x 6 m, a wall at x = 5 from the bottom to y = 4.8: the way round
+    // its top end
+    const auto g = makeMap(10, 6, {{4.9, 0, 5.1, 4.8}});
+    const auto p = plannerOn(g);
+    const auto plan = p.plan({2, 1}, {8, 1});
+    ASSERT_TRUE(plan.found) << plan.reason;
+    // round the wall's end (5, 4.8) with the disc: at least the two straight
+    // legs to a point 0.35 m above it, at most the sides of a box round it
+    EXPECT_GT(plan.length, 2 * std::hypot(3.0, 4.8 + 0.35 - 1.0));
+    EXPECT_LT(plan.length, 2 * (4.8 + 0.6 - 1.0) + 6);
+    double topY = 0;
+    for (const auto& q : plan.points) {
+        topY = std::max(topY, q.y);
+        // every point holds the disc
+        EXPECT_GE(p.field().clearanceAt(q.x, q.y) + 1e-6, 0.35) << q.x << " " << q.y;
+    }
+    EXPECT_GT(topY, 4.8 + 0.35);
+    EXPECT_NEAR(plan.points.front().x, 2, 1e-9);
+    EXPECT_NEAR(plan.points.back().x, 8, 1e-9);
+    // the clearance cost keeps the plan off the wall's end: the gap above it
+    // is 1.2 m (4.8 to 5.95), the plan passes near its middle
+    EXPECT_GT(plan.minClearance, 0.45);
+}
+
+TEST(CGlobalPlanner, NoPathSaysWhy) {
+    // a wall across the map with a 0.5 m gap: too narrow for a 0.35 m disc
+    const auto g = makeMap(10, 6, {{4.9, 0, 5.1, 2.75}, {4.9, 3.25, 5.1, 6}});
+    const auto p = plannerOn(g);
+    auto plan = p.plan({2, 3}, {8, 3});
+    EXPECT_FALSE(plan.found);
+    EXPECT_EQ(plan.failure, "narrow_gap") << plan.reason;
+    EXPECT_NE(plan.reason.find("gap of about 0.4"), std::string::npos) << plan.reason;
+    // a smaller disc fits
+    EXPECT_TRUE(plannerOn(g, 0.2).plan({2, 3}, {8, 3}).found);
+    // closed: disconnected
+    const auto closed = makeMap(10, 6, {{4.9, 0, 5.1, 6}});
+    plan = plannerOn(closed).plan({2, 3}, {8, 3});
+    EXPECT_EQ(plan.failure, "disconnected") << plan.reason;
+    // start and goal on an obstacle, or off the map
+    EXPECT_EQ(plannerOn(closed).plan({5, 3}, {8, 3}).failure, "start_blocked");
+    EXPECT_EQ(plannerOn(closed).plan({2, 3}, {5, 3}).failure, "goal_blocked");
+    EXPECT_EQ(plannerOn(closed).plan({2, 3}, {18, 3}).failure, "goal_blocked");
+}
+
+TEST(CGlobalPlanner, AStartNearAWallLeavesIt) {
+    // the robot 0.2 m from the wall (less than the disc): it may leave
+    const auto g = makeMap(10, 6, {});
+    const auto p = plannerOn(g);
+    const auto plan = p.plan({2, 0.05 + 0.2 + 0.025}, {8, 3});
+    EXPECT_TRUE(plan.found) << plan.reason;
+}
+
+TEST(CGlobalPlanner, ABlockedCorridorIsReplannedThroughTheOther) {
+    // two corridors from the left room to the right one: the lower (y 1-2.4)
+    // is the shorter way, the upper (y 4.4-5.8) the longer
+    const auto g = makeMap(14, 6.2, {{3, 0, 11, 1}, {3, 2.4, 11, 4.4}});
+    auto p = plannerOn(g);
+    const TPoint2D goal(12.5, 1.7);
+    auto ev = p.update(TPose2D(1.5, 1.7, 0), goal, 0.0);
+    ASSERT_TRUE(ev);
+    EXPECT_EQ(ev->why, "new_target");
+    ASSERT_TRUE(p.current().found);
+    double maxY = 0;
+    for (const auto& q : p.current().points)
+        maxY = std::max(maxY, q.y);
+    EXPECT_LT(maxY, 2.4);  // the lower corridor
+    // nothing sensed: no replan
+    EXPECT_FALSE(p.update(TPose2D(1.6, 1.7, 0), goal, 0.2));
+    // a box across the lower corridor at x = 5, seen from (2, 1.7): points
+    // on its face, robot frame (x ahead)
+    std::vector<TPoint2D> pts;
+    for (double y = 1.0; y <= 2.4; y += 0.05)
+        pts.emplace_back(5.0 - 2.0, y - 1.7);
+    p.addSensed(TPose2D(2, 1.7, 0), pts, 1.0);
+    ev = p.update(TPose2D(2, 1.7, 0), goal, 1.2);
+    ASSERT_TRUE(ev);
+    EXPECT_EQ(ev->why, "blocked");
+    ASSERT_TRUE(p.current().found);
+    maxY = 0;
+    for (const auto& q : p.current().points)
+        maxY = std::max(maxY, q.y);
+    EXPECT_GT(maxY, 4.4);  // the upper corridor now
+    // once a scan sees through where the box was (it moved away: the beams
+    // end on the far room's wall and on the corridor's walls), the memory
+    // forgets it, and the map's way is free again
+    std::vector<TPoint2D> through;
+    for (double y = 1.05; y <= 2.36; y += 0.025)
+        through.emplace_back(13.95 - 2.0, y - 1.7);
+    for (double x = 5.0; x <= 11; x += 0.025) {
+        through.emplace_back(x - 2.0, 1.0 - 1.7);
+        through.emplace_back(x - 2.0, 2.4 - 1.7);
+    }
+    p.addSensed(TPose2D(2, 1.7, 0), through, 2.0);
+    auto fresh = p.plan({2, 1.7}, goal, true);
+    ASSERT_TRUE(fresh.found);
+    maxY = 0;
+    for (const auto& q : fresh.points)
+        maxY = std::max(maxY, q.y);
+    EXPECT_LT(maxY, 2.4);
+}
+
+TEST(CGlobalPlanner, StrayingAndAPoseJumpReplan) {
+    const auto g = makeMap(12, 8, {});
+    auto p = plannerOn(g);
+    const TPoint2D goal(10, 4);
+    ASSERT_TRUE(p.update(TPose2D(2, 4, 0), goal, 0));
+    EXPECT_FALSE(p.update(TPose2D(2.2, 4.1, 0), goal, 0.2));
+    // 0.6 m in one cycle: a localization correction
+    auto ev = p.update(TPose2D(2.2, 4.7, 0), goal, 0.4);
+    ASSERT_TRUE(ev);
+    EXPECT_EQ(ev->why, "pose_jump");
+    // pushed 1.5 m off the plan over several cycles
+    double y = 4.7;
+    std::optional<nav::TReplanEvent> last;
+    for (int k = 0; k < 10 && !last; k++) {
+        y += 0.2;
+        last = p.update(TPose2D(2.4, y, 0), goal, 0.6 + 0.2 * k);
+    }
+    ASSERT_TRUE(last);
+    EXPECT_EQ(last->why, "strayed");
+    // the guide point lies ahead on the plan, about lookahead away
+    const auto gp = p.guidePoint(TPose2D(2.4, y, 0));
+    ASSERT_TRUE(gp);
+    EXPECT_NEAR(std::hypot(gp->x - 2.4, gp->y - y), p.options.lookahead, 0.1);
+    EXPECT_GT(gp->x, 2.4);
+}
+
+TEST(CGlobalPlanner, OptionsAreChecked) {
+    nav::CGlobalPlanner::TOptions o;
+    o.lookahead = 0;
+    EXPECT_THROW(o.validate(), std::exception);
+    o = {};
+    o.clearance_weight = -1;
+    EXPECT_THROW(o.validate(), std::exception);
+    o = {};
+    EXPECT_NO_THROW(o.validate());
+}
