@@ -17,7 +17,7 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr float kNever = -std::numeric_limits<float>::infinity();
 std::string metres(double v) {
     char b[32];
-    std::snprintf(b, sizeof(b), "%.2f m", v);
+    std::snprintf(b, sizeof(b), "%.3f m", v);
     return b;
 }
 std::string pointText(const TPoint2D& p) {
@@ -29,6 +29,7 @@ std::string pointText(const TPoint2D& p) {
 
 void CGlobalPlanner::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                                   const std::string& s) {
+    margin = readDouble(c, s, "margin", margin);
     clearance_soft = readDouble(c, s, "clearance_soft", clearance_soft);
     clearance_weight = readDouble(c, s, "clearance_weight", clearance_weight);
     lookahead = readDouble(c, s, "lookahead", lookahead);
@@ -41,6 +42,7 @@ void CGlobalPlanner::TOptions::loadFromConfigFile(const mrpt::config::CConfigFil
 
 void CGlobalPlanner::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
                                                 const std::string& s) const {
+    writeKey(c, s, "margin", margin);
     writeKey(c, s, "clearance_soft", clearance_soft);
     writeKey(c, s, "clearance_weight", clearance_weight);
     writeKey(c, s, "lookahead", lookahead);
@@ -53,6 +55,7 @@ void CGlobalPlanner::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c
 
 void CGlobalPlanner::TOptions::validate() const {
     const std::string s = "GlobalPlanner";
+    checkKey(s, "margin", margin, TRange::closed(0, 2, "m"));
     checkKey(s, "clearance_soft", clearance_soft, TRange::closed(0, 10, "m"));
     checkKey(s, "clearance_weight", clearance_weight, TRange::closed(0, 1000));
     checkKey(s, "lookahead", lookahead, TRange::closed(0.2, 20, "m"));
@@ -76,20 +79,44 @@ float CGlobalPlanner::costOf(double e) const {
 void CGlobalPlanner::setMap(const mrpt::maps::COccupancyGridMap2D& grid,
                             const mapping::TObstacleRule& rule, double discRadius) {
     m_field = mapping::CDistanceField(grid, rule);
-    m_disc = discRadius;
-    m_cost.w = m_field.sizeX();
-    m_cost.h = m_field.sizeY();
-    m_cost.resolution = m_field.resolution();
+    m_disc = discRadius + options.margin;
+    m_fine.cost.w = m_field.sizeX();
+    m_fine.cost.h = m_field.sizeY();
+    m_fine.cost.resolution = m_field.resolution();
     const auto& d = m_field.clearances();
     const size_t n = d.size();
-    const float half = float(0.5 * m_cost.resolution);
-    m_clearEdge.resize(n);
-    m_cost.cost.resize(n);
+    const float half = float(0.5 * m_fine.cost.resolution);
+    m_fine.clearEdge.resize(n);
+    m_fine.cost.cost.resize(n);
     for (size_t i = 0; i < n; i++) {
         // the centre's distance to the nearest obstacle cell's centre, less
         // half a cell: to that cell's near edge (0 on an obstacle)
-        m_clearEdge[i] = m_field.obstacles()[i] ? 0.0f : std::max(0.0f, d[i] - half);
-        m_cost.cost[i] = costOf(m_clearEdge[i]);
+        m_fine.clearEdge[i] = m_field.obstacles()[i] ? 0.0f : std::max(0.0f, d[i] - half);
+        m_fine.cost.cost[i] = costOf(m_fine.clearEdge[i]);
+    }
+    m_fine.k = 1;
+    // A map finer than 5 cm is planned on cells of k x k of its own (k =
+    // 0.05 m / resolution, rounded): a 3 cm map has 2.8 times the cells of
+    // a 5 cm one for the same metres, and the engine follows a plan to
+    // centimetres no better. A coarse cell keeps the least clearance of its
+    // own cells (a gap only that closes is planned on the map's cells).
+    m_coarse = TLevel{};
+    const int k = int(std::lround(0.05 / m_fine.cost.resolution));
+    if (k > 1) {
+        auto& L = m_coarse;
+        L.k = k;
+        L.cost.w = (m_fine.cost.w + k - 1) / k;
+        L.cost.h = (m_fine.cost.h + k - 1) / k;
+        L.cost.resolution = k * m_fine.cost.resolution;
+        L.clearEdge.assign(size_t(L.cost.w) * size_t(L.cost.h), kInf);
+        for (int y = 0; y < m_fine.cost.h; y++)
+            for (int x = 0; x < m_fine.cost.w; x++) {
+                float& e = L.clearEdge[L.cost.index(x / k, y / k)];
+                e = std::min(e, m_fine.clearEdge[m_fine.cost.index(x, y)]);
+            }
+        L.cost.cost.resize(L.clearEdge.size());
+        for (size_t i = 0; i < L.clearEdge.size(); i++)
+            L.cost.cost[i] = costOf(L.clearEdge[i]);
     }
     m_seenAt.assign(n, kNever);
     m_seenCells.clear();
@@ -122,84 +149,36 @@ TGlobalPlan CGlobalPlanner::plan(const TPoint2D& from, const TPoint2D& to,
     }
     const int sx = m_field.x2idx(from.x), sy = m_field.y2idx(from.y);
     const int gx = m_field.x2idx(to.x), gy = m_field.y2idx(to.y);
-    if (!m_cost.inside(sx, sy)) {
+    if (!m_fine.cost.inside(sx, sy)) {
         p.failure = "start_blocked";
         p.reason = "the start " + pointText(from) + " is outside the map";
         return done();
     }
-    if (!m_cost.inside(gx, gy)) {
+    if (!m_fine.cost.inside(gx, gy)) {
         p.failure = "goal_blocked";
         p.reason = "the goal " + pointText(to) + " is outside the map";
         return done();
     }
-    const int32_t si = int32_t(m_cost.index(sx, sy)), gi = int32_t(m_cost.index(gx, gy));
-    if (m_clearEdge[size_t(si)] <= 0) {
+    const int32_t si = int32_t(m_fine.cost.index(sx, sy)),
+                  gi = int32_t(m_fine.cost.index(gx, gy));
+    if (m_fine.clearEdge[size_t(si)] <= 0) {
         p.failure = "start_blocked";
         p.reason = "the start " + pointText(from) + " is on an obstacle cell of the map";
         return done();
     }
-    if (m_clearEdge[size_t(gi)] <= 0) {
+    if (m_fine.clearEdge[size_t(gi)] <= 0) {
         p.failure = "goal_blocked";
         p.reason = "the goal " + pointText(to) + " is on an obstacle cell of the map";
         return done();
     }
-    // the grid searched: the map's, or a copy with the sensed obstacles and
-    // the ways out of a start (into a goal) nearer an obstacle than the disc
-    const TCostGrid* g = &m_cost;
-    auto work = [&]() -> TCostGrid& {
-        if (g != &m_work) {
-            m_work = m_cost;
-            g = &m_work;
-        }
-        return m_work;
-    };
-    if (withSensed) {
-        const double res = m_cost.resolution;
-        const int reach = int(std::ceil((m_disc + options.clearance_soft) / res));
-        for (const int32_t c : m_seenCells) {
-            if (!liveSeen(size_t(c), m_now))
-                continue;
-            auto& w = work();
-            const int cx = c % w.w, cy = c / w.w;
-            for (int dy = -reach; dy <= reach; dy++)
-                for (int dx = -reach; dx <= reach; dx++) {
-                    const int x = cx + dx, y = cy + dy;
-                    if (!w.inside(x, y))
-                        continue;
-                    // to the sensed cell's edge, as the map's clearance
-                    const double e = std::max(0.0, std::hypot(dx, dy) * res - 0.5 * res);
-                    float& cc = w.cost[w.index(x, y)];
-                    cc = std::max(cc, costOf(e));
-                }
-        }
-    }
-    const float edgeCost = costOf(m_disc);
-    auto openAround = [&](int cx, int cy) {
-        // a start or goal nearer an obstacle than the disc: the cells within
-        // the disc (+2 cells) of it that are no nearer an obstacle than it
-        const float e0 = m_clearEdge[m_cost.index(cx, cy)];
-        if (e0 >= m_disc)
-            return;
-        auto& w = work();
-        const double res = w.resolution;
-        const int reach = int(std::ceil(m_disc / res)) + 2;
-        for (int dy = -reach; dy <= reach; dy++)
-            for (int dx = -reach; dx <= reach; dx++) {
-                const int x = cx + dx, y = cy + dy;
-                if (!w.inside(x, y) || std::hypot(dx, dy) > reach)
-                    continue;
-                const size_t i = w.index(x, y);
-                if (m_clearEdge[i] >= e0 - 0.5 * res && m_clearEdge[i] > 0 &&
-                    !(w.cost[i] < kInf))
-                    w.cost[i] = edgeCost;
-            }
-    };
-    openAround(sx, sy);
-    openAround(gx, gy);
-    const TGridPath path = gridAStar(*g, si, gi);
-    p.expanded = path.expanded;
-    if (path.cells.empty()) {
-        const double widest = widestWayClearance(m_clearEdge, m_cost.w, m_cost.h, si, gi);
+    // on the coarse level first (a map finer than 5 cm), then on the map's
+    // own cells: a gap the coarse cells' least clearance closes
+    bool found = m_coarse.k > 1 && planOn(m_coarse, from, to, withSensed, p);
+    if (!found)
+        found = planOn(m_fine, from, to, withSensed, p);
+    if (!found) {
+        const double widest =
+            widestWayClearance(m_fine.clearEdge, m_fine.cost.w, m_fine.cost.h, si, gi);
         if (!(widest > 0)) {
             p.failure = "disconnected";
             p.reason = "no way on the map's free space joins " + pointText(from) +
@@ -210,29 +189,109 @@ TGlobalPlan CGlobalPlanner::plan(const TPoint2D& from, const TPoint2D& to,
                        " passes " + metres(widest) +
                        " from an obstacle, a gap of about " + metres(2 * widest) +
                        "; the robot's disc needs " + metres(m_disc) +
-                       " (radius + shape_margin)";
+                       " (radius + shape_margin + margin)";
         } else {
             p.failure = "blocked";
             p.reason = "the sensed obstacles block every way from " + pointText(from) +
                        " to " + pointText(to);
         }
-        return done();
     }
+    return done();
+}
+
+bool CGlobalPlanner::planOn(const TLevel& L, const TPoint2D& from, const TPoint2D& to,
+                            bool withSensed, TGlobalPlan& p) const {
+    const int k = L.k;
+    const double res = L.cost.resolution;
+    auto cellOf = [&](const TPoint2D& q) {
+        return std::make_pair(m_field.x2idx(q.x) / k, m_field.y2idx(q.y) / k);
+    };
+    const auto [sx, sy] = cellOf(from);
+    const auto [gx, gy] = cellOf(to);
+    const int32_t si = int32_t(L.cost.index(sx, sy)), gi = int32_t(L.cost.index(gx, gy));
+    // the grid searched: the level's, or a copy with the sensed obstacles and
+    // the ways out of a start (into a goal) nearer an obstacle than the disc
+    const TCostGrid* g = &L.cost;
+    auto work = [&]() -> TCostGrid& {
+        if (g != &m_work) {
+            m_work = L.cost;
+            g = &m_work;
+        }
+        return m_work;
+    };
+    if (withSensed) {
+        const int reach = int(std::ceil((m_disc + options.clearance_soft) / res)) + 1;
+        for (const int32_t c : m_seenCells) {
+            if (!liveSeen(size_t(c), m_now))
+                continue;
+            auto& w = work();
+            // the sensed fine cell's centre, in the level's cells
+            const double px = (c % m_fine.cost.w + 0.5) / k,
+                         py = (c / m_fine.cost.w + 0.5) / k;
+            const int cx = int(px), cy = int(py);
+            for (int dy = -reach; dy <= reach; dy++)
+                for (int dx = -reach; dx <= reach; dx++) {
+                    const int x = cx + dx, y = cy + dy;
+                    if (!w.inside(x, y))
+                        continue;
+                    // centre to the sensed cell's edge, as the map's clearance
+                    const double d = std::hypot(x + 0.5 - px, y + 0.5 - py) * res;
+                    const double e = std::max(0.0, d - 0.5 * m_fine.cost.resolution);
+                    float& cc = w.cost[w.index(x, y)];
+                    cc = std::max(cc, costOf(e));
+                }
+        }
+    }
+    const float edgeCost = costOf(m_disc);
+    auto openAround = [&](int cx, int cy) {
+        // a start or goal nearer an obstacle than the disc: the cells within
+        // the disc (+2 cells) of it that are no nearer an obstacle than it
+        const float e0 = L.clearEdge[L.cost.index(cx, cy)];
+        if (e0 >= m_disc)
+            return;
+        auto& w = work();
+        const int reach = int(std::ceil(m_disc / res)) + 2;
+        for (int dy = -reach; dy <= reach; dy++)
+            for (int dx = -reach; dx <= reach; dx++) {
+                const int x = cx + dx, y = cy + dy;
+                if (!w.inside(x, y) || std::hypot(dx, dy) > reach)
+                    continue;
+                const size_t i = w.index(x, y);
+                if (L.clearEdge[i] >= e0 - 0.5 * res && L.clearEdge[i] > 0 &&
+                    !(w.cost[i] < kInf))
+                    w.cost[i] = edgeCost;
+            }
+    };
+    openAround(sx, sy);
+    openAround(gx, gy);
+    const TGridPath path = gridAStar(*g, si, gi);
+    p.expanded += path.expanded;
+    if (path.cells.empty())
+        return false;
     p.found = true;
     p.cost = path.cost;
+    p.points.clear();
     p.points.reserve(path.cells.size() + 1);
     p.points.push_back(from);
     p.minClearance = kInf;
-    for (size_t k = 0; k < path.cells.size(); k++) {
-        const int32_t c = path.cells[k];
-        const int cx = c % m_cost.w, cy = c / m_cost.w;
-        p.minClearance = std::min(p.minClearance, double(m_clearEdge[size_t(c)]));
-        if (k > 0 && k + 1 < path.cells.size())
-            p.points.emplace_back(m_field.idx2x(cx), m_field.idx2y(cy));
+    for (size_t q = 0; q < path.cells.size(); q++) {
+        const int32_t c = path.cells[q];
+        const int cx = c % L.cost.w, cy = c / L.cost.w;
+        const double x = m_field.xMin() + (cx + 0.5) * res,
+                     y = m_field.yMin() + (cy + 0.5) * res;
+        if (q > 0 && q + 1 < path.cells.size())
+            p.points.emplace_back(x, y);
     }
     p.points.push_back(to);
+    // the clearance along it on the map's own cells
+    for (const auto& q : p.points) {
+        const int fx = m_field.x2idx(q.x), fy = m_field.y2idx(q.y);
+        if (m_fine.cost.inside(fx, fy))
+            p.minClearance = std::min(
+                p.minClearance, double(m_fine.clearEdge[m_fine.cost.index(fx, fy)]));
+    }
     p.length = geometry::polylineLength(p.points);
-    return done();
+    return true;
 }
 
 void CGlobalPlanner::addSensed(const TPose2D& pose, const std::vector<TPoint2D>& pts,
@@ -240,7 +299,7 @@ void CGlobalPlanner::addSensed(const TPose2D& pose, const std::vector<TPoint2D>&
     m_now = now;
     if (!hasMap())
         return;
-    const double res = m_cost.resolution;
+    const double res = m_fine.cost.resolution;
     const double c = std::cos(pose.phi), s = std::sin(pose.phi);
     // what the map explains: within a cell and a half of its obstacles
     const float explained = float(1.5 * res);
@@ -257,14 +316,14 @@ void CGlobalPlanner::addSensed(const TPose2D& pose, const std::vector<TPoint2D>&
                 const double f = k * res / len;
                 const int bx = m_field.x2idx(pose.x + f * (x - pose.x)),
                           by = m_field.y2idx(pose.y + f * (y - pose.y));
-                if (m_cost.inside(bx, by))
-                    m_seenAt[m_cost.index(bx, by)] = kNever;
+                if (m_fine.cost.inside(bx, by))
+                    m_seenAt[m_fine.cost.index(bx, by)] = kNever;
             }
         }
-        if (!m_cost.inside(cx, cy))
+        if (!m_fine.cost.inside(cx, cy))
             continue;
-        const size_t i = m_cost.index(cx, cy);
-        if (m_clearEdge[i] <= explained)
+        const size_t i = m_fine.cost.index(cx, cy);
+        if (m_fine.clearEdge[i] <= explained)
             continue;
         if (!liveSeen(i, now))
             m_seenCells.push_back(int32_t(i));
@@ -305,7 +364,7 @@ bool CGlobalPlanner::blockedAhead(const TPose2D& pose, double now) const {
     if (m_seenCells.empty() || !m_plan.found)
         return false;
     const auto& pts = m_plan.points;
-    const double res = m_cost.resolution;
+    const double res = m_fine.cost.resolution;
     const int reach = int(std::ceil(m_disc / res));
     double along = 0;
     for (size_t k = nearestIndex(pose); k < pts.size(); k++) {
@@ -320,10 +379,10 @@ bool CGlobalPlanner::blockedAhead(const TPose2D& pose, double now) const {
         for (int dy = -reach; dy <= reach; dy++)
             for (int dx = -reach; dx <= reach; dx++) {
                 const int x = cx + dx, y = cy + dy;
-                if (!m_cost.inside(x, y) ||
+                if (!m_fine.cost.inside(x, y) ||
                     std::hypot(dx, dy) * res - 0.5 * res >= m_disc)
                     continue;
-                if (liveSeen(m_cost.index(x, y), now))
+                if (liveSeen(m_fine.cost.index(x, y), now))
                     return true;
             }
     }
@@ -396,11 +455,12 @@ std::optional<TPoint2D> CGlobalPlanner::guidePoint(const TPose2D& pose) const {
     if (stretch.size() < 2)
         return pts.back();
     const auto la = geometry::lookaheadOnPolyline(
-        stretch, TPoint2D(pose.x, pose.y), options.lookahead, 0.5 * m_cost.resolution,
-        [&](double x, double y) {
+        stretch, TPoint2D(pose.x, pose.y), options.lookahead,
+        0.5 * m_fine.cost.resolution, [&](double x, double y) {
             const int cx = m_field.x2idx(x), cy = m_field.y2idx(y);
-            return m_cost.inside(cx, cy) ? double(m_clearEdge[m_cost.index(cx, cy)])
-                                         : 0.0;
+            return m_fine.cost.inside(cx, cy)
+                       ? double(m_fine.clearEdge[m_fine.cost.index(cx, cy)])
+                       : 0.0;
         });
     return stretch[la.ahead];
 }

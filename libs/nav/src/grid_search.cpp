@@ -14,7 +14,14 @@ struct TScratch {
     std::vector<int32_t> parent;
     std::vector<uint32_t> reached, closed;
     uint32_t search = 0;
-    common::CQuadHeap<std::pair<float, int32_t>, std::greater<>> open;
+    /** An open entry: f, then h (of equal f the one nearer the goal first:
+     * on a grid many paths tie, and without this A* opens all of them) */
+    struct TOpen {
+        float f, h;
+        int32_t cell;
+        bool operator>(const TOpen& o) const { return f > o.f || (f == o.f && h > o.h); }
+    };
+    common::CQuadHeap<TOpen, std::greater<>> open;
     void begin(size_t cells) {
         if (reached.size() != cells) {
             g.assign(cells, 0.0f);
@@ -52,11 +59,14 @@ TGridPath gridAStar(const TCostGrid& g, int32_t start, int32_t goal) {
     s.g[size_t(start)] = 0;
     s.parent[size_t(start)] = -1;
     s.reached[size_t(start)] = s.search;
-    s.open.emplace(h(start % g.w, start / g.w), start);
+    {
+        const float h0 = h(start % g.w, start / g.w);
+        s.open.push({h0, h0, start});
+    }
     static constexpr int kDx[8] = {1, -1, 0, 0, 1, 1, -1, -1};
     static constexpr int kDy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
     while (!s.open.empty()) {
-        const auto [f, c] = s.open.top();
+        const int32_t c = s.open.top().cell;
         s.open.pop();
         if (s.closed[size_t(c)] == s.search)
             continue;  // a stale entry: the cell was closed at a lower f
@@ -82,7 +92,8 @@ TGridPath gridAStar(const TCostGrid& g, int32_t start, int32_t goal) {
             s.reached[ni] = s.search;
             s.g[ni] = ng;
             s.parent[ni] = c;
-            s.open.emplace(ng + h(nx, ny), int32_t(ni));
+            const float hn = h(nx, ny);
+            s.open.push({ng + hn, hn, int32_t(ni)});
         }
     }
     if (s.closed[size_t(goal)] != s.search)

@@ -59,6 +59,10 @@ struct TReplanEvent {
 class CGlobalPlanner {
   public:
     struct TOptions : public common::CValidatedOptions {
+        /** [m] a way keeps this beyond the engine's disc: MRPT's engine
+         * creeps at mm/s through a gap its shape fits with a few cm to spare
+         * (the TurtleBot3 arena's pillars for a 0.33 m disc) */
+        double margin = 0.05;
         double clearance_soft = 0.5;   ///< [m] beyond the disc, nearer costs more
         double clearance_weight = 4;   ///< cost per metre at the disc's edge = 1 + this
         double lookahead = 2.0;        ///< [m] MRPT's engine aims this far ahead
@@ -77,10 +81,11 @@ class CGlobalPlanner {
     TOptions options;  ///< [GlobalPlanner]
 
     /** The map to plan on, with its obstacle rule, and the radius [m] of the
-     * disc the engine plans for. Computes the clearance and cost grids once. */
+     * disc the engine plans for (a way keeps options.margin more). Computes
+     * the clearance and cost grids once. */
     void setMap(const mrpt::maps::COccupancyGridMap2D& grid,
                 const mapping::TObstacleRule& rule, double discRadius);
-    bool hasMap() const { return m_cost.w > 0; }
+    bool hasMap() const { return m_fine.cost.w > 0; }
     const mapping::CDistanceField& field() const { return m_field; }
     double discRadius() const { return m_disc; }
 
@@ -114,12 +119,22 @@ class CGlobalPlanner {
     void resetFollowing();
 
   private:
+    /** The cells one plan is made on: the map's own (k = 1) or blocks of
+     * k x k of them. */
+    struct TLevel {
+        int k = 1;
+        TCostGrid cost;
+        /** [m] cell centre to the nearest obstacle cell's edge (coarse:
+         * the least of its own cells') */
+        std::vector<float> clearEdge;
+    };
+    TLevel m_fine, m_coarse;
+    bool planOn(const TLevel& level, const mrpt::math::TPoint2D& from,
+                const mrpt::math::TPoint2D& to, bool withSensed, TGlobalPlan& p) const;
     mapping::CDistanceField m_field;
     double m_disc = 0;
-    TCostGrid m_cost;                // the map alone
-    std::vector<float> m_clearEdge;  // [m] cell centre to the nearest obstacle's edge
-    mutable TCostGrid m_work;        // the map and the sensed obstacles
-    std::vector<float> m_seenAt;     // [s] when a cell was sensed as an obstacle
+    mutable TCostGrid m_work;     // the map and the sensed obstacles
+    std::vector<float> m_seenAt;  // [s] when a cell was sensed as an obstacle
     std::vector<int32_t> m_seenCells;
     std::optional<mrpt::math::TPoint2D> m_target;
     std::optional<mrpt::math::TPose2D> m_lastPose;
