@@ -183,7 +183,7 @@ TEST(CGlobalPlanner, NoPathSaysWhy) {
     auto plan = p.plan({2, 3}, {8, 3});
     EXPECT_FALSE(plan.found);
     EXPECT_EQ(plan.failure, "narrow_gap") << plan.reason;
-    EXPECT_NE(plan.reason.find("gap of about 0.4), std::string::npos) << plan.reason;
+    EXPECT_NE(plan.reason.find("gap of about 0.4"), std::string::npos) << plan.reason;
     // a smaller disc fits
     EXPECT_TRUE(plannerOn(g, 0.2).plan({2, 3}, {8, 3}).found);
     // closed: disconnected
