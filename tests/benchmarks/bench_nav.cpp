@@ -17,6 +17,10 @@
 // benchmark thread's alone; cpu_us_all_threads is the process's CPU time
 // over the timed steps (both threads) per step.
 //
+// BM_RiskAwareStep_GlobalPlanner: the stopping-distance limiter and the
+// global planner (risknav-navigate's default, global_planner = grid): its
+// replans on a new leg and as the run needs, and its guide point.
+//
 // BM_LimiterCall/<name>: one limit() call of a separate instance of each
 // limiter, loaded from the same config, on the input the all-limiters
 // navigator built this cycle (its pose, obstacles, scans, target, time),
@@ -245,12 +249,19 @@ struct TNavBench {
         return n;
     }
 
-    explicit TNavBench(const char* limiters) {
+    explicit TNavBench(const char* limiters, bool globalPlanner = false) {
         officeWorld(world);
         world.reset(kStart, 11, clockBase);
         robotIf = std::make_unique<sim::CSimRobotInterface>(world);
         robotIf->setMinLoggingLevel(mrpt::system::LVL_ERROR);
         nav = makeNav(*robotIf, limiters);
+        if (globalPlanner && risk) {
+            // risknav-navigate's default: the global plan on the office map,
+            // replanned as the run needs (the engine's disc: the robot's)
+            auto p = std::make_shared<nav::CGlobalPlanner>();
+            p->setMap(world.grid(), world.distanceField().rule(), world.robot.radius);
+            risk->setGlobalPlanner(p);
+        }
         if (limiters) {
             twin = std::make_unique<TTwin>();
             twin->world = world;
@@ -412,6 +423,8 @@ TNavBench& fixture(const std::string& variant) {
             f = std::make_unique<TNavBench>(nullptr);
         else if (variant == "none")
             f = std::make_unique<TNavBench>("");
+        else if (variant == "planner")
+            f = std::make_unique<TNavBench>("CStoppingDistanceLimiter", true);
         else
             f = std::make_unique<TNavBench>(kAllLimiters);
     }
@@ -477,7 +490,14 @@ void BM_RiskAwareStep_NoLimiters(benchmark::State& state) {
 void BM_RiskAwareStep_AllLimiters(benchmark::State& state) {
     runSteps(state, fixture("all"));
 }
+void BM_RiskAwareStep_GlobalPlanner(benchmark::State& state) {
+    runSteps(state, fixture("planner"));
+}
 BENCHMARK(BM_BareEngineStep)->Unit(benchmark::kMicrosecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_RiskAwareStep_GlobalPlanner)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
 BENCHMARK(BM_RiskAwareStep_NoLimiters)
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime()
