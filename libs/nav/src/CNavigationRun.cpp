@@ -768,6 +768,7 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     mrpt::math::TPoint2D stallSpot(world.truePose().x, world.truePose().y);
     double stallSince = world.time();
     bool everyCycleFailed = true;
+    size_t plansSeen = 0;  // the planner's (re)plans already taken in
     for (int cycle = 0;; cycle++) {
         const double t = world.time();
         const auto& scans = robotIf.senseNow();
@@ -808,9 +809,14 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
         const double stepS =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - s0).count();
         r.navStepSeconds += stepS;
-        if (m_planner && r.firstPlan.empty() && m_planner->current().found) {
-            r.firstPlan = m_planner->current().points;
-            r.firstPlanLength = m_planner->current().length;
+        if (m_planner && m_planner->replans().size() > plansSeen) {
+            plansSeen = m_planner->replans().size();
+            const auto& cur = m_planner->current();
+            if (cur.found && (r.planPaths.empty() || r.planPaths.back() != cur.points)) {
+                if (r.planPaths.empty())
+                    r.firstPlanLength = cur.length;
+                r.planPaths.push_back(cur.points);
+            }
         }
 
         TNavCycle rec;

@@ -102,6 +102,9 @@ void drawTrajectory(const CNavigationRun& run, const TNavRunResult& r,
     for (const auto& w : run.waypoints.waypoints)
         route.emplace_back(w.target.x, w.target.y);
     img.polyline(route, {200, 200, 200}, 4, true);
+    // the global planner's plans: every one followed, the later ones darker
+    for (size_t k = 0; k < r.planPaths.size(); k++)
+        img.polyline(r.planPaths[k], k == 0 ? TRgb{120, 170, 255} : TRgb{40, 90, 200}, 1);
     double vmax = world.robot.max_v;
     for (const auto& c : r.cycles)
         vmax = std::max(vmax, c.speed);
@@ -143,6 +146,8 @@ void drawTrajectory(const CNavigationRun& run, const TNavRunResult& r,
     if (!r.track.empty())
         img.marker(r.track.back(), CMapImage::TMarker::Star, {0, 0, 0}, 14, 2);
     img.legendLine("route (waypoints +)", {200, 200, 200}, 4);
+    if (!r.planPaths.empty())
+        img.legendLine("global plan (replans darker)", {40, 90, 200}, 1);
     img.legendLine("path, coloured by speed (bar)",
                    CMapImage::colourOf(0.8 * vmax, 0, vmax), 3);
     if (!r.people.empty())

@@ -75,9 +75,11 @@ struct TNavRunResult {
     std::string navlogFile;      ///< MRPT's file (in the run's log folder), "" if none
     /** The global planner's plans (global_planner = grid): every (re)plan. */
     std::vector<TReplanEvent> plans;
-    std::vector<mrpt::math::TPoint2D> firstPlan;  ///< the first plan's points
-    double firstPlanLength = 0;                   ///< [m]
-    std::string noPathFailure;  ///< no way to a target: start_blocked | ...
+    /** Every plan followed (a new one at each plan or replan that found a
+     * way), in order. */
+    std::vector<std::vector<mrpt::math::TPoint2D>> planPaths;
+    double firstPlanLength = 0;  ///< [m]
+    std::string noPathFailure;   ///< no way to a target: start_blocked | ...
     /** [m] the least true distance of the robot to the last waypoint while
      * it was the target (+inf: never its target). "goal_reached" is MRPT's
      * verdict on the believed pose; farther than goal_tolerance (+ 5 cm)
