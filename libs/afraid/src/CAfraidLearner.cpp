@@ -5,7 +5,7 @@
 #include <risknav/common/config_read.h>
 #include <risknav/common/stopping.h>
 #include <risknav/localization/CRawlogReader.h>
-#include <risknav/mapping/scan_points.h>
+#include <risknav/localization/scan_fit.h>
 
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
@@ -265,22 +265,12 @@ void CAfraidLearner::prepare() {
 
 double CAfraidLearner::scanMapAgreement(const mrpt::obs::CObservation2DRangeScan& scan,
                                         const mrpt::math::TPose2D& pose) const {
-    const auto pts = mapping::scanToRobotFrame(scan);
-    const mrpt::poses::CPose2D robot(pose);
-    size_t agree = 0;
-    for (const auto& p : pts) {
-        const auto w = robot + mrpt::poses::CPose2D(p.x, p.y, 0);
-        // A point off the map is no evidence either way, whatever the rule
-        // says of the outside (else a scan into the void would agree).
-        const int cx = m_field.x2idx(w.x()), cy = m_field.y2idx(w.y());
-        // On the surface of a map obstacle: near it from outside, and not deep
-        // inside it (a point inside a solid wall is as wrong as one in the open).
-        if (m_field.inside(cx, cy) &&
-            m_field.clearance(cx, cy) <= options.match_distance &&
-            m_field.depth(cx, cy) <= options.match_distance)
-            agree++;
-    }
-    return pts.empty() ? 0.0 : double(agree) / pts.size();
+    // On the surface of a map obstacle: near it from outside, and not deep
+    // inside it; a point off the map is no evidence either way, whatever the
+    // rule says of the outside (else a scan into the void would agree).
+    const auto fit =
+        localization::scanMapFit(m_field, scan, pose, options.match_distance);
+    return fit.points ? fit.fraction() : 0.0;
 }
 
 void CAfraidLearner::run(bool quiet) {

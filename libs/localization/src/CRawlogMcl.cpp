@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
+#include <stdexcept>
 
 using namespace risknav::common;
 
@@ -223,6 +225,8 @@ void CRawlogMcl::initialize(const mrpt::maps::COccupancyGridMap2D& grid, uint64_
         mrpt::random::CRandomGenerator(static_cast<uint32_t>(seed));
     m_pdf = mrpt::slam::CMonteCarloLocalization2D();
     m_map = std::make_shared<mrpt::maps::COccupancyGridMap2D>(grid);
+    m_fitField.reset();
+    m_failedChecks = 0;
     auto& lo = m_map->likelihoodOptions;
     lo.likelihoodMethod = mrpt::maps::COccupancyGridMap2D::lmLikelihoodField_Thrun;
     lo.LF_stdHit = float(options.lf_std_hit);
@@ -253,6 +257,10 @@ TMclEstimate CRawlogMcl::step(const mrpt::obs::CActionCollection& actions,
                               const mrpt::obs::CSensoryFrame& sf) {
     mrpt::bayes::CParticleFilter::TParticleFilterStats stats;
     m_pf.executeOn(m_pdf, &actions, &sf, &stats);
+    return estimate();
+}
+
+TMclEstimate CRawlogMcl::estimate() const {
     TMclEstimate e;
     const auto [cov, mean] = m_pdf.getCovarianceAndMean();
     e.mean = mean.asTPose();
@@ -260,6 +268,70 @@ TMclEstimate CRawlogMcl::step(const mrpt::obs::CActionCollection& actions,
     e.particles = m_pdf.size();
     e.ess = m_pdf.ESS();
     return e;
+}
+
+const mapping::CDistanceField& CRawlogMcl::fitField() const {
+    if (!m_map)
+        throw std::logic_error("CRawlogMcl: checkLost() before initialize()");
+    if (!m_fitField) {
+        // Obstacles as the afraid learner's scan-to-map test takes them:
+        // occupied cells only (never-seen cells and the outside are no
+        // surface a scan could have hit).
+        mapping::TObstacleRule rule;
+        rule.unknown_is_obstacle = rule.outside_is_obstacle = false;
+        m_fitField = std::make_shared<const mapping::CDistanceField>(*m_map, rule);
+    }
+    return *m_fitField;
+}
+
+TLocalizationCheck CRawlogMcl::checkLocalization(
+    const mrpt::obs::CObservation2DRangeScan* scan) const {
+    const TMclEstimate e = estimate();
+    const auto& o = lostOptions;
+    TScanFit fit;
+    if (scan)
+        fit = scanMapFit(
+            fitField(), *scan, e.mean, o.fit_distance,
+            o.max_range > 0 ? o.max_range : std::numeric_limits<double>::infinity());
+    auto c = judgeLocalization(fit, std::sqrt(std::max(0.0, e.cov(0, 0) + e.cov(1, 1))),
+                               std::sqrt(std::max(0.0, e.cov(2, 2))) * 180 / M_PI, o);
+    c.ess = e.ess;
+    c.particles = e.particles;
+    return c;
+}
+
+TLocalizationCheck CRawlogMcl::checkLost(const mrpt::obs::CSensoryFrame& sf,
+                                         const std::string& scanLabel) {
+    const auto scan = firstRangeScan(sf, scanLabel);
+    auto c = checkLocalization(scan.get());
+    m_failedChecks = c.failed ? m_failedChecks + 1 : 0;
+    c.consecutiveFailed = m_failedChecks;
+    c.lost = m_failedChecks >= lostOptions.lost_after;
+    return c;
+}
+
+void CRawlogMcl::recover(bool global) {
+    if (!m_map)
+        throw std::logic_error("CRawlogMcl: recover() before initialize()");
+    const auto& o = lostOptions;
+    const auto mean = estimate().mean;
+    const size_t n = size_t(o.recovery_particles);
+    bool done = false;
+    if (!global) {
+        const double dphi = o.recovery_phi_deg * M_PI / 180;
+        try {
+            m_pdf.resetUniformFreeSpace(m_map.get(), 0.7, n, mean.x - o.recovery_xy,
+                                        mean.x + o.recovery_xy, mean.y - o.recovery_xy,
+                                        mean.y + o.recovery_xy, mean.phi - dphi,
+                                        mean.phi + dphi);
+            done = true;
+        } catch (const std::exception&) {
+            // no free cell in the box (a mean off the map): the whole map
+        }
+    }
+    if (!done)
+        m_pdf.resetUniformFreeSpace(m_map.get(), 0.7, n);
+    m_failedChecks = 0;
 }
 
 }  // namespace risknav::localization

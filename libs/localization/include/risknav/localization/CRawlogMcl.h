@@ -8,6 +8,8 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/slam/CMonteCarloLocalization2D.h>
 #include <risknav/common/CValidatedOptions.h>
+#include <risknav/localization/lost_detection.h>
+#include <risknav/mapping/CDistanceField.h>
 
 #include <memory>
 #include <string>
@@ -47,6 +49,10 @@ class CRawlogMcl {
     } options;
     mrpt::bayes::CParticleFilter::TParticleFilterOptions pfOptions;
     mrpt::slam::TKLDParams kldOptions;
+    /** When the filter counts as lost, and how recover() re-spreads it. Not
+     * read by loadFromConfigFile(): the host app loads it from the section
+     * it chooses (loadOptions(mcl.lostOptions, c, "...")). */
+    TLostDetectionOptions lostOptions;
 
     CRawlogMcl();
     /** Loads options, [PF_options] and [KLD_options]. */
@@ -80,11 +86,39 @@ class CRawlogMcl {
     /** One prediction + update step. */
     TMclEstimate step(const mrpt::obs::CActionCollection& actions,
                       const mrpt::obs::CSensoryFrame& sf);
+    /** The particles' mean pose, covariance, count and ESS now. */
+    TMclEstimate estimate() const;
+
+    /** Is the filter lost? Call once per step(), with the same frame: its
+     * first 2D range scan (or the first labelled `scanLabel`) is fitted to
+     * the map at the particles' mean pose (scanMapFit(), lostOptions'
+     * fit_distance and max_range), the particles' spread is taken
+     * (sqrt(var x + var y), the heading's standard deviation), and
+     * judgeLocalization() says whether this check failed; `lost` once
+     * lostOptions.lost_after checks in a row have failed (a passed check
+     * starts the count again). A frame without a scan judges the spread
+     * only. After initialize() or recover() the count starts at 0. */
+    TLocalizationCheck checkLost(const mrpt::obs::CSensoryFrame& sf,
+                                 const std::string& scanLabel = "");
+    /** The same figures for one scan (nullptr: none), without counting. */
+    TLocalizationCheck checkLocalization(
+        const mrpt::obs::CObservation2DRangeScan* scan) const;
+    /** The standard MCL recovery: draws lostOptions.recovery_particles
+     * particles anew over the free cells (P(free) >= 0.7, as initialize())
+     * of a box of +-recovery_xy around the mean pose with headings within
+     * +-recovery_phi_deg of its heading, or (global, or no free cell in the
+     * box) of the whole map with any heading. The next steps' scans then
+     * pick the robot's pose out of them. Resets the lost count. */
+    void recover(bool global = false);
 
   private:
+    /** The map's obstacles for scanMapFit() (built at the first check). */
+    const mapping::CDistanceField& fitField() const;
     mrpt::maps::COccupancyGridMap2D::Ptr m_map;
     mrpt::bayes::CParticleFilter m_pf;
     mrpt::slam::CMonteCarloLocalization2D m_pdf;
+    mutable std::shared_ptr<const mapping::CDistanceField> m_fitField;
+    int m_failedChecks = 0;
 };
 
 }  // namespace risknav::localization
