@@ -605,11 +605,11 @@ INSTANTIATE_TEST_SUITE_P(
         // MRPT's runtime asserts on values it takes without a check: its
         // score formula reads a variable the CC PTG never sets (every cycle
         // an error, the robot still, exit 0)
-        TBad{
-            "mrpt_fails_on_every_cycle", "PTG_COUNT +=[^\\n]*",
-            "PTG_COUNT = 1\nPTG0_Type = CPTG_DiffDrive_CC",
-            "MRPT's reactive engine failed on each of its first 5 cycles (a value of its "
-            "config it takes without a check): Error compiling expression"},
+        TBad{"mrpt_fails_on_every_cycle", "PTG_COUNT +=[^\\n]*",
+             "PTG_COUNT = 1\nPTG0_Type = CPTG_DiffDrive_CC",
+             "MRPT's reactive engine failed on each of its first 5 cycles, in open space "
+             "too (a value of its config it takes without a check): Error compiling "
+             "expression"},
         // MRPT asserts on fewer than 4 paths every cycle
         TBad{"mrpt_ptg_paths_three", "PTG_COUNT +=[^\\n]*",
              "PTG_COUNT = 2\nPTG0_num_paths = 3",
@@ -662,6 +662,15 @@ INSTANTIATE_TEST_SUITE_P(
              "[CRiskAwareReactiveNav] speed_limiters = 'CStoppingDistanceLimiter "
              "CStoppingDistanceLimiter': CStoppingDistanceLimiter is listed twice"},
         TBad{"unknown_key", "goal_tolerance", "goal_tolerence", "goal_tolerence"},
+        TBad{"global_planner_unknown",
+             "goal_tolerance =", "global_planner = astar\ngoal_tolerance =",
+             "[Navigate] global_planner = 'astar'"},
+        TBad{"goal_inside_an_obstacle", "goals +=.*", "goals = 3.0 6.6  0.1 0.1",
+             "waypoint (0.10, 0.10) is inside an obstacle of the map"},
+        TBad{"planner_lookahead_zero", "\\[CRiskAwareReactiveNav\\]",
+             "[GlobalPlanner]\nlookahead = 0\n[CRiskAwareReactiveNav]",
+             "[GlobalPlanner] lookahead = '0'"},
+
         TBad{"engine_key_missing", "engine_config +=.*",
              "engine_config =", "MRPT's reactive engine refused the config"}),
     [](const auto& i) { return std::string(i.param.name); });
@@ -1091,6 +1100,7 @@ TEST(NavigateE2E, MclLocalizationOnTheLaserKeepsThePoseErrorSmall) {
                           "--seed 1 --set Navigate.localization=mcl");
     EXPECT_EQ(s["localization"], "mcl");
     EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
+    EXPECT_EQ(s["localization_lost"], 0);  // the fit check never fires here
     EXPECT_LT(s["pose_error_final_m"].get<double>(), 0.3);
     EXPECT_GT(s["pose_error_max_m"].get<double>(),
               0.0);  // it is an estimate, not the truth
@@ -1140,4 +1150,116 @@ TEST(NavigateE2E, AfraidExperimentRefusesTheAfraidLimiterInTheList) {
             sourcePath("datasets/corridor-doors/afraid_experiment.ini") + "'");
     expectBadInput(r, "the experiment adds CAfraidSpeedLimiter itself", out, earlier,
                    "risknav-navigate: error: ");
+}
+
+namespace {
+// A 5 x 3 m map at 5 cm (PGM), a border wall and a wall across at x = 2.5 m
+// with an opening of `gap` metres (0: closed), centred at y = 1.5 m.
+std::string twoRoomsMap(const std::string& dir, double gap) {
+    const int w = 100, h = 60;
+    std::string px(size_t(w * h), char(254));
+    for (int r = 0; r < h; r++)
+        for (int c = 0; c < w; c++) {
+            const double x = (c + 0.5) * 0.05, y = (h - r - 0.5) * 0.05;
+            const bool border = r < 2 || c < 2 || r >= h - 2 || c >= w - 2;
+            const bool wall = std::abs(x - 2.5) < 0.1 && std::abs(y - 1.5) >= gap / 2;
+            if (border || wall)
+                px[size_t(r * w + c)] = 0;
+        }
+    const std::string path = dir + "/two_rooms.pgm";
+    writeFile(path, "P5\n100 60\n255\n" + px);
+    return path;
+}
+std::string twoRoomsConfig(const std::string& dir, double gap,
+                           const std::string& planner) {
+    std::string cfg = officeConfig();
+    cfg = cfg.substr(0, cfg.find("[Clutter1]"));  // no clutter, no walker
+    cfg = std::regex_replace(cfg, std::regex("(^|\\n)map_file +=[^\\n]*"),
+                             "$1map_file = " + twoRoomsMap(dir, gap));
+    cfg = std::regex_replace(cfg, std::regex("(^|\\n)start +=[^\\n]*"),
+                             "$1start = 1.0 1.5 0\nglobal_planner = " + planner);
+    cfg = std::regex_replace(cfg, std::regex("(^|\\n)goals +=[^\\n]*"),
+                             "$1goals = 4.0 1.5");
+    writeFile(dir + "/n.ini", cfg);
+    return dir + "/n.ini";
+}
+}  // namespace
+
+TEST(NavigateE2E, AGoalBehindWallsIsReachedAlongTheGlobalPlan) {
+    // The office's lower-left room to the lower-right room's corner: walls
+    // between. MRPT's engine aimed straight at the goal does not get there;
+    // along the global plan (the default) it does, no collision.
+    const std::string cfg = sourcePath("datasets/office/navigate.ini");
+    const std::string goal =
+        " --set 'Navigate.goals=15.0 2.5' --set Navigate.duration_max=150";
+    const json grid = navRun(cfg, freshDir("grid"), "--seed 1" + goal);
+    EXPECT_EQ(grid["status"], "goal_reached") << grid["navigation_error"];
+    EXPECT_EQ(grid["collisions"], 0);
+    EXPECT_EQ(grid["global_planner"], "grid");
+    EXPECT_GT(grid["plan"]["first_length_m"].get<double>(), 12.0 + 0.5);  // round walls
+    EXPECT_LE(grid["goal_true_distance_m"].get<double>(), 0.3 + 0.05);
+    const json none = navRun(
+        cfg, freshDir("none"),
+        "--seed 1 --set Navigate.global_planner=none --set Navigate.stall_timeout=30" +
+            goal);
+    EXPECT_NE(none["status"], "goal_reached");
+    EXPECT_FALSE(none.contains("plan"));
+}
+
+TEST(NavigateE2E, AWaypointBesideTheRobotIsTurnedToFirst) {
+    // 0.5 m to the side, 66 deg off the heading: MRPT's forward PTGs from a
+    // standstill found no motion to it (5 failed cycles, exit 2); turned to
+    // first, the robot reaches it and goes on.
+    const json s = navRun(sourcePath("datasets/office/navigate.ini"), freshDir("out"),
+                          "--seed 1 --set 'Navigate.goals=3.45 3.2  9.0 6.6'");
+    EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
+    EXPECT_EQ(s["waypoints_reached"], 2);
+    EXPECT_EQ(s["mrpt_errors"], 0);
+    ASSERT_TRUE(s["time_per_limiter_s"].contains("turn_in_place"));
+}
+
+TEST(NavigateE2E, NoWayIsAnOutcomeWithItsReasonNotBadInput) {
+    // two rooms, the wall between closed: disconnected; with a 0.5 m
+    // opening, narrower than the robot's disc (2 x (0.25 + 0.1) m): its
+    // width named. Both runs exit 0, status no_path.
+    const std::string d = freshDir("w");
+    const json closed = navRun(twoRoomsConfig(d, 0, "grid"), freshDir("closed"));
+    EXPECT_EQ(closed["status"], "no_path");
+    EXPECT_EQ(closed["plan"]["no_path"], "disconnected");
+    EXPECT_NE(closed["navigation_error"].get<std::string>().find("no way on the map"),
+              std::string::npos)
+        << closed["navigation_error"];
+    const std::string d2 = freshDir("w2");
+    const json narrow = navRun(twoRoomsConfig(d2, 0.5, "grid"), freshDir("narrow"));
+    EXPECT_EQ(narrow["status"], "no_path");
+    EXPECT_EQ(narrow["plan"]["no_path"], "narrow_gap");
+    EXPECT_NE(narrow["navigation_error"].get<std::string>().find("a gap of about 0.4"),
+              std::string::npos)
+        << narrow["navigation_error"];
+    // a 1.2 m opening: through it
+    const std::string d3 = freshDir("w3");
+    const json open = navRun(twoRoomsConfig(d3, 1.2, "grid"), freshDir("open"));
+    EXPECT_EQ(open["status"], "goal_reached") << open["navigation_error"];
+}
+
+TEST(NavigateE2E, RiskPlannerChoosesTheLowestUWayOfDistinctClasses) {
+    // The two-routes world from the start room to the goal room: the 3 m hall
+    // (route A) and the 1.2 m corridor (route B, shorter). M2 as the route
+    // chooser scores both classes and drives the hall (the paper's order:
+    // the wide route has the lower U); summary.json lists both with U.
+    const json s =
+        navRun(sourcePath("datasets/risk-two-routes/navigate.ini"), freshDir("out"),
+               "--seed 2 --set Navigate.global_planner=risk --set Navigate.risk_config= "
+               "--set 'Navigate.goals=22 7' --set Navigate.localization=ground_truth "
+               "--set 'Navigate.start_sigma=0 0 0'");
+    EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
+    EXPECT_EQ(s["collisions"], 0);
+    ASSERT_EQ(s["plan"]["route_choices"].size(), 1u);
+    const auto& ch = s["plan"]["route_choices"][0];
+    ASSERT_EQ(ch["candidates"].size(), 2u);
+    const auto& a = ch["candidates"][ch["chosen"].get<size_t>()];
+    const auto& b = ch["candidates"][1 - ch["chosen"].get<size_t>()];
+    EXPECT_LT(a["U"].get<double>(), b["U"].get<double>());
+    EXPECT_GT(a["length_m"].get<double>(),
+              b["length_m"].get<double>());  // the longer hall
 }

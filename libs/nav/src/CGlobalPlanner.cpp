@@ -1,4 +1,5 @@
 #include <risknav/common/config_read.h>
+#include <risknav/geometry/homotopy.h>
 #include <risknav/geometry/polyline.h>
 #include <risknav/nav/CGlobalPlanner.h>
 
@@ -20,11 +21,6 @@ std::string metres(double v) {
     std::snprintf(b, sizeof(b), "%.3f m", v);
     return b;
 }
-std::string pointText(const TPoint2D& p) {
-    char b[64];
-    std::snprintf(b, sizeof(b), "(%.2f, %.2f)", p.x, p.y);
-    return b;
-}
 }  // namespace
 
 void CGlobalPlanner::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
@@ -38,6 +34,7 @@ void CGlobalPlanner::TOptions::loadFromConfigFile(const mrpt::config::CConfigFil
     check_ahead = readDouble(c, s, "check_ahead", check_ahead);
     obstacle_memory = readDouble(c, s, "obstacle_memory", obstacle_memory);
     replan_interval = readDouble(c, s, "replan_interval", replan_interval);
+    candidates = readInt(c, s, "candidates", candidates);
 }
 
 void CGlobalPlanner::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
@@ -51,6 +48,7 @@ void CGlobalPlanner::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c
     writeKey(c, s, "check_ahead", check_ahead);
     writeKey(c, s, "obstacle_memory", obstacle_memory);
     writeKey(c, s, "replan_interval", replan_interval);
+    writeKey(c, s, "candidates", candidates);
 }
 
 void CGlobalPlanner::TOptions::validate() const {
@@ -64,6 +62,7 @@ void CGlobalPlanner::TOptions::validate() const {
     checkKey(s, "check_ahead", check_ahead, TRange::closed(0, 100, "m"));
     checkKey(s, "obstacle_memory", obstacle_memory, TRange::closed(0, 3600, "s"));
     checkKey(s, "replan_interval", replan_interval, TRange::closed(0, 3600, "s"));
+    checkKey(s, "candidates", candidates, TRange::closed(1, 8));
 }
 
 float CGlobalPlanner::costOf(double e) const {
@@ -128,6 +127,7 @@ void CGlobalPlanner::resetFollowing() {
     m_lastPose.reset();
     m_plan = TGlobalPlan{};
     m_events.clear();
+    m_choices.clear();
     m_lastBlockedReplan = -1e18;
     m_progress = 0;
 }
@@ -151,24 +151,26 @@ TGlobalPlan CGlobalPlanner::plan(const TPoint2D& from, const TPoint2D& to,
     const int gx = m_field.x2idx(to.x), gy = m_field.y2idx(to.y);
     if (!m_fine.cost.inside(sx, sy)) {
         p.failure = "start_blocked";
-        p.reason = "the start " + pointText(from) + " is outside the map";
+        p.reason = "the start " + pointText(from.x, from.y) + " is outside the map";
         return done();
     }
     if (!m_fine.cost.inside(gx, gy)) {
         p.failure = "goal_blocked";
-        p.reason = "the goal " + pointText(to) + " is outside the map";
+        p.reason = "the goal " + pointText(to.x, to.y) + " is outside the map";
         return done();
     }
     const int32_t si = int32_t(m_fine.cost.index(sx, sy)),
                   gi = int32_t(m_fine.cost.index(gx, gy));
     if (m_fine.clearEdge[size_t(si)] <= 0) {
         p.failure = "start_blocked";
-        p.reason = "the start " + pointText(from) + " is on an obstacle cell of the map";
+        p.reason = "the start " + pointText(from.x, from.y) +
+                   " is on an obstacle cell of the map";
         return done();
     }
     if (m_fine.clearEdge[size_t(gi)] <= 0) {
         p.failure = "goal_blocked";
-        p.reason = "the goal " + pointText(to) + " is on an obstacle cell of the map";
+        p.reason =
+            "the goal " + pointText(to.x, to.y) + " is on an obstacle cell of the map";
         return done();
     }
     // on the coarse level first (a map finer than 5 cm), then on the map's
@@ -181,26 +183,27 @@ TGlobalPlan CGlobalPlanner::plan(const TPoint2D& from, const TPoint2D& to,
             widestWayClearance(m_fine.clearEdge, m_fine.cost.w, m_fine.cost.h, si, gi);
         if (!(widest > 0)) {
             p.failure = "disconnected";
-            p.reason = "no way on the map's free space joins " + pointText(from) +
-                       " and " + pointText(to);
+            p.reason = "no way on the map's free space joins " +
+                       pointText(from.x, from.y) + " and " + pointText(to.x, to.y);
         } else if (widest < m_disc) {
             p.failure = "narrow_gap";
-            p.reason = "the widest way from " + pointText(from) + " to " + pointText(to) +
-                       " passes " + metres(widest) +
+            p.reason = "the widest way from " + pointText(from.x, from.y) + " to " +
+                       pointText(to.x, to.y) + " passes " + metres(widest) +
                        " from an obstacle, a gap of about " + metres(2 * widest) +
                        "; the robot's disc needs " + metres(m_disc) +
                        " (radius + shape_margin + margin)";
         } else {
             p.failure = "blocked";
-            p.reason = "the sensed obstacles block every way from " + pointText(from) +
-                       " to " + pointText(to);
+            p.reason = "the sensed obstacles block every way from " +
+                       pointText(from.x, from.y) + " to " + pointText(to.x, to.y);
         }
     }
     return done();
 }
 
 bool CGlobalPlanner::planOn(const TLevel& L, const TPoint2D& from, const TPoint2D& to,
-                            bool withSensed, TGlobalPlan& p) const {
+                            bool withSensed, TGlobalPlan& p,
+                            const std::vector<std::vector<TPoint2D>>* avoid) const {
     const int k = L.k;
     const double res = L.cost.resolution;
     auto cellOf = [&](const TPoint2D& q) {
@@ -241,6 +244,24 @@ bool CGlobalPlanner::planOn(const TLevel& L, const TPoint2D& from, const TPoint2
                     cc = std::max(cc, costOf(e));
                 }
         }
+    }
+    if (avoid) {
+        // the ways of earlier candidates closed (beyond the disc + 1 m of
+        // the start and the goal, where every way begins and ends)
+        const double ends = m_disc + 1.0, r = m_disc + 0.3;
+        const int reach = int(std::ceil(r / res));
+        for (const auto& way : *avoid)
+            for (const auto& q : way) {
+                if (std::hypot(q.x - from.x, q.y - from.y) < ends ||
+                    std::hypot(q.x - to.x, q.y - to.y) < ends)
+                    continue;
+                auto& w = work();
+                const int cx = m_field.x2idx(q.x) / k, cy = m_field.y2idx(q.y) / k;
+                for (int dy = -reach; dy <= reach; dy++)
+                    for (int dx = -reach; dx <= reach; dx++)
+                        if (w.inside(cx + dx, cy + dy) && std::hypot(dx, dy) * res <= r)
+                            w.cost[w.index(cx + dx, cy + dy)] = kInf;
+            }
     }
     const float edgeCost = costOf(m_disc);
     auto openAround = [&](int cx, int cy) {
@@ -292,6 +313,40 @@ bool CGlobalPlanner::planOn(const TLevel& L, const TPoint2D& from, const TPoint2
     }
     p.length = geometry::polylineLength(p.points);
     return true;
+}
+
+std::vector<TGlobalPlan> CGlobalPlanner::alternatives(const TPoint2D& from,
+                                                      const TPoint2D& to, int k) const {
+    std::vector<TGlobalPlan> out{plan(from, to, false)};
+    if (!out[0].found || k <= 1)
+        return out;
+    geometry::TObstacleRaster raster;
+    raster.sizeX = m_field.sizeX();
+    raster.sizeY = m_field.sizeY();
+    raster.xMin = m_field.xMin();
+    raster.yMin = m_field.yMin();
+    raster.resolution = m_field.resolution();
+    raster.isObstacle = [this](int cx, int cy) { return m_field.isObstacle(cx, cy); };
+    std::vector<std::vector<TPoint2D>> avoid{out[0].points};
+    const TLevel& L = m_coarse.k > 1 ? m_coarse : m_fine;
+    // each try closes the ways found so far; a way of a class already
+    // found is closed too and the search goes on (a few tries at most)
+    for (int tries = 0; int(out.size()) < k && tries < 2 * k; tries++) {
+        const auto t0 = std::chrono::steady_clock::now();
+        TGlobalPlan c;
+        if (!planOn(L, from, to, false, c, &avoid))
+            break;
+        c.ms =
+            1e3 *
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        avoid.push_back(c.points);
+        bool distinct = true;
+        for (const auto& o : out)
+            distinct = distinct && !geometry::sameHomotopy(o.points, c.points, raster);
+        if (distinct)
+            out.push_back(std::move(c));
+    }
+    return out;
 }
 
 void CGlobalPlanner::addSensed(const TPose2D& pose, const std::vector<TPoint2D>& pts,
@@ -418,6 +473,23 @@ std::optional<TReplanEvent> CGlobalPlanner::update(const TPose2D& pose,
         return std::nullopt;
     }
     const TPoint2D from(pose.x, pose.y);
+    if (why == "new_target" && routeChooser) {
+        // the route chooser picks among the best ways of distinct classes
+        auto cands = alternatives(from, target, options.candidates);
+        TReplanEvent ev{now, why, pose.x, pose.y, 0.0, 0.0};
+        for (const auto& c : cands)
+            ev.ms += c.ms;
+        TRouteChoice choice;
+        if (cands[0].found)
+            choice = routeChooser(cands);
+        m_plan = std::move(cands[std::min(choice.chosen, cands.size() - 1)]);
+        ev.length = m_plan.found ? m_plan.length : 0.0;
+        m_progress = 0;
+        m_target = target;
+        m_choices.push_back(std::move(choice));
+        m_events.push_back(ev);
+        return ev;
+    }
     TGlobalPlan p = plan(from, target, true);
     if (!p.found && !m_seenCells.empty()) {
         // the sensed obstacles close every way: the map's way, round which

@@ -136,18 +136,39 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
     m_engine.reset();
     if (!options.engine_config.empty())
         m_engine = std::make_unique<CIniConfig>(options.engine_config);
-    if (options.localization == "mcl")
+    if (options.localization == "mcl") {
         mcl.loadFromConfigFile(c);
+        loadOptions(mcl.lostOptions, c, "LostLocalization");
+    }
     if (options.global_planner != "none")
         loadOptions(plannerOptions, c, "GlobalPlanner");
     loadRoute(c);
     checkAgainstMap(c);
     m_planner.reset();
-    if (options.global_planner == "grid") {
+    m_chooser.reset();
+    if (options.global_planner != "none") {
         m_planner = std::make_shared<CGlobalPlanner>();
         m_planner->options = plannerOptions;
         m_planner->setMap(world.grid(), world.distanceField().rule(),
                           world.robot.radius + options.shape_margin);
+    }
+    if (options.global_planner == "risk") {
+        // M2's model of the robot's odometry ([Odometry]: the wheels'
+        // sigmas the world drives with, the propagation), from the start's
+        // error (start_sigma with localization = odometry, else none)
+        loadOptions(m_propagation, c, "Odometry");
+        auto ro = risk::makeRiskOptions(world.odometry.options, m_propagation, 0.05,
+                                        options.seed);
+        ro.sigmaP0 = Eigen::Vector3d(options.start_sigma[0] * options.start_sigma[0],
+                                     options.start_sigma[1] * options.start_sigma[1],
+                                     options.start_sigma[2] * options.start_sigma[2])
+                         .asDiagonal();
+        m_chooser = std::make_unique<CRiskRouteChooser>(
+            world.grid(), world.distanceField().rule(), world.robot.radius, ro,
+            *m_planner);
+        m_planner->routeChooser = [this](const std::vector<TGlobalPlan>& cands) {
+            return m_chooser->choose(cands);
+        };
     }
     // Too few start particles around the start lose the robot, and a lost
     // filter runs at KLD_maxSampleSize every cycle: refused before the run,
@@ -268,7 +289,8 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
         if (options.global_planner != "none")
             known.insert("GlobalPlanner");
         if (options.localization == "mcl")
-            for (const auto* s : {"Localization", "PF_options", "KLD_options"})
+            for (const auto* s :
+                 {"Localization", "PF_options", "KLD_options", "LostLocalization"})
                 known.insert(s);
         for (const auto& n : probe.riskOptions.speed_limiters)
             known.insert(
@@ -287,10 +309,11 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
                     s,
                     "Navigate, World, Robot, Odometry, Laser, RangeSensor2, "
                     "people and clutter, CRiskAwareReactiveNav, GlobalPlanner (with "
-                    "global_planner = grid) and the sections of the "
+                    "global_planner = grid or risk) and the sections of the "
                     "limiters it names, MRPT's engine sections" +
                         std::string(options.localization == "mcl"
-                                        ? ", Localization, PF_options, KLD_options"
+                                        ? ", Localization, PF_options, KLD_options, "
+                                          "LostLocalization"
                                         : ""));
             if (!kEngineSections.count(s) &&
                 std::find(otherSections.begin(), otherSections.end(), s) ==
@@ -322,9 +345,13 @@ void CNavigationRun::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
     options.saveToConfigFile(c, kSec);
     if (options.global_planner != "none")
         plannerOptions.saveToConfigFile(c, "GlobalPlanner");
+    if (options.global_planner == "risk")
+        m_propagation.saveToConfigFile(c, "Odometry");
     world.saveToConfigFile(c);
-    if (options.localization == "mcl")
+    if (options.localization == "mcl") {
         mcl.saveToConfigFile(c);
+        mcl.lostOptions.saveToConfigFile(c, "LostLocalization");
+    }
     copyConfigKeys(m_navigatorConfig, c);
 }
 
@@ -784,9 +811,28 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
         if (scans.range2)
             sf.insert(scans.range2);
         lastOdo = odo;
-        if (useMcl)
+        if (useMcl) {
             believed = mcl.step(acts, sf).mean;
-        else if (options.localization == "odometry")
+            // a filter whose scan no longer fits the map (or spread out) for
+            // lost_after cycles is lost: told, and re-spread about its mean
+            // (MCL's standard recovery), never a success by itself
+            const auto chk = mcl.checkLost(sf);
+            if (chk.lost) {
+                r.localizationLost++;
+                char b[200];
+                std::snprintf(b, sizeof(b),
+                              "%s (scan fit %.2f, spread %.2f m / %.0f deg; true error "
+                              "%.2f m): particles re-spread about the mean",
+                              chk.reason.c_str(), chk.fitFraction, chk.spreadXY,
+                              chk.spreadPhiDeg,
+                              std::hypot(believed.x - world.truePose().x,
+                                         believed.y - world.truePose().y));
+                r.events.push_back(TNavRunEvent{t, "localization_lost", -1,
+                                                world.truePose().x, world.truePose().y,
+                                                b});
+                mcl.recover();
+            }
+        } else if (options.localization == "odometry")
             believed = (odoFix + mrpt::poses::CPose2D(odo)).asTPose();
         else
             believed = truth;
@@ -928,7 +974,8 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
             }
             break;
         }
-        if (st == mrpt::nav::CAbstractNavigator::IDLE && cycle > 0) {
+        if (st == mrpt::nav::CAbstractNavigator::IDLE && cycle > 0 &&
+            !nav.requestPending()) {
             r.status = nav.getWaypointNavStatus().final_goal_reached ? "goal_reached"
                                                                      : "stopped";
             break;
@@ -1016,6 +1063,7 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     }
     if (m_planner) {
         r.plans = m_planner->replans();
+        r.routeChoices = m_planner->choices();
         for (const auto& e : r.plans)
             r.events.push_back(TNavRunEvent{
                 e.t - t0, e.why == "new_target" ? "plan" : "replan", -1, e.x, e.y,

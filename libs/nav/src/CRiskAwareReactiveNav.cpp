@@ -869,6 +869,12 @@ CRiskAwareReactiveNav::CRiskAwareReactiveNav(mrpt::nav::CRobot2NavInterface& r,
     registerAllClasses_nav();
 }
 
+void CRiskAwareReactiveNav::navigateWaypoints(
+    const mrpt::nav::TWaypointSequence& request) {
+    mrpt::nav::CWaypointsNavigator::navigateWaypoints(request);
+    m_requestPending = !request.waypoints.empty();
+}
+
 std::optional<CRiskAwareReactiveNav::TCurrentTarget>
 CRiskAwareReactiveNav::currentTarget() const {
     return currentTarget(getWaypointNavStatus());
@@ -876,7 +882,7 @@ CRiskAwareReactiveNav::currentTarget() const {
 
 std::optional<CRiskAwareReactiveNav::TCurrentTarget> CRiskAwareReactiveNav::currentTarget(
     const mrpt::nav::TWaypointStatusSequence& st) const {
-    if (getCurrentState() != NAVIGATING)
+    if (getCurrentState() != NAVIGATING && !m_requestPending)
         return std::nullopt;
     for (const auto& w : st.waypoints)
         if (!w.reached)
@@ -1069,6 +1075,7 @@ void CRiskAwareReactiveNav::navigationStep() {
     }
     m_observeDue = false;
     finishObserved(false);
+    m_requestPending = false;  // MRPT's step took it
     if (m_planner && target) {
         // what MRPT sensed this step (robot frame of its pose then)
         const auto& xs = m_WS_Obstacles.getPointsBufferRef_x();

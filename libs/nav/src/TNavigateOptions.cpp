@@ -66,7 +66,8 @@ void TNavigateOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
     rawlog = readBool(c, s, "rawlog", rawlog);
     engine_config = optionalFile(c, s, "engine_config", engine_config);
     ptg_cache_dir = readPath(c, s, "ptg_cache_dir", ptg_cache_dir, false);
-    global_planner = readChoice(c, s, "global_planner", global_planner, {"grid", "none"});
+    global_planner =
+        readChoice(c, s, "global_planner", global_planner, {"grid", "risk", "none"});
 }
 
 void TNavigateOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,

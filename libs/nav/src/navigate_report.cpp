@@ -286,6 +286,7 @@ json runSummary(const CNavigationRun& run, const TNavRunResult& r) {
     j["mrpt_errors"] = r.mrptErrors;
     j["mrpt_first_error"] = r.firstMrptError;
     j["goal_true_distance_m"] = finiteOrNull(r.goalTrueDistance);
+    j["localization_lost"] = r.localizationLost;
     j["global_planner"] = run.options.global_planner;
     if (run.options.global_planner != "none") {
         json replans = json::object();
@@ -305,6 +306,20 @@ json runSummary(const CNavigationRun& run, const TNavRunResult& r) {
                      {"plan_ms_max", msMax},
                      {"plan_ms_mean", r.plans.empty() ? 0.0 : msSum / r.plans.size()},
                      {"no_path", r.noPathFailure}};
+        if (run.options.global_planner == "risk") {
+            json choices = json::array();
+            for (const auto& ch : r.routeChoices) {
+                json cands = json::array();
+                for (size_t i = 0; i < ch.score.size(); i++)
+                    cands.push_back({{"length_m", ch.length[i]},
+                                     {"U", finiteOrNull(ch.score[i])},
+                                     {"chosen", i == ch.chosen}});
+                choices.push_back({{"chosen", ch.chosen},
+                                   {"reason", ch.reason},
+                                   {"candidates", cands}});
+            }
+            j["plan"]["route_choices"] = choices;
+        }
     }
     j["timing"] = {
         {"wall_time_s", r.wallSeconds},

@@ -289,3 +289,39 @@ TEST(CGlobalPlanner, OptionsAreChecked) {
     o = {};
     EXPECT_NO_THROW(o.validate());
 }
+
+namespace {
+// Winding number of the closed polygon `loop` about point p (the sum of the
+// signed angles its edges subtend): independent of the raster test the
+// planner uses.
+int windingNumber(const std::vector<TPoint2D>& loop, const TPoint2D& p) {
+    double sum = 0;
+    for (size_t i = 0; i < loop.size(); i++) {
+        const auto& a = loop[i];
+        const auto& b = loop[(i + 1) % loop.size()];
+        sum += std::atan2((a.x - p.x) * (b.y - p.y) - (a.y - p.y) * (b.x - p.x),
+                          (a.x - p.x) * (b.x - p.x) + (a.y - p.y) * (b.y - p.y));
+    }
+    return int(std::lround(sum / (2 * M_PI)));
+}
+}  // namespace
+
+TEST(CGlobalPlanner, AlternativesAreOfDistinctHomotopyClasses) {
+    // the two-corridor map: the block between them (x 3-11, y 2.4-4.4)
+    // separates the classes; the candidates' loop must wind round it
+    const auto g = makeMap(14, 6.2, {{3, 0, 11, 1}, {3, 2.4, 11, 4.4}});
+    const auto p = plannerOn(g);
+    const auto alts = p.alternatives({1.5, 1.7}, {12.5, 1.7}, 3);
+    ASSERT_EQ(alts.size(), 2u);  // only two classes exist (the lower block is a wall)
+    EXPECT_TRUE(alts[0].found && alts[1].found);
+    EXPECT_LT(alts[0].cost, alts[1].cost + 1e-9);  // the least-cost way first
+    std::vector<TPoint2D> loop = alts[0].points;
+    loop.insert(loop.end(), alts[1].points.rbegin(), alts[1].points.rend());
+    EXPECT_EQ(std::abs(windingNumber(loop, {7, 3.4})), 1);
+    // a map with one way only: one candidate
+    const auto one = makeMap(14, 6.2, {{3, 0, 11, 1}, {3, 2.4, 11, 6.2}});
+    EXPECT_EQ(plannerOn(one).alternatives({1.5, 1.7}, {12.5, 1.7}, 3).size(), 1u);
+    // an open room: the straight way; a detour round nothing is the same class
+    const auto open = makeMap(14, 6.2, {});
+    EXPECT_EQ(plannerOn(open).alternatives({1.5, 1.7}, {12.5, 1.7}, 3).size(), 1u);
+}

@@ -7,6 +7,7 @@
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/math/TPose2D.h>
 
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -26,6 +27,14 @@ struct TGlobalPlan {
     std::string reason;  ///< one sentence for the summary ("" when found)
     double ms = 0;       ///< [ms] wall time of the plan
     size_t expanded = 0;
+};
+
+/** What a route chooser made of the candidates of one target. */
+struct TRouteChoice {
+    size_t chosen = 0;           ///< index into the candidates
+    std::vector<double> score;   ///< per candidate (risk: U of eq. 30; +inf: excluded)
+    std::vector<double> length;  ///< [m] per candidate
+    std::string reason;          ///< why the chosen one
 };
 
 /** A replan and why. */
@@ -59,17 +68,21 @@ struct TReplanEvent {
 class CGlobalPlanner {
   public:
     struct TOptions : public common::CValidatedOptions {
-        /** [m] a way keeps this beyond the engine's disc: MRPT's engine
-         * creeps at mm/s through a gap its shape fits with a few cm to spare
-         * (the TurtleBot3 arena's pillars for a 0.33 m disc) */
-        double margin = 0.05;
-        double clearance_soft = 0.5;   ///< [m] beyond the disc, nearer costs more
-        double clearance_weight = 4;   ///< cost per metre at the disc's edge = 1 + this
-        double lookahead = 2.0;        ///< [m] MRPT's engine aims this far ahead
-        double stray_distance = 1.0;   ///< [m] from the plan: replan
-        double pose_jump = 0.5;        ///< [m] in one cycle: replan
-        double check_ahead = 4.0;      ///< [m] of the plan checked for sensed obstacles
-        double obstacle_memory = 30;   ///< [s] a sensed obstacle is kept
+        /** [m] a way keeps this beyond the engine's disc (0: a gap the
+         * engine's shape fits is planned through; MRPT's engine passed the
+         * Willow Garage map's 0.75 m doors with a 0.66 m shape, and crept at
+         * mm/s between the TurtleBot3 arena's pillars as far apart) */
+        double margin = 0;
+        double clearance_soft = 0.5;  ///< [m] beyond the disc, nearer costs more
+        double clearance_weight = 4;  ///< cost per metre at the disc's edge = 1 + this
+        double lookahead = 2.0;       ///< [m] MRPT's engine aims this far ahead
+        double stray_distance = 1.0;  ///< [m] from the plan: replan
+        double pose_jump = 0.5;       ///< [m] in one cycle: replan
+        double check_ahead = 4.0;     ///< [m] of the plan checked for sensed obstacles
+        double obstacle_memory = 30;  ///< [s] a sensed obstacle is kept
+        /** Candidates of distinct homotopy classes the route chooser
+         * (global_planner = risk) picks from, the least-cost way first. */
+        int candidates = 3;
         double replan_interval = 1.0;  ///< [s] at least between replans for blocking
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
@@ -95,6 +108,19 @@ class CGlobalPlanner {
      * itself. */
     TGlobalPlan plan(const mrpt::math::TPoint2D& from, const mrpt::math::TPoint2D& to,
                      bool withSensed = false) const;
+
+    /** Up to k least-cost ways on the map from `from` to `to`, each of
+     * another homotopy class (geometry::sameHomotopy()): the first is
+     * plan(); each next one is the least-cost way with the earlier ones'
+     * corridors (the disc + 0.3 m about them, beyond the disc + 1 m of the
+     * ends) closed. Fewer when no other class exists. */
+    std::vector<TGlobalPlan> alternatives(const mrpt::math::TPoint2D& from,
+                                          const mrpt::math::TPoint2D& to, int k) const;
+    /** Picks the route to a new target among alternatives() (nullptr: the
+     * least-cost way): global_planner = risk, M2's U. */
+    std::function<TRouteChoice(const std::vector<TGlobalPlan>&)> routeChooser;
+    /** Every choice made, one per new target (with a routeChooser). */
+    const std::vector<TRouteChoice>& choices() const { return m_choices; }
 
     /** Sensed points (robot frame of `pose`) at time `now` [s]: those the
      * map does not explain are remembered; cells the beams crossed are
@@ -129,8 +155,11 @@ class CGlobalPlanner {
         std::vector<float> clearEdge;
     };
     TLevel m_fine, m_coarse;
-    bool planOn(const TLevel& level, const mrpt::math::TPoint2D& from,
-                const mrpt::math::TPoint2D& to, bool withSensed, TGlobalPlan& p) const;
+    bool planOn(
+        const TLevel& level, const mrpt::math::TPoint2D& from,
+        const mrpt::math::TPoint2D& to, bool withSensed, TGlobalPlan& p,
+        const std::vector<std::vector<mrpt::math::TPoint2D>>* avoid = nullptr) const;
+    std::vector<TRouteChoice> m_choices;
     mapping::CDistanceField m_field;
     double m_disc = 0;
     mutable TCostGrid m_work;     // the map and the sensed obstacles

@@ -2,6 +2,7 @@
 #include <risknav/common/CIniConfig.h>
 #include <risknav/localization/CRawlogMcl.h>
 #include <risknav/nav/CGlobalPlanner.h>
+#include <risknav/nav/CRiskRouteChooser.h>
 #include <risknav/nav/TNavigateOptions.h>
 #include <risknav/nav/waypoint_file.h>
 #include <risknav/sim/CAgentsSim.h>
@@ -80,6 +81,8 @@ struct TNavRunResult {
     std::vector<std::vector<mrpt::math::TPoint2D>> planPaths;
     double firstPlanLength = 0;  ///< [m]
     std::string noPathFailure;   ///< no way to a target: start_blocked | ...
+    int localizationLost = 0;    ///< MCL found lost (and re-spread), localization = mcl
+    std::vector<TRouteChoice> routeChoices;  ///< global_planner = risk: per target
     /** [m] the least true distance of the robot to the last waypoint while
      * it was the target (+inf: never its target). "goal_reached" is MRPT's
      * verdict on the believed pose; farther than goal_tolerance (+ 5 cm)
@@ -152,7 +155,9 @@ class CNavigationRun {
     std::unique_ptr<common::CIniConfig> m_engine;  // [Navigate] engine_config
     // the probe navigator's saveConfigFile(): the engine and limiter sections
     mrpt::config::CConfigFileMemory m_navigatorConfig;
-    std::shared_ptr<CGlobalPlanner> m_planner;  // its map set up once
+    std::shared_ptr<CGlobalPlanner> m_planner;     // its map set up once
+    std::unique_ptr<CRiskRouteChooser> m_chooser;  // global_planner = risk
+    risk::TPropagationOptions m_propagation;       // [Odometry], for the chooser
     void loadRoute(common::CIniConfig& c);
     void checkAgainstMap(const common::CIniConfig& c) const;
     /** MRPT's engine as configured (limiters aside) on MRPT's own simulated

@@ -151,6 +151,13 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
         double allowedDistance = 0;
     };
     std::optional<TCurrentTarget> currentTarget() const;
+    /** MRPT's, and the request is known as a target before MRPT's first
+     * step takes it (the first waypoint is turned to, and planned to, from
+     * the first cycle on). */
+    void navigateWaypoints(const mrpt::nav::TWaypointSequence& request) override;
+    /** A request MRPT's step has not taken yet (turning to it first): MRPT
+     * is still IDLE, the navigation has not ended. */
+    bool requestPending() const { return m_requestPending; }
     /** Where MRPT's engine is aimed from `pose` on the way to `target`: the
      * first limiter's guide point (CSpeedLimiter::guidePoint) while
      * guide_lookahead > 0 and the target is farther than that; else
@@ -217,6 +224,8 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     bool updatePlanner(const mrpt::math::TPose2D& pose,
                        const mrpt::math::TPoint2D& target);
     bool m_startTurning = false;
+    /** A waypoint request MRPT's step has not taken yet (MRPT is IDLE). */
+    bool m_requestPending = false;
     bool m_turning = false;
     bool m_unsticking = false;
     /** Where and when the robot last moved 5 cm or turned 5 deg (unstick_time). */

@@ -54,7 +54,9 @@ struct TNavigateOptions : public common::CValidatedOptions {
     std::string engine_config;
     std::string ptg_cache_dir;  ///< MRPT's PTG grid cache ("" = system temp)
     /** grid: every waypoint is reached along a global plan on the known map
-     * (CGlobalPlanner, [GlobalPlanner]); none: MRPT's engine aims straight
+     * (CGlobalPlanner, [GlobalPlanner]); risk: the same, the way to each
+     * waypoint chosen by M2's U among ways of distinct homotopy classes
+     * (CRiskRouteChooser); none: MRPT's engine aims straight
      * at each waypoint (the papers' experiments, and a world the robot
      * does not know: CAdaptiveSpeedLimiter plans on its own map). */
     std::string global_planner = "grid";

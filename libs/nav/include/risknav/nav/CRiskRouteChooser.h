@@ -1,0 +1,35 @@
+#pragma once
+#include <risknav/common/TOdometryOptions.h>
+#include <risknav/nav/CGlobalPlanner.h>
+#include <risknav/risk/CObstacleField.h>
+#include <risknav/risk/TPropagationOptions.h>
+#include <risknav/risk/path_risk.h>
+
+#include <memory>
+
+namespace risknav::nav {
+/** global_planner = risk: M2 (Irie, Nagatani, Gofuku) as the global
+ * planner's route chooser. Each candidate (CGlobalPlanner::alternatives(),
+ * the best way of each of up to [GlobalPlanner] candidates homotopy classes;
+ * the least-cost way always among them) is driven in the risk evaluator's
+ * model: simplified to straight legs (Douglas-Peucker, 0.1 m, no leg nearer
+ * an obstacle than the planner's disc), the odometry covariance propagated
+ * along it from the start's ([Odometry] sigmas, propagation), and scored by
+ * U = integral of 1 / D_max^2 (eqs. 28-30, evaluatePathRisk()). The lowest
+ * finite U is driven. Beyond the paper: its candidates are GVG routes; here
+ * they are grid ways of distinct classes, which survive SLAM speckle. */
+class CRiskRouteChooser {
+  public:
+    CRiskRouteChooser(const mrpt::maps::COccupancyGridMap2D& grid,
+                      const mapping::TObstacleRule& rule, double robotRadius,
+                      const risk::TRiskOptions& risk, const CGlobalPlanner& planner);
+    TRouteChoice choose(const std::vector<TGlobalPlan>& candidates) const;
+    /** A candidate as the evaluator drives it (straight legs). */
+    std::vector<mrpt::math::TPoint2D> legs(const TGlobalPlan& c) const;
+
+  private:
+    risk::CObstacleField m_field;
+    risk::TRiskOptions m_risk;
+    const CGlobalPlanner& m_planner;
+};
+}  // namespace risknav::nav

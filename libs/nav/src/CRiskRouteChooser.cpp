@@ -1,0 +1,57 @@
+#include <risknav/geometry/polyline.h>
+#include <risknav/nav/CRiskRouteChooser.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace risknav::nav {
+CRiskRouteChooser::CRiskRouteChooser(const mrpt::maps::COccupancyGridMap2D& grid,
+                                     const mapping::TObstacleRule& rule,
+                                     double robotRadius, const risk::TRiskOptions& risk,
+                                     const CGlobalPlanner& planner)
+    : m_field(grid, rule, robotRadius), m_risk(risk), m_planner(planner) {}
+
+std::vector<mrpt::math::TPoint2D> CRiskRouteChooser::legs(const TGlobalPlan& c) const {
+    const auto& f = m_planner.field();
+    const double disc = m_planner.discRadius(), step = 0.5 * f.resolution();
+    return geometry::simplifyDouglasPeucker(
+        c.points, 0.1, [&](const mrpt::math::TPoint2D& a, const mrpt::math::TPoint2D& b) {
+            // a leg keeps the disc's clearance (or the lesser of its ends')
+            const double need =
+                std::min({disc, f.clearanceAt(a.x, a.y), f.clearanceAt(b.x, b.y)}) - step;
+            return geometry::segmentFree(
+                a.x, a.y, b.x, b.y, step,
+                [&](double x, double y) { return f.clearanceAt(x, y) < need; });
+        });
+}
+
+TRouteChoice CRiskRouteChooser::choose(const std::vector<TGlobalPlan>& cands) const {
+    TRouteChoice out;
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < cands.size(); i++) {
+        double U = std::numeric_limits<double>::infinity();
+        if (cands[i].found) {
+            const auto r = risk::evaluatePathRisk(legs(cands[i]), {}, m_field, m_risk);
+            if (r.failure.empty() && !r.blocked)
+                U = r.U;
+        }
+        out.score.push_back(U);
+        out.length.push_back(cands[i].length);
+        if (U < best)
+            best = U, out.chosen = i;
+    }
+    char b[160];
+    if (std::isfinite(best))
+        std::snprintf(b, sizeof(b), "the lowest U (%.4g) of %zu ways of distinct classes",
+                      best, cands.size());
+    else
+        std::snprintf(b, sizeof(b),
+                      "no way of the %zu has a finite U: the least-cost way",
+                      cands.size());
+    out.reason = b;
+    if (!std::isfinite(best))
+        out.chosen = 0;
+    return out;
+}
+}  // namespace risknav::nav
