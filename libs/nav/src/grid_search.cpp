@@ -1,4 +1,5 @@
 #include <risknav/common/CQuadHeap.h>
+#include <risknav/common/TGridSearchScratch.h>
 #include <risknav/nav/grid_search.h>
 
 #include <algorithm>
@@ -6,38 +7,14 @@
 
 namespace risknav::nav {
 namespace {
-/** A* state reused from search to search on one thread (a 1.7 M cell map's
- * g, parent and marks are 20 MB: set up once, not per plan). A cell's g and
- * parent count only where reached[] holds this search's number. */
-struct TScratch {
-    std::vector<float> g;
-    std::vector<int32_t> parent;
-    std::vector<uint32_t> reached, closed;
-    uint32_t search = 0;
-    /** An open entry: f, then h (of equal f the one nearer the goal first:
-     * on a grid many paths tie, and without this A* opens all of them) */
-    struct TOpen {
-        float f, h;
-        int32_t cell;
-        bool operator>(const TOpen& o) const { return f > o.f || (f == o.f && h > o.h); }
-    };
-    common::CQuadHeap<TOpen, std::greater<>> open;
-    void begin(size_t cells) {
-        if (reached.size() != cells) {
-            g.assign(cells, 0.0f);
-            parent.assign(cells, -1);
-            reached.assign(cells, 0);
-            closed.assign(cells, 0);
-            search = 0;
-        }
-        if (++search == 0) {
-            std::fill(reached.begin(), reached.end(), 0);
-            std::fill(closed.begin(), closed.end(), 0);
-            search = 1;
-        }
-        open.clear();
-    }
+/** An open entry: f, then h (of equal f the one nearer the goal first:
+ * on a grid many paths tie, and without this A* opens all of them) */
+struct TOpen {
+    float f, h;
+    int32_t cell;
+    bool operator>(const TOpen& o) const { return f > o.f || (f == o.f && h > o.h); }
 };
+using TScratch = common::TGridSearchScratch<TOpen>;
 thread_local TScratch t_scratch;
 }  // namespace
 

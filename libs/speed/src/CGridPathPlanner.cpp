@@ -1,4 +1,4 @@
-#include <risknav/common/CQuadHeap.h>
+#include <risknav/common/TGridSearchScratch.h>
 #include <risknav/geometry/polyline.h>
 #include <risknav/speed/IPathPlanner.h>
 
@@ -8,32 +8,8 @@
 
 namespace risknav::speed {
 namespace {
-/** A* state reused from call to call on one thread (a speed-up: no 360 kB
- * of g, parent and closed flags set up per plan on a 200 x 200 grid): a
- * cell's g and parent count only where it was reached in this search
- * (reached == search), its closed flag likewise. */
-struct TAStarScratch {
-    std::vector<float> g;
-    std::vector<int32_t> parent;
-    std::vector<uint32_t> reached, closed;
-    uint32_t search = 0;
-    common::CQuadHeap<std::pair<double, int32_t>, std::greater<>> open;
-    void begin(size_t cells) {
-        if (reached.size() != cells) {
-            g.assign(cells, 0.0f);
-            parent.assign(cells, -1);
-            reached.assign(cells, 0);
-            closed.assign(cells, 0);
-            search = 0;
-        }
-        if (++search == 0) {  // wrapped: every mark is stale
-            std::fill(reached.begin(), reached.end(), 0);
-            std::fill(closed.begin(), closed.end(), 0);
-            search = 1;
-        }
-        open.clear();
-    }
-};
+// (the local grid's A* state, reused per thread)
+using TAStarScratch = common::TGridSearchScratch<std::pair<double, int32_t>>;
 thread_local TAStarScratch t_astar;
 }  // namespace
 
