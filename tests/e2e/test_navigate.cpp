@@ -123,9 +123,9 @@ TEST(NavigateE2E, RiskRoutesBestAndWorstAreDriven) {
     // (the paper's point): status localization_error, the true distance
     // and the belief's error named
     EXPECT_EQ(best["status"], "goal_reached") << best["navigation_error"];
-    EXPECT_LE(best["goal_true_distance_m"].get<double>(), 0.3 + 0.05);
+    EXPECT_LE(best["goal_true_distance_m"].get<double>(), 0.3 + 0.03);
     EXPECT_EQ(worst["status"], "localization_error");
-    EXPECT_GT(worst["goal_true_distance_m"].get<double>(), 0.3 + 0.05);
+    EXPECT_GT(worst["goal_true_distance_m"].get<double>(), 0.3 + 0.03);
     EXPECT_NE(worst["navigation_error"].get<std::string>().find("truly came no nearer"),
               std::string::npos);
     ASSERT_EQ(best["tagged_events"].size(), 1u);
@@ -1197,7 +1197,7 @@ TEST(NavigateE2E, AGoalBehindWallsIsReachedAlongTheGlobalPlan) {
     EXPECT_EQ(grid["collisions"], 0);
     EXPECT_EQ(grid["global_planner"], "grid");
     EXPECT_GT(grid["plan"]["first_length_m"].get<double>(), 12.0 + 0.5);  // round walls
-    EXPECT_LE(grid["goal_true_distance_m"].get<double>(), 0.3 + 0.05);
+    EXPECT_LE(grid["goal_true_distance_m"].get<double>(), 0.3 + 0.03);
     const json none = navRun(
         cfg, freshDir("none"),
         "--seed 1 --set Navigate.global_planner=none --set Navigate.stall_timeout=30" +

@@ -1051,7 +1051,7 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
                 r.goalTrueDistance, std::hypot(r.track[k].x - g.x, r.track[k].y - g.y));
     }
     if (r.status == "goal_reached" &&
-        !(r.goalTrueDistance <= wps.waypoints.back().allowed_distance + 0.05)) {
+        !(r.goalTrueDistance <= wps.waypoints.back().allowed_distance + 0.03)) {
         char b[300];
         std::snprintf(b, sizeof(b),
                       "MRPT reached the goal on the believed pose, but the robot truly "
