@@ -873,6 +873,7 @@ void CRiskAwareReactiveNav::navigateWaypoints(
     const mrpt::nav::TWaypointSequence& request) {
     mrpt::nav::CWaypointsNavigator::navigateWaypoints(request);
     m_requestPending = !request.waypoints.empty();
+    m_planFailure.reset();  // a new navigation, not the last one's no-way
 }
 
 std::optional<CRiskAwareReactiveNav::TCurrentTarget>
