@@ -117,12 +117,15 @@ void CGlobalPlanner::setMap(const mrpt::maps::COccupancyGridMap2D& grid,
         for (size_t i = 0; i < L.clearEdge.size(); i++)
             L.cost.cost[i] = costOf(L.clearEdge[i]);
     }
-    m_seenAt.assign(n, kNever);
-    m_seenCells.clear();
+    m_seenAt.resize(n);
     resetFollowing();
 }
 
 void CGlobalPlanner::resetFollowing() {
+    // a new run starts its own clock: the last run's sensed cells would
+    // otherwise count as seen a moment ago
+    std::fill(m_seenAt.begin(), m_seenAt.end(), kNever);
+    m_seenCells.clear();
     m_target.reset();
     m_lastPose.reset();
     m_plan = TGlobalPlan{};

@@ -1051,7 +1051,6 @@ void CRiskAwareReactiveNav::navigationStep() {
                 m_last = {};
                 m_last.turning = true;
                 m_last.unsticking = m_unsticking;
-                m_last.startTurn = m_startTurning && !m_unsticking;
                 m_last.reason = m_unsticking ? m_unstickReason
                                 : m_startTurning
                                     ? "aim " + numberText(std::round(deg)) +
@@ -1092,7 +1091,7 @@ void CRiskAwareReactiveNav::navigationStep() {
 bool CRiskAwareReactiveNav::updatePlanner(const mrpt::math::TPose2D& pose,
                                           const mrpt::math::TPoint2D& target) {
     const double now = mrpt::Clock::toDouble(mrpt::Clock::now());
-    if (const auto ev = m_planner->update(pose, target, now))
+    if (m_planner->update(pose, target, now))  // a new plan: its own headway
         m_planBest = std::numeric_limits<double>::infinity();
     const auto& plan = m_planner->current();
     if (!plan.found) {

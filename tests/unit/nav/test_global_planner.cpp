@@ -325,3 +325,19 @@ TEST(CGlobalPlanner, AlternativesAreOfDistinctHomotopyClasses) {
     const auto open = makeMap(14, 6.2, {});
     EXPECT_EQ(plannerOn(open).alternatives({1.5, 1.7}, {12.5, 1.7}, 3).size(), 1u);
 }
+
+TEST(CGlobalPlanner, ANewRunForgetsTheLastRunsSensedObstacles) {
+    // a run's clock starts again: the last run's sensed cells must not
+    // close a way in the next one
+    const auto g = makeMap(14, 6.2, {{3, 0, 11, 1}, {3, 2.4, 11, 4.4}});
+    auto p = plannerOn(g);
+    std::vector<TPoint2D> pts;
+    for (double y = 1.0; y <= 2.4; y += 0.05)
+        pts.emplace_back(3.0, y - 1.7);
+    p.addSensed(TPose2D(2, 1.7, 0), pts, 100.0);
+    ASSERT_GT(p.plan({2, 1.7}, {12.5, 1.7}, true).length, 14.0);  // the upper corridor
+    p.resetFollowing();
+    p.update(TPose2D(2, 1.7, 0), {12.5, 1.7}, 0.0);  // the next run's clock
+    ASSERT_TRUE(p.current().found);
+    EXPECT_LT(p.current().length, 11.0);  // the lower corridor again
+}

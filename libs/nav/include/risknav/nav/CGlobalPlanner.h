@@ -142,6 +142,8 @@ class CGlobalPlanner {
     double remainingLength(const mrpt::math::TPose2D& pose) const;
 
     const std::vector<TReplanEvent>& replans() const { return m_events; }
+    /** Before a new run: no target, plan, replans, choices or sensed
+     * obstacles (the map's grids stay). */
     void resetFollowing();
 
   private:

@@ -85,7 +85,6 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
         double limit = 0;      ///< [m/s] the smallest limit (desired when none limited)
         bool turning = false;  ///< this cycle turned in place (MRPT did not plan)
         bool unsticking = false;  ///< that turn is an unstick turn (unstick_time)
-        bool startTurn = false;   ///< that turn is a start turn (start_turn_deg)
     };
 
     CRiskAwareReactiveNav(mrpt::nav::CRobot2NavInterface& robot,
