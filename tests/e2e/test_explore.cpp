@@ -144,6 +144,12 @@ TEST(ExploreE2E, BadInputIsExitTwoWithTheKey) {
         {"--set Explore.not_approaching_timeout=-1", "[Explore] not_approaching_timeout"},
         {"--set Explore.arrival_radius=0.4", "must be at most goal_tolerance = 0.3"},
         {"--set Explore.arrival_radius=0", "[Explore] arrival_radius"},
+        {"--set Explore.ego_motion=slam", "[Explore] ego_motion"},
+        {"--set ScanMatching.max_correction=-1", "[ScanMatching] max_correction"},
+        {"--set ScanMatching.min_goodness=1.5", "[ScanMatching] min_goodness"},
+        {"--set ScanMatching.min_match_distance=1", "must be at most match_distance"},
+        {"--set ScanMatching.point_sigma=0", "[ScanMatching] point_sigma"},
+        {"--set ScanMatching.keyframe_angle=5", "[ScanMatching] keyframe_angle"},
         {"--set MapRange2.p_obs_given_obstacle=0.5001 --set "
          "MapRange2.p_obs_given_free=0.5",
          "[MapRange2] p_obs_given_obstacle = '0.5001': more than 1000 observations"},
@@ -289,7 +295,8 @@ TEST(ExploreE2E, ABeliefThatArrivedWhereTheTruthIsNotIsALocalizationError) {
     // drives to where its odometry says the destination is and halts there;
     // in truth it stands 1.5 m away (seed 3). Reached is judged on the true
     // pose: a localization error, with both errors named. With ground-truth
-    // ego-motion the same run reaches it.
+    // ego-motion the same run reaches it, and so it does with the robot's
+    // own scan matching (the default), its belief within 0.1 m.
     const std::string w = freshDir("w");
     cv::Mat img(240, 240, CV_8UC1, cv::Scalar(255));
     cv::rectangle(img, cv::Rect(0, 0, 240, 240), cv::Scalar(0), 4);
@@ -301,7 +308,8 @@ TEST(ExploreE2E, ABeliefThatArrivedWhereTheTruthIsNotIsALocalizationError) {
               "[Robot]\nradius = 0.25\nmax_v = 1.1\n"
               "[Odometry]\nerror_model = systematic\n");
     const std::string drift = freshDir("drift");
-    auto r = run(binPath(kApp) + " -q -o '" + drift + "' '" + w + "/explore.ini'");
+    auto r = run(binPath(kApp) + " -q -o '" + drift +
+                 "' --set Explore.ego_motion=odometry '" + w + "/explore.ini'");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     auto s = readJson(drift + "/summary.json");
     EXPECT_EQ(s["status"], "incomplete");
@@ -329,6 +337,20 @@ TEST(ExploreE2E, ABeliefThatArrivedWhereTheTruthIsNotIsALocalizationError) {
     EXPECT_EQ(m["destinations"][0], "reached");
     EXPECT_LT(m["destination_error_m"][0].get<double>(), 0.3);
     EXPECT_EQ(m["destination_belief_error_m"][0].get<double>(), 0.0);
+
+    const std::string matched = freshDir("matched");
+    r = run(binPath(kApp) + " -q -o '" + matched + "' '" + w + "/explore.ini'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    s = readJson(matched + "/summary.json");
+    EXPECT_EQ(s["ego_motion"], "scan_matching");
+    EXPECT_EQ(s["status"], "ok");
+    m = s["modes"][0];
+    EXPECT_EQ(m["destinations"][0], "reached");
+    EXPECT_LT(m["destination_error_m"][0].get<double>(), 0.3);
+    EXPECT_LT(m["destination_belief_error_m"][0].get<double>(), 0.1);
+    EXPECT_EQ(m["collisions"], 0);
+    EXPECT_GT(m["localization"]["matches_accepted"].get<int>(), 0);
+    EXPECT_GT(m["localization"]["map_points"].get<int>(), 0);
 }
 
 TEST(ExploreE2E, ADestinationNotApproachedForTheTimeoutIsGivenUp) {

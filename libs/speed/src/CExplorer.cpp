@@ -31,15 +31,15 @@ bool TModeResult::allReached() const {
 
 void CExplorer::loadFromConfigFile(const CIniConfig& c, std::optional<uint64_t> seed) {
     static const std::set<std::string> known = {
-        "Explore", "SpeedControl", "MapLaser", "MapRange2", "StoppingRule",
-        "World",   "Robot",        "Odometry", "Laser",     "RangeSensor2"};
+        "Explore", "SpeedControl", "MapLaser", "MapRange2",    "StoppingRule", "World",
+        "Robot",   "Odometry",     "Laser",    "RangeSensor2", "ScanMatching"};
     for (const auto& s : c.sections())
         if (!known.count(s) && !sim::CAgentsSim::ownsSection(s))
             c.throwUnknownSection(
                 s,
                 "Explore, SpeedControl, MapLaser, MapRange2, "
-                "StoppingRule, World, Robot, Odometry, Laser, RangeSensor2, "
-                "CorridorWalkerN, DoorPedestrianN, ClutterN");
+                "StoppingRule, ScanMatching, World, Robot, Odometry, Laser, "
+                "RangeSensor2, CorridorWalkerN, DoorPedestrianN, ClutterN");
     for (const char* s : {"Explore", "World"})
         if (!c.sectionExists(s))
             throw CBadInputError(c.path() + ": missing section [" + s + "]");
@@ -52,6 +52,7 @@ void CExplorer::loadFromConfigFile(const CIniConfig& c, std::optional<uint64_t> 
     loadOptions(laserModel, c, "MapLaser");
     loadOptions(range2Model, c, "MapRange2");
     loadOptions(stopRule.options, c, "StoppingRule");
+    loadOptions(scanMatch, c, "ScanMatching");
     world.loadFromConfigFile(c);
     c.throwOnUnreadKeys();
     // what the world says about the run
@@ -103,6 +104,7 @@ void CExplorer::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
     laserModel.saveToConfigFile(c, "MapLaser");
     range2Model.saveToConfigFile(c, "MapRange2");
     stopRule.options.saveToConfigFile(c, "StoppingRule");
+    scanMatch.saveToConfigFile(c, "ScanMatching");
     world.saveToConfigFile(c);
 }
 
@@ -125,8 +127,11 @@ int CExplorer::necessaryObservations() const {
 }
 
 TPose2D CExplorer::egoPose() const {
-    return explore.ego_motion == "ground_truth" ? world.truePose()
-                                                : world.odometricPose();
+    if (explore.ego_motion == "ground_truth")
+        return world.truePose();
+    if (m_localizer)
+        return m_localizer->predict(world.odometricPose());
+    return world.odometricPose();
 }
 
 bool pathBlocked(const TPlannedPath& path, const std::vector<TPoint2D>& sensed, double v,
@@ -225,6 +230,9 @@ TModeResult CExplorer::runMode(int fixedIndex,
     const TPose2D start(explore.start[0], explore.start[1],
                         explore.start[2] * M_PI / 180);
     world.reset(start, explore.seed);
+    m_localizer.reset();
+    if (explore.ego_motion == "scan_matching")
+        m_localizer.emplace(scanMatch);
     const double T = speed.cycle_time;
     const TPose2D ego0 = egoPose();
     // mapping, fusion, planning field and the controller, one cycle at a time
@@ -291,8 +299,15 @@ TModeResult CExplorer::runMode(int fixedIndex,
     for (int cycle = 0; world.time() < explore.time_limit && dest < goalsEgo.size();
          cycle++) {
         const auto scans = world.sense();
-        const TPose2D ego = egoPose();
         const auto t0 = std::chrono::steady_clock::now();
+        // the robot's localization (beyond the paper): this scan aligned to
+        // the map built from the earlier ones, odometry as the prior
+        if (m_localizer)
+            m_localizer->update(world.odometricPose(), scans.laser.get());
+        const double localizationMs = std::chrono::duration<double, std::milli>(
+                                          std::chrono::steady_clock::now() - t0)
+                                          .count();
+        const TPose2D ego = egoPose();
         pipeline.update(ego, scans.laser.get(), scans.range2.get());
         const TPlanningField& field = pipeline.field();
         // arrived, as the robot believes: within arrival_radius, or (a
@@ -352,6 +367,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
         }
         rec.marginBroken = d.marginBroken;
         rec.computeMs = ms;
+        rec.localizationMs = localizationMs;
         // the stopping rule: sensed obstacles within the stopping distance
         double v = d.speed;
         int vIndex = d.speedIndex;
@@ -465,6 +481,10 @@ TModeResult CExplorer::runMode(int fixedIndex,
     r.collisionsStatic = safety.collisionsStatic();
     r.nearMisses = safety.nearMisses();
     r.minClearance = safety.minGapStatic();
+    if (m_localizer) {
+        r.localization = m_localizer->stats();
+        r.localizationMapPoints = m_localizer->map().size();
+    }
     return r;
 }
 }  // namespace risknav::speed

@@ -28,7 +28,8 @@ void TExploreOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
     start = readNumbers(c, s, "start", start);
     destinations = readNumbers(c, s, "destinations", destinations);
     modes = words(readString(c, s, "modes", joined(modes)));
-    ego_motion = readChoice(c, s, "ego_motion", ego_motion, {"odometry", "ground_truth"});
+    ego_motion = readChoice(c, s, "ego_motion", ego_motion,
+                            {"scan_matching", "odometry", "ground_truth"});
     local_map_size = readDouble(c, s, "local_map_size", local_map_size);
     local_map_resolution = readDouble(c, s, "local_map_resolution", local_map_resolution);
     memory_size = readDouble(c, s, "memory_size", memory_size);

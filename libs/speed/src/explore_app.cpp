@@ -87,6 +87,22 @@ json modeSummary(const TModeResult& r, const TSpeedControlOptions& o) {
     j["cycle_compute_ms_median"] = median(ms);
     j["cycle_compute_ms_max"] =
         ms.empty() ? 0.0 : *std::max_element(ms.begin(), ms.end());
+    // the scan matcher (ego_motion = scan_matching): its share of the cycle
+    // and how many of its matches were taken
+    if (r.localization) {
+        std::vector<double> lm;
+        for (const auto& c : r.cycles)
+            lm.push_back(c.localizationMs);
+        const auto& st = *r.localization;
+        j["localization"] = {
+            {"scans", st.scans},
+            {"matches_accepted", st.accepted},
+            {"matches_refused", st.refused},
+            {"keyframes", st.keyframes},
+            {"map_points", r.localizationMapPoints},
+            {"cycle_ms_median", median(lm)},
+            {"cycle_ms_max", lm.empty() ? 0.0 : *std::max_element(lm.begin(), lm.end())}};
+    }
     return j;
 }
 

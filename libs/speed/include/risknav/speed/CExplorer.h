@@ -6,12 +6,14 @@
 #include <risknav/sim/CStoppingDistanceLimiter.h>
 #include <risknav/speed/CAdaptiveSpeedController.h>
 #include <risknav/speed/CAdaptiveSpeedPipeline.h>
+#include <risknav/speed/CScanMatchLocalizer.h>
 #include <risknav/speed/TExploreOptions.h>
 
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/math/TPose2D.h>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -83,7 +85,8 @@ struct TCycleRecord {
     std::vector<double> costToGo;  ///< per candidate speed (+inf: no path)
     int destination = 0;
     bool temporaryTarget = false, marginBroken = false;
-    double computeMs = 0;  ///< mapping + fusion + planning + selection
+    double computeMs = 0;  ///< localization + mapping + fusion + planning + selection
+    double localizationMs = 0;  ///< of it, the scan matching (ego_motion = scan_matching)
 };
 
 /** A snapshot of the adaptive mode where its speed changes ((000) Fig. 16). */
@@ -116,6 +119,9 @@ struct TModeResult {
     double minClearance = 0;          ///< [m] robot edge to the map
     std::vector<double> timeAtSpeed;  ///< [s] per candidate speed (commanded)
     double timeStopped = 0;
+    /** The scan matcher's counts at the end (ego_motion = scan_matching). */
+    std::optional<CScanMatchLocalizer::TStats> localization;
+    size_t localizationMapPoints = 0;
     bool allReached() const;
 };
 
@@ -126,7 +132,12 @@ struct TModeResult {
  * fixed speed) choose a speed and path (those steps: CAdaptiveSpeedPipeline); a
  * pure-pursuit follower steers along the path for the cycle, and the stopping rule
  * (sensed obstacles within the stopping distance) may brake. The world (map, people,
- * clutter) is only used to simulate the sensors and to judge collisions. */
+ * clutter) is only used to simulate the sensors and to judge collisions.
+ * The ego-motion (TExploreOptions::ego_motion) is by default the robot's own
+ * localization, beyond the paper (which takes the ego-motion as given):
+ * CScanMatchLocalizer aligns each laser scan to the point map built from the
+ * earlier ones, odometry as the prior, and the grids are built on that
+ * belief; odometry alone drifts with the wheels' systematic errors. */
 class CExplorer {
   public:
     sim::CSimWorld world;
@@ -134,10 +145,13 @@ class CExplorer {
     TSpeedControlOptions speed;
     mapping::TSensorModel laserModel, range2Model;
     sim::CStoppingDistanceLimiter stopRule;
+    /** The robot's localization when explore.ego_motion = scan_matching
+     * (beyond the paper: CScanMatchLocalizer). */
+    TScanMatchOptions scanMatch;
 
     /** Loads [Explore], [SpeedControl], [MapLaser], [MapRange2],
-     * [StoppingRule] and the world's sections; refuses unknown sections and
-     * keys, destinations outside the map or inside an obstacle. */
+     * [StoppingRule], [ScanMatching] and the world's sections; refuses unknown sections
+     * and keys, destinations outside the map or inside an obstacle. */
     void loadFromConfigFile(const common::CIniConfig& c, std::optional<uint64_t> seed);
     void saveToConfigFile(mrpt::config::CConfigFileBase& c) const;
 
@@ -154,6 +168,10 @@ class CExplorer {
     CAdaptiveSpeedPipeline::TParams pipelineParams() const;
 
   private:
+    /** The pose the robot moves its maps by and steers with (the ego frame):
+     * ground truth, odometry, or the scan matcher's belief moved on by the
+     * odometry since its last scan. */
     mrpt::math::TPose2D egoPose() const;
+    std::optional<CScanMatchLocalizer> m_localizer;
 };
 }  // namespace risknav::speed

@@ -13,9 +13,13 @@ struct TExploreOptions : public common::CValidatedOptions {
     /** Modes of one run: "adaptive" and / or "fixed" (one run per candidate
      * speed), compared in the outputs. */
     std::vector<std::string> modes = {"adaptive", "fixed"};
-    std::string ego_motion = "odometry";  ///< odometry | ground_truth
-    double local_map_size = 10.0;         ///< [m] side of the robot-centred grids
-    double local_map_resolution = 0.05;   ///< [m]
+    /** How the robot knows its motion (moves its maps, places the
+     * destinations): scan_matching (odometry corrected by aligning each
+     * laser scan to the map the robot builds, CScanMatchLocalizer; beyond
+     * the paper), odometry (alone: it drifts), or ground_truth. */
+    std::string ego_motion = "scan_matching";
+    double local_map_size = 10.0;        ///< [m] side of the robot-centred grids
+    double local_map_resolution = 0.05;  ///< [m]
     /** [m] side of the coarse memory (CFreeSpaceMemory) that ranks the ways
      * on to a destination beyond the local map; 0 = none (the paper's
      * straight line). Beyond the paper. */

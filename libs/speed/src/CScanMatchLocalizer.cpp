@@ -1,0 +1,299 @@
+#include <risknav/common/config_read.h>
+#include <risknav/mapping/scan_points.h>
+#include <risknav/speed/CScanMatchLocalizer.h>
+
+#include <mrpt/math/wrap2pi.h>
+#include <mrpt/poses/CPose2D.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace risknav::common;
+using mrpt::math::TPose2D;
+using mrpt::poses::CPose2D;
+
+namespace risknav::speed {
+void TScanMatchOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                           const std::string& s) {
+    section = s;
+    max_iterations = readInt(c, s, "max_iterations", max_iterations);
+    match_distance = readDouble(c, s, "match_distance", match_distance);
+    min_match_distance = readDouble(c, s, "min_match_distance", min_match_distance);
+    min_goodness = readDouble(c, s, "min_goodness", min_goodness);
+    max_correction = readDouble(c, s, "max_correction", max_correction);
+    max_correction_deg = readDouble(c, s, "max_correction_deg", max_correction_deg);
+    keyframe_distance = readDouble(c, s, "keyframe_distance", keyframe_distance);
+    keyframe_angle_deg = readDouble(c, s, "keyframe_angle_deg", keyframe_angle_deg);
+    map_point_spacing = readDouble(c, s, "map_point_spacing", map_point_spacing);
+    odometry_sigma_xy = readDouble(c, s, "odometry_sigma_xy", odometry_sigma_xy);
+    odometry_sigma_deg = readDouble(c, s, "odometry_sigma_deg", odometry_sigma_deg);
+    odometry_relative = readDouble(c, s, "odometry_relative", odometry_relative);
+    point_sigma = readDouble(c, s, "point_sigma", point_sigma);
+}
+
+void TScanMatchOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                         const std::string& s) const {
+    writeKey(c, s, "max_iterations", max_iterations);
+    writeKey(c, s, "match_distance", match_distance);
+    writeKey(c, s, "min_match_distance", min_match_distance);
+    writeKey(c, s, "min_goodness", min_goodness);
+    writeKey(c, s, "max_correction", max_correction);
+    writeKey(c, s, "max_correction_deg", max_correction_deg);
+    writeKey(c, s, "keyframe_distance", keyframe_distance);
+    writeKey(c, s, "keyframe_angle_deg", keyframe_angle_deg);
+    writeKey(c, s, "map_point_spacing", map_point_spacing);
+    writeKey(c, s, "odometry_sigma_xy", odometry_sigma_xy);
+    writeKey(c, s, "odometry_sigma_deg", odometry_sigma_deg);
+    writeKey(c, s, "odometry_relative", odometry_relative);
+    writeKey(c, s, "point_sigma", point_sigma);
+}
+
+void TScanMatchOptions::validate() const {
+    checkKey(section, "max_iterations", double(max_iterations), TRange::closed(1, 1000));
+    checkKey(section, "match_distance", match_distance, TRange{0, 10, true, false, "m"});
+    checkKey(section, "min_match_distance", min_match_distance,
+             TRange{0, 10, true, false, "m"});
+    checkRule(min_match_distance <= match_distance, section, "min_match_distance",
+              numberText(min_match_distance),
+              "must be at most match_distance = " + numberText(match_distance));
+    checkKey(section, "min_goodness", min_goodness, TRange::closed(0, 1));
+    checkKey(section, "max_correction", max_correction, TRange::closed(0, 10, "m"));
+    checkKey(section, "max_correction_deg", max_correction_deg,
+             TRange::closed(0, 180, "deg"));
+    checkKey(section, "keyframe_distance", keyframe_distance,
+             TRange::closed(0, 100, "m"));
+    checkKey(section, "keyframe_angle_deg", keyframe_angle_deg,
+             TRange::closed(0, 360, "deg"));
+    checkKey(section, "map_point_spacing", map_point_spacing,
+             TRange::closed(0.005, 1, "m"));
+    checkKey(section, "odometry_sigma_xy", odometry_sigma_xy,
+             TRange{0, 10, true, false, "m"});
+    checkKey(section, "odometry_sigma_deg", odometry_sigma_deg,
+             TRange{0, 180, true, false, "deg"});
+    checkKey(section, "odometry_relative", odometry_relative, TRange::closed(0, 10));
+    checkKey(section, "point_sigma", point_sigma, TRange{0, 10, true, false, "m"});
+}
+
+CScanMatchLocalizer::CScanMatchLocalizer(const TScanMatchOptions& o) : m_o(o) {
+    m_o.validate();
+    m_map.insertionOptions.isPlanarMap = true;
+}
+
+TPose2D CScanMatchLocalizer::predict(const TPose2D& odometry) const {
+    if (!m_started)
+        return odometry;
+    // belief + (odometry at the last scan)^-1 + odometry now
+    return (CPose2D(m_pose) + (CPose2D(odometry) - CPose2D(m_odometry))).asTPose();
+}
+
+void CScanMatchLocalizer::addToMap(const std::vector<mrpt::math::TPoint2D>& pts,
+                                   const TPose2D& at) {
+    const double c = std::cos(at.phi), s = std::sin(at.phi);
+    const double inv = 1.0 / m_o.map_point_spacing;
+    for (const auto& p : pts) {
+        const double x = at.x + c * p.x - s * p.y;
+        const double y = at.y + s * p.x + c * p.y;
+        const int64_t ix = int64_t(std::floor(x * inv)),
+                      iy = int64_t(std::floor(y * inv));
+        if (m_cells.insert((ix << 32) ^ (iy & 0xffffffffLL)).second)
+            m_map.insertPointFast(float(x), float(y), 0);
+    }
+    // insertPointFast() does not tell the map (its k-d tree) it changed
+    m_map.mark_as_modified();
+    // the neighbourhoods changed: every line again when asked
+    m_normals.assign(m_map.size(), TNormal{});
+    m_keyframe = at;
+    m_stats.keyframes++;
+}
+
+const CScanMatchLocalizer::TNormal& CScanMatchLocalizer::normalOf(size_t j) const {
+    TNormal& n = m_normals[j];
+    if (n.known)
+        return n;
+    n.known = true;
+    const auto& xs = m_map.getPointsBufferRef_x();
+    const auto& ys = m_map.getPointsBufferRef_y();
+    std::vector<size_t> idx;
+    std::vector<float> d2;
+    m_map.kdTreeNClosestPoint2DIdx(xs[j], ys[j], 7, idx, d2);
+    // the neighbours within a few spacings: their principal axis is the
+    // surface's direction, the other one its normal
+    const double reach = 4 * m_o.map_point_spacing;
+    double mx = 0, my = 0;
+    int cnt = 0;
+    for (size_t k = 0; k < idx.size(); k++)
+        if (d2[k] <= reach * reach) {
+            mx += xs[idx[k]];
+            my += ys[idx[k]];
+            cnt++;
+        }
+    if (cnt < 3)
+        return n;
+    mx /= cnt;
+    my /= cnt;
+    double sxx = 0, sxy = 0, syy = 0;
+    for (size_t k = 0; k < idx.size(); k++)
+        if (d2[k] <= reach * reach) {
+            const double ex = xs[idx[k]] - mx, ey = ys[idx[k]] - my;
+            sxx += ex * ex;
+            sxy += ex * ey;
+            syy += ey * ey;
+        }
+    // eigenvalues of [[sxx sxy][sxy syy]]
+    const double tr = sxx + syy, det = sxx * syy - sxy * sxy;
+    const double disc = std::sqrt(std::max(0.0, tr * tr / 4 - det));
+    const double lMax = tr / 2 + disc, lMin = tr / 2 - disc;
+    if (!(lMax > 0) || lMin > 0.1 * lMax)
+        return n;  // not a line: point to point
+    // the eigenvector of lMin
+    double nx = sxy, ny = lMin - sxx;
+    if (std::abs(nx) + std::abs(ny) < 1e-12) {
+        nx = lMin - syy;
+        ny = sxy;
+    }
+    const double len = std::hypot(nx, ny);
+    if (!(len > 0))
+        return n;
+    n.nx = nx / len;
+    n.ny = ny / len;
+    n.line = true;
+    return n;
+}
+
+CScanMatchLocalizer::TAlignment CScanMatchLocalizer::align(
+    const std::vector<mrpt::math::TPoint2D>& pts, const TPose2D& prior,
+    double priorSigmaXY, double priorSigmaPhi) const {
+    // Gauss-Newton on point-to-line distances (the map point's line, from
+    // its neighbours; point to point where they form no line), a Cauchy
+    // kernel, and the prediction as a weak prior (it holds the directions a
+    // scan does not constrain, e.g. along a corridor). The correspondence
+    // threshold halves on convergence down to min_match_distance.
+    TAlignment a;
+    TPose2D x = prior;
+    double thr = m_o.match_distance;
+    const auto& xs = m_map.getPointsBufferRef_x();
+    const auto& ys = m_map.getPointsBufferRef_y();
+    const double sigma = m_o.point_sigma;
+    const double priorXY = 1 / (priorSigmaXY * priorSigmaXY),
+                 priorPhi = 1 / (priorSigmaPhi * priorSigmaPhi);
+    size_t matched = 0;
+    for (int it = 0; it < m_o.max_iterations; it++) {
+        const double c = std::cos(x.phi), s = std::sin(x.phi);
+        double H[3][3] = {{0}}, g[3] = {0};
+        matched = 0;
+        for (const auto& p : pts) {
+            const double qx = x.x + c * p.x - s * p.y, qy = x.y + s * p.x + c * p.y;
+            float d2 = 0;
+            const size_t j = m_map.kdTreeClosestPoint2D(float(qx), float(qy), d2);
+            if (d2 > thr * thr)
+                continue;
+            // d q / d phi
+            const double dqx = -s * p.x - c * p.y, dqy = c * p.x - s * p.y;
+            const TNormal& n = normalOf(j);
+            auto add = [&](double r, double jx, double jy, double jphi) {
+                const double w = 1 / (1 + r * r / (sigma * sigma));  // Cauchy
+                const double J[3] = {jx, jy, jphi};
+                for (int u = 0; u < 3; u++) {
+                    g[u] += w * J[u] * r;
+                    for (int v = 0; v < 3; v++)
+                        H[u][v] += w * J[u] * J[v];
+                }
+            };
+            // only map points on a line: a point that ends what the map has
+            // seen (the edge of a wall's seen part) would pull a scan that
+            // sees on along the wall back to it, point to point
+            if (!n.line)
+                continue;
+            matched++;
+            add(n.nx * (qx - xs[j]) + n.ny * (qy - ys[j]), n.nx, n.ny,
+                n.nx * dqx + n.ny * dqy);
+        }
+        if (matched < 3)
+            break;
+        // the prior, in units of the points' noise
+        const double k2 = sigma * sigma;
+        const double ep[3] = {x.x - prior.x, x.y - prior.y,
+                              mrpt::math::wrapToPi(x.phi - prior.phi)};
+        const double pw[3] = {priorXY * k2, priorXY * k2, priorPhi * k2};
+        for (int u = 0; u < 3; u++) {
+            H[u][u] += pw[u];
+            g[u] += pw[u] * ep[u];
+        }
+        // solve H d = -g (3x3, Cramer)
+        const double det = H[0][0] * (H[1][1] * H[2][2] - H[1][2] * H[2][1]) -
+                           H[0][1] * (H[1][0] * H[2][2] - H[1][2] * H[2][0]) +
+                           H[0][2] * (H[1][0] * H[2][1] - H[1][1] * H[2][0]);
+        if (!(std::abs(det) > 1e-18))
+            break;
+        double d[3];
+        for (int col = 0; col < 3; col++) {
+            double M[3][3];
+            for (int u = 0; u < 3; u++)
+                for (int v = 0; v < 3; v++)
+                    M[u][v] = v == col ? -g[u] : H[u][v];
+            d[col] = (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                      M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                      M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0])) /
+                     det;
+        }
+        x.x += d[0];
+        x.y += d[1];
+        x.phi = mrpt::math::wrapToPi(x.phi + d[2]);
+        a.iterations = it + 1;
+        if (std::hypot(d[0], d[1]) < 1e-4 && std::abs(d[2]) < 1e-4) {
+            if (thr <= m_o.min_match_distance)
+                break;
+            thr = std::max(m_o.min_match_distance, thr / 2);
+        }
+    }
+    a.pose = x;
+    a.goodness = pts.empty() ? 0.0 : double(matched) / double(pts.size());
+    return a;
+}
+
+TPose2D CScanMatchLocalizer::update(const TPose2D& odometry,
+                                    const mrpt::obs::CObservation2DRangeScan* scan) {
+    const TPose2D prior = predict(odometry);
+    m_pose0 = m_pose;
+    m_pose = prior;
+    m_odometry = odometry;
+    const bool first = !m_started;
+    m_started = true;
+    if (!scan)
+        return m_pose;
+    m_stats.scans++;
+    // the scan's points in the robot frame (valid ranges only)
+    const auto pts = mapping::scanToRobotFrame(*scan);
+    if (first || m_map.size() == 0) {
+        addToMap(pts, m_pose);
+        return m_pose;
+    }
+    if (pts.size() >= 3) {
+        // the odometry's motion since the last scan: the prior's spread
+        const CPose2D step = CPose2D(prior) - CPose2D(m_pose0);
+        const double sXY = m_o.odometry_sigma_xy + m_o.odometry_relative * step.norm();
+        // (a heading error also grows with the distance: wheels of unequal
+        // size turn the robot as it drives; 1 rad per metre at the same rate)
+        const double sPhi = m_o.odometry_sigma_deg * M_PI / 180 +
+                            m_o.odometry_relative * (std::abs(step.phi()) + step.norm());
+        const TAlignment a = align(pts, prior, sXY, sPhi);
+        const double dxy = std::hypot(a.pose.x - prior.x, a.pose.y - prior.y);
+        const double dphi = std::abs(mrpt::math::wrapToPi(a.pose.phi - prior.phi));
+        m_stats.lastGoodness = a.goodness;
+        if (a.goodness >= m_o.min_goodness && dxy <= m_o.max_correction &&
+            dphi <= m_o.max_correction_deg * M_PI / 180) {
+            m_pose = a.pose;
+            m_stats.accepted++;
+            m_stats.lastCorrection = dxy;
+        } else {
+            m_stats.refused++;
+        }
+    }
+    if (std::hypot(m_pose.x - m_keyframe.x, m_pose.y - m_keyframe.y) >=
+            m_o.keyframe_distance ||
+        std::abs(mrpt::math::wrapToPi(m_pose.phi - m_keyframe.phi)) >=
+            m_o.keyframe_angle_deg * M_PI / 180)
+        addToMap(pts, m_pose);
+    return m_pose;
+}
+}  // namespace risknav::speed
