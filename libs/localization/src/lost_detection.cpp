@@ -16,6 +16,7 @@ void TLostDetectionOptions::loadFromConfigFile(const mrpt::config::CConfigFileBa
     max_spread_xy = readDouble(c, s, "max_spread_xy", max_spread_xy);
     max_spread_phi_deg = readDouble(c, s, "max_spread_phi_deg", max_spread_phi_deg);
     lost_after = readInt(c, s, "lost_after", lost_after);
+    converge_checks = readInt(c, s, "converge_checks", converge_checks);
     recovery_xy = readDouble(c, s, "recovery_xy", recovery_xy);
     recovery_phi_deg = readDouble(c, s, "recovery_phi_deg", recovery_phi_deg);
     recovery_particles = readInt(c, s, "recovery_particles", recovery_particles);
@@ -30,6 +31,7 @@ void TLostDetectionOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
     writeKey(c, s, "max_spread_xy", max_spread_xy);
     writeKey(c, s, "max_spread_phi_deg", max_spread_phi_deg);
     writeKey(c, s, "lost_after", lost_after);
+    writeKey(c, s, "converge_checks", converge_checks);
     writeKey(c, s, "recovery_xy", recovery_xy);
     writeKey(c, s, "recovery_phi_deg", recovery_phi_deg);
     writeKey(c, s, "recovery_particles", recovery_particles);
@@ -45,6 +47,7 @@ void TLostDetectionOptions::validate() const {
     checkKey(s, "max_spread_phi_deg", max_spread_phi_deg,
              TRange{0, 360, true, false, "deg"});
     checkKey(s, "lost_after", double(lost_after), TRange::closed(1, 100000));
+    checkKey(s, "converge_checks", double(converge_checks), TRange::closed(1, 100000));
     checkKey(s, "recovery_xy", recovery_xy, TRange{0, 1e6, true, false, "m"});
     checkKey(s, "recovery_phi_deg", recovery_phi_deg, TRange::closed(0, 180, "deg"));
     checkKey(s, "recovery_particles", double(recovery_particles),

@@ -323,8 +323,8 @@ mrpt::maps::COccupancyGridMap2D demoMap() {
 // MRPT's real log and map (localization_demo: 37 frames, 13 m of an office
 // floor), localized as MRPT's own localization_demo.ini starts it (40000
 // particles over x in [-10, 10], y in [-15, -5], any heading): while the
-// particles are still spread the filter is not localized (a failed check);
-// once a check passes, none fails again, and it is never lost.
+// particles are still spread the filter is converging (its checks do not
+// fail), then it has converged; no check fails, and it is never lost.
 TEST(LostDetection, MrptLocalizationDemoIsNeverLostOnceLocalized) {
     const auto g = demoMap();
     CRawlogMcl m;

@@ -10,8 +10,10 @@
 #include <risknav/common/CValidatedOptions.h>
 #include <risknav/localization/lost_detection.h>
 #include <risknav/mapping/CDistanceField.h>
+#include <risknav/mapping/TObstacleRule.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace risknav::localization {
@@ -53,9 +55,25 @@ class CRawlogMcl {
      * read by loadFromConfigFile(): the host app loads it from the section
      * it chooses (loadOptions(mcl.lostOptions, c, "...")). */
     TLostDetectionOptions lostOptions;
+    /** Which map cells the range sensor echoes from: the observation model's
+     * obstacles. With a rule, initialize() gives MRPT's likelihood field (and
+     * the lost check's scan fit) exactly the cells the rule calls obstacles
+     * (a ring around the map with outside_is_obstacle) and no others;
+     * without one (nullopt) the grid is taken as it is (MRPT's likelihood
+     * field: P(free) < 0.5; the scan fit: occupancy >= 0.65).
+     * loadFromConfigFile() reads it from [World] when the config has that
+     * section: the map's rule by which risknav's simulated sensors echo
+     * (CSimWorld), so that the filter expects a return where the laser gets
+     * one. On SLAM maps with many grey cells (the Malaga campus grid: ~7x as
+     * many cells of P(free) 0.4-0.6 as occupied ones) the world's laser
+     * echoes on unknown cells that MRPT's field did not count: at the true
+     * pose only 22-50 % of the scan fit, the filter was judged lost while
+     * 0.00 m off, and its recoveries lost it. */
+    std::optional<mapping::TObstacleRule> obstacleRule;
 
     CRawlogMcl();
-    /** Loads options, [PF_options] and [KLD_options]. */
+    /** Loads options, [PF_options], [KLD_options] and (when the config has
+     * the section) obstacleRule from [World]. */
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& c);
     /** Writes [Localization], [PF_options] and [KLD_options] back. */
     void saveToConfigFile(mrpt::config::CConfigFileBase& c) const;
@@ -88,6 +106,11 @@ class CRawlogMcl {
                       const mrpt::obs::CSensoryFrame& sf);
     /** The particles' mean pose, covariance, count and ESS now. */
     TMclEstimate estimate() const;
+    /** The map the observation model uses (after initialize(): the grid
+     * under obstacleRule; nullptr before). */
+    mrpt::maps::COccupancyGridMap2D::Ptr map() const { return m_map; }
+    /** The particles (after initialize()). */
+    const mrpt::slam::CMonteCarloLocalization2D& particles() const { return m_pdf; }
 
     /** Is the filter lost? Call once per step(), with the same frame: its
      * first 2D range scan (or the first labelled `scanLabel`) is fitted to
@@ -97,7 +120,10 @@ class CRawlogMcl {
      * judgeLocalization() says whether this check failed; `lost` once
      * lostOptions.lost_after checks in a row have failed (a passed check
      * starts the count again). A frame without a scan judges the spread
-     * only. After initialize() or recover() the count starts at 0. */
+     * only. After initialize() or recover() the count starts at 0 and the
+     * filter is converging: its checks do not fail (`converging`) until its
+     * spread is first within the bounds, and it is lost ("not_converged")
+     * if that has not happened within lostOptions.converge_checks checks. */
     TLocalizationCheck checkLost(const mrpt::obs::CSensoryFrame& sf,
                                  const std::string& scanLabel = "");
     /** The same figures for one scan (nullptr: none), without counting. */
@@ -108,7 +134,8 @@ class CRawlogMcl {
      * of a box of +-recovery_xy around the mean pose with headings within
      * +-recovery_phi_deg of its heading, or (global, or no free cell in the
      * box) of the whole map with any heading. The next steps' scans then
-     * pick the robot's pose out of them. Resets the lost count. */
+     * pick the robot's pose out of them. Resets the lost count; the filter
+     * is converging again (checkLost()). */
     void recover(bool global = false);
 
   private:
@@ -119,6 +146,8 @@ class CRawlogMcl {
     mrpt::slam::CMonteCarloLocalization2D m_pdf;
     mutable std::shared_ptr<const mapping::CDistanceField> m_fitField;
     int m_failedChecks = 0;
+    bool m_converged = false;    ///< spread within bounds since the last reset
+    int m_checksSinceReset = 0;  ///< checkLost() calls since the last reset
 };
 
 }  // namespace risknav::localization

@@ -44,12 +44,29 @@ struct TLostDetectionOptions : public common::CValidatedOptions {
     /** A filter is lost after this many consecutive checks that failed
      * (a person in front of the laser fails one check, not three). */
     int lost_after = 3;
+    /** Checks a filter may take to converge after CRawlogMcl::initialize()
+     * or recover(): until its spread is first within max_spread_xy and
+     * max_spread_phi_deg no check fails (a spread-out filter is localizing,
+     * not lost, and its mean is no pose to fit a scan at); if it has not
+     * converged after this many checks it is lost ("not_converged"). Without
+     * this grace a recovery that re-spreads the particles over a +-2 m box
+     * (spread ~1.6 m) was judged lost again lost_after checks later, and
+     * re-spread again, before its scans could pick the robot out: a loop
+     * that never converged on the Malaga campus map. 25 checks are 5 s at
+     * risknav-navigate's 0.2 s cycle; a filter re-spread over
+     * recovery_xy = 2 m converges in 2-6 checks when its scans see walls. */
+    int converge_checks = 25;
     /** recover(): half-width [m] of the box around the mean pose over whose
      * free cells the particles are re-spread (the standard MCL recovery; a
      * global recovery spreads them over the whole map's free cells). */
     double recovery_xy = 2.0;
-    double recovery_phi_deg = 180.0;           ///< recover(): heading half-range [deg]
-    int recovery_particles = 5000;             ///< recover(): particles drawn
+    double recovery_phi_deg = 180.0;  ///< recover(): heading half-range [deg]
+    /** recover(): particles drawn. The box (recovery_xy, any heading) is 4x
+     * the default initial box (+-1 m, any heading; 5000 particles): the
+     * same density, 0.35 particles per KLD bin, the bound CRawlogMcl
+     * documents (kMinParticlesPerBin = 0.1) with the initial set's margin.
+     * 5000 (0.09 per bin) was below even that bound. */
+    int recovery_particles = 20000;
     std::string section = "LostLocalization";  ///< the host section (for messages)
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
@@ -69,8 +86,13 @@ struct TLocalizationCheck {
      * lost == failed). */
     bool lost = false;
     /** "" | "scan_fit" | "spread_xy" | "spread_phi" (the first that failed,
-     * in this order). */
+     * in this order) | "not_converged" (CRawlogMcl::checkLost(): spread for
+     * TLostDetectionOptions::converge_checks checks since the last reset). */
     std::string reason;
+    /** CRawlogMcl::checkLost(): the filter has not converged since its last
+     * initialize() or recover() and is within converge_checks of it: this
+     * check does not count (failed is false, reason says what it saw). */
+    bool converging = false;
     TScanFit fit;               ///< the scan at the mean pose
     double fitFraction = 0;     ///< fit.fraction(); NaN without points
     bool fitJudged = false;     ///< fit.points >= min_points
