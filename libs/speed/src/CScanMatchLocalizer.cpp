@@ -95,7 +95,9 @@ void CScanMatchLocalizer::addToMap(const std::vector<mrpt::math::TPoint2D>& pts,
         const double y = at.y + s * p.x + c * p.y;
         const int64_t ix = int64_t(std::floor(x * inv)),
                       iy = int64_t(std::floor(y * inv));
-        if (m_cells.insert((ix << 32) ^ (iy & 0xffffffffLL)).second)
+        // unsigned: shifting a negative index left is undefined
+        const uint64_t key = (uint64_t(ix) << 32) ^ (uint64_t(iy) & 0xffffffffULL);
+        if (m_cells.insert(key).second)
             m_map.insertPointFast(float(x), float(y), 0);
     }
     // insertPointFast() does not tell the map (its k-d tree) it changed

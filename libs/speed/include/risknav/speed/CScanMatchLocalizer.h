@@ -132,7 +132,7 @@ class CScanMatchLocalizer {
     bool m_started = false;
     mrpt::math::TPose2D m_pose, m_pose0, m_odometry, m_keyframe;
     mrpt::maps::CSimplePointsMap m_map;
-    std::unordered_set<int64_t> m_cells;
+    std::unordered_set<uint64_t> m_cells;
     mutable std::vector<TNormal> m_normals;  ///< per map point, when first asked
     TStats m_stats;
 };
