@@ -670,6 +670,23 @@ INSTANTIATE_TEST_SUITE_P(
         TBad{"planner_lookahead_zero", "\\[CRiskAwareReactiveNav\\]",
              "[GlobalPlanner]\nlookahead = 0\n[CRiskAwareReactiveNav]",
              "[GlobalPlanner] lookahead = '0'"},
+        TBad{"planner_map_unknown", "\\[CRiskAwareReactiveNav\\]",
+             "[GlobalPlanner]\nmap = sensed\n[CRiskAwareReactiveNav]",
+             "[GlobalPlanner] map = 'sensed'"},
+        TBad{"built_map_with_the_risk_planner", "(engine_config +=[^\\n]*)",
+             "$1\nglobal_planner = risk\n[GlobalPlanner]\nmap = built",
+             "[GlobalPlanner] map = 'built': global_planner = risk chooses by U"},
+        TBad{"arrival_radius_zero", "goal_tolerance =",
+             "arrival_radius = 0\ngoal_tolerance =", "[Navigate] arrival_radius = '0'"},
+        TBad{"plan_follow_after_too_soon", "speed_limiters = CStoppingDistanceLimiter",
+             "speed_limiters = CStoppingDistanceLimiter\nplan_follow_after = 1",
+             "[CRiskAwareReactiveNav] plan_follow_after"},
+        TBad{"plan_follow_speed_zero", "speed_limiters = CStoppingDistanceLimiter",
+             "speed_limiters = CStoppingDistanceLimiter\nplan_follow_speed = 0",
+             "[CRiskAwareReactiveNav] plan_follow_speed = '0'"},
+        TBad{"final_approach_speed_nan", "speed_limiters = CStoppingDistanceLimiter",
+             "speed_limiters = CStoppingDistanceLimiter\nfinal_approach_speed = nan",
+             "[CRiskAwareReactiveNav] final_approach_speed"},
 
         TBad{"engine_key_missing", "engine_config +=.*",
              "engine_config =", "MRPT's reactive engine refused the config"}),
@@ -1204,6 +1221,30 @@ TEST(NavigateE2E, AGoalBehindWallsIsReachedAlongTheGlobalPlan) {
             goal);
     EXPECT_NE(none["status"], "goal_reached");
     EXPECT_FALSE(none.contains("plan"));
+}
+
+TEST(NavigateE2E, WhereMrptStallsThePlanItselfIsFollowed) {
+    // Nav2's tb3_sandbox (a public map), a seeded pair of the map validation:
+    // the start stands among the sandbox's pillars, about 0.8 m apart. MRPT's
+    // engine commands ~1e-4 m/s there (its paths' clearance is below its
+    // secure distance) and the robot stands still; after plan_follow_after
+    // without headway the plan itself is followed, and the goal reached.
+    const std::string cfg = sourcePath("config/validate_maps_navigate.ini");
+    const std::string pair =
+        " --seed 1 --set World.map_file=" +
+        sourcePath("datasets/maps/tb3_sandbox/tb3_sandbox.yaml") +
+        " --set 'Navigate.start=1.625 -0.575 123.1' --set 'Navigate.goals=-1.825 -0.175'"
+        " --set Navigate.duration_max=80";
+    const json on = navRun(cfg, freshDir("on"), pair);
+    EXPECT_EQ(on["status"], "goal_reached") << on["navigation_error"];
+    EXPECT_EQ(on["collisions"], 0);
+    EXPECT_LE(on["goal_true_distance_m"].get<double>(), 0.3);
+    ASSERT_TRUE(on["time_per_limiter_s"].contains("plan_follow"));
+    EXPECT_GT(on["time_per_limiter_s"]["plan_follow"].get<double>(), 1.0);
+    const json off = navRun(cfg, freshDir("off"),
+                            pair + " --set CRiskAwareReactiveNav.plan_follow_after=0");
+    EXPECT_EQ(off["status"], "stalled") << off["navigation_error"];
+    EXPECT_FALSE(off["time_per_limiter_s"].contains("plan_follow"));
 }
 
 TEST(NavigateE2E, AWaypointBesideTheRobotIsTurnedToFirst) {

@@ -1,6 +1,7 @@
 #include <risknav/common/config_read.h>
 #include <risknav/geometry/homotopy.h>
 #include <risknav/geometry/polyline.h>
+#include <risknav/mapping/distance_transform.h>
 #include <risknav/nav/CGlobalPlanner.h>
 
 #include <algorithm>
@@ -15,7 +16,6 @@ using mrpt::math::TPose2D;
 namespace risknav::nav {
 namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
-constexpr float kNever = -std::numeric_limits<float>::infinity();
 std::string metres(double v) {
     char b[32];
     std::snprintf(b, sizeof(b), "%.3f m", v);
@@ -35,6 +35,7 @@ void CGlobalPlanner::TOptions::loadFromConfigFile(const mrpt::config::CConfigFil
     obstacle_memory = readDouble(c, s, "obstacle_memory", obstacle_memory);
     replan_interval = readDouble(c, s, "replan_interval", replan_interval);
     candidates = readInt(c, s, "candidates", candidates);
+    map = readChoice(c, s, "map", map, {"known", "built"});
 }
 
 void CGlobalPlanner::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
@@ -49,6 +50,7 @@ void CGlobalPlanner::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c
     writeKey(c, s, "obstacle_memory", obstacle_memory);
     writeKey(c, s, "replan_interval", replan_interval);
     writeKey(c, s, "candidates", candidates);
+    writeKey(c, s, "map", map);
 }
 
 void CGlobalPlanner::TOptions::validate() const {
@@ -118,13 +120,14 @@ void CGlobalPlanner::setMap(const mrpt::maps::COccupancyGridMap2D& grid,
             L.cost.cost[i] = costOf(L.clearEdge[i]);
     }
     m_seenAt.resize(n);
+    m_keepSeen = options.map == "built";
     resetFollowing();
 }
 
 void CGlobalPlanner::resetFollowing() {
     // a new run starts its own clock: the last run's sensed cells would
     // otherwise count as seen a moment ago
-    std::fill(m_seenAt.begin(), m_seenAt.end(), kNever);
+    std::fill(m_seenAt.begin(), m_seenAt.end(), kNeverSeen);
     m_seenCells.clear();
     m_target.reset();
     m_lastPose.reset();
@@ -204,6 +207,52 @@ TGlobalPlan CGlobalPlanner::plan(const TPoint2D& from, const TPoint2D& to,
     return done();
 }
 
+void CGlobalPlanner::sensedClearance(const TLevel& L, std::vector<float>& out) const {
+    const int fw = m_fine.cost.w, fh = m_fine.cost.h, k = L.k;
+    const double fres = m_fine.cost.resolution;
+    const double reachM = m_disc + options.clearance_soft;
+    const int reach = int(std::ceil(reachM / fres)) + 1;
+    out.assign(L.cost.cost.size(), kInf);
+    size_t live = 0;
+    for (const int32_t c : m_seenCells)
+        live += liveSeen(size_t(c), m_now);
+    if (live == 0)
+        return;
+    auto take = [&](int x, int y, double d) {
+        const double e = std::max(0.0, d - 0.5 * fres);
+        if (e > reachM)
+            return;
+        float& o = out[L.cost.index(x / k, y / k)];
+        o = std::min(o, float(e));
+    };
+    const size_t stamp = size_t(2 * reach + 1) * size_t(2 * reach + 1);
+    if (live * stamp < size_t(fw) * size_t(fh)) {
+        // a few (people, clutter): the disc about each
+        for (const int32_t c : m_seenCells) {
+            if (!liveSeen(size_t(c), m_now))
+                continue;
+            const int cx = c % fw, cy = c / fw;
+            for (int dy = -reach; dy <= reach; dy++)
+                for (int dx = -reach; dx <= reach; dx++)
+                    if (m_fine.cost.inside(cx + dx, cy + dy))
+                        take(cx + dx, cy + dy, std::hypot(dx, dy) * fres);
+        }
+        return;
+    }
+    // many (map = built: every wall seen): one exact distance transform
+    m_sensedMask.assign(size_t(fw) * size_t(fh), 0);
+    for (const int32_t c : m_seenCells)
+        if (liveSeen(size_t(c), m_now))
+            m_sensedMask[size_t(c)] = 1;
+    mapping::squaredDistanceTransform(m_sensedMask, fw, fh, false, m_sensedD2);
+    for (int y = 0; y < fh; y++)
+        for (int x = 0; x < fw; x++) {
+            const int32_t d2 = m_sensedD2[m_fine.cost.index(x, y)];
+            if (d2 <= reach * reach)
+                take(x, y, std::sqrt(double(d2)) * fres);
+        }
+}
+
 bool CGlobalPlanner::planOn(const TLevel& L, const TPoint2D& from, const TPoint2D& to,
                             bool withSensed, TGlobalPlan& p,
                             const std::vector<std::vector<TPoint2D>>* avoid) const {
@@ -225,29 +274,19 @@ bool CGlobalPlanner::planOn(const TLevel& L, const TPoint2D& from, const TPoint2
         }
         return m_work;
     };
-    if (withSensed) {
-        const int reach = int(std::ceil((m_disc + options.clearance_soft) / res)) + 1;
-        for (const int32_t c : m_seenCells) {
-            if (!liveSeen(size_t(c), m_now))
-                continue;
-            auto& w = work();
-            // the sensed fine cell's centre, in the level's cells
-            const double px = (c % m_fine.cost.w + 0.5) / k,
-                         py = (c / m_fine.cost.w + 0.5) / k;
-            const int cx = int(px), cy = int(py);
-            for (int dy = -reach; dy <= reach; dy++)
-                for (int dx = -reach; dx <= reach; dx++) {
-                    const int x = cx + dx, y = cy + dy;
-                    if (!w.inside(x, y))
-                        continue;
-                    // centre to the sensed cell's edge, as the map's clearance
-                    const double d = std::hypot(x + 0.5 - px, y + 0.5 - py) * res;
-                    const double e = std::max(0.0, d - 0.5 * m_fine.cost.resolution);
-                    float& cc = w.cost[w.index(x, y)];
-                    cc = std::max(cc, costOf(e));
-                }
-        }
+    const std::vector<float>* sensed = nullptr;  // per level cell, or none
+    if (withSensed && !m_seenCells.empty()) {
+        sensedClearance(L, m_sensedEdge);
+        sensed = &m_sensedEdge;
+        auto& w = work();
+        for (size_t i = 0; i < w.cost.size(); i++)
+            if (m_sensedEdge[i] < kInf)
+                w.cost[i] = std::max(w.cost[i], costOf(m_sensedEdge[i]));
     }
+    // a cell's clearance from the map and (withSensed) the sensed obstacles
+    auto clearOf = [&](size_t i) {
+        return sensed ? std::min(L.clearEdge[i], (*sensed)[i]) : L.clearEdge[i];
+    };
     if (avoid) {
         // the ways of earlier candidates closed (beyond the disc + 1 m of
         // the start and the goal, where every way begins and ends)
@@ -270,7 +309,7 @@ bool CGlobalPlanner::planOn(const TLevel& L, const TPoint2D& from, const TPoint2
     auto openAround = [&](int cx, int cy) {
         // a start or goal nearer an obstacle than the disc: the cells within
         // the disc (+2 cells) of it that are no nearer an obstacle than it
-        const float e0 = L.clearEdge[L.cost.index(cx, cy)];
+        const float e0 = clearOf(L.cost.index(cx, cy));
         if (e0 >= m_disc)
             return;
         auto& w = work();
@@ -281,8 +320,7 @@ bool CGlobalPlanner::planOn(const TLevel& L, const TPoint2D& from, const TPoint2
                 if (!w.inside(x, y) || std::hypot(dx, dy) > reach)
                     continue;
                 const size_t i = w.index(x, y);
-                if (L.clearEdge[i] >= e0 - 0.5 * res && L.clearEdge[i] > 0 &&
-                    !(w.cost[i] < kInf))
+                if (clearOf(i) >= e0 - 0.5 * res && clearOf(i) > 0 && !(w.cost[i] < kInf))
                     w.cost[i] = edgeCost;
             }
     };
@@ -375,7 +413,7 @@ void CGlobalPlanner::addSensed(const TPose2D& pose, const std::vector<TPoint2D>&
                 const int bx = m_field.x2idx(pose.x + f * (x - pose.x)),
                           by = m_field.y2idx(pose.y + f * (y - pose.y));
                 if (m_fine.cost.inside(bx, by))
-                    m_seenAt[m_fine.cost.index(bx, by)] = kNever;
+                    m_seenAt[m_fine.cost.index(bx, by)] = kNeverSeen;
             }
         }
         if (!m_fine.cost.inside(cx, cy))
@@ -430,15 +468,19 @@ bool CGlobalPlanner::blockedAhead(const TPose2D& pose, double now) const {
             along += std::hypot(pts[k].x - pts[k - 1].x, pts[k].y - pts[k - 1].y);
         if (along > options.check_ahead)
             break;
-        // the robot's own surroundings: its engine's business
-        if (std::hypot(pts[k].x - pose.x, pts[k].y - pose.y) < m_disc + 0.2)
-            continue;
+        // Within the robot's own surroundings an obstacle beside the way is
+        // its engine's business (a person passing by would replan every
+        // second); one the way crosses is not (map = built: the face of a
+        // wall first seen from close by, the plan through it).
+        const bool near = std::hypot(pts[k].x - pose.x, pts[k].y - pose.y) < m_disc + 0.2;
+        const double within = near ? 1.5 * res : m_disc;
+        const int r = near ? 2 : reach;
         const int cx = m_field.x2idx(pts[k].x), cy = m_field.y2idx(pts[k].y);
-        for (int dy = -reach; dy <= reach; dy++)
-            for (int dx = -reach; dx <= reach; dx++) {
+        for (int dy = -r; dy <= r; dy++)
+            for (int dx = -r; dx <= r; dx++) {
                 const int x = cx + dx, y = cy + dy;
                 if (!m_fine.cost.inside(x, y) ||
-                    std::hypot(dx, dy) * res - 0.5 * res >= m_disc)
+                    std::hypot(dx, dy) * res - 0.5 * res >= within)
                     continue;
                 if (liveSeen(m_fine.cost.index(x, y), now))
                     return true;

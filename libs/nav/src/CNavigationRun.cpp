@@ -140,8 +140,13 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
         mcl.loadFromConfigFile(c);
         loadOptions(mcl.lostOptions, c, "LostLocalization");
     }
-    if (options.global_planner != "none")
+    if (options.global_planner != "none") {
         loadOptions(plannerOptions, c, "GlobalPlanner");
+        if (plannerOptions.map == "built" && options.global_planner == "risk")
+            throwBadKey(c, "GlobalPlanner", "map", plannerOptions.map,
+                        "global_planner = risk chooses by U on the known map: "
+                        "map = built needs global_planner = grid");
+    }
     loadRoute(c);
     checkAgainstMap(c);
     m_planner.reset();
@@ -149,8 +154,18 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
     if (options.global_planner != "none") {
         m_planner = std::make_shared<CGlobalPlanner>();
         m_planner->options = plannerOptions;
-        m_planner->setMap(world.grid(), world.distanceField().rule(),
-                          world.robot.radius + options.shape_margin);
+        if (plannerOptions.map == "built") {
+            // the robot knows the world's extent only: every cell free
+            // until its laser senses it (CGlobalPlanner::TOptions::map)
+            const auto& g = world.grid();
+            mrpt::maps::COccupancyGridMap2D blank(g.getXMin(), g.getXMax(), g.getYMin(),
+                                                  g.getYMax(), g.getResolution());
+            blank.fill(0.99f);  // MRPT: a cell holds p(free)
+            m_planner->setMap(blank, world.distanceField().rule(),
+                              world.robot.radius + options.shape_margin);
+        } else
+            m_planner->setMap(world.grid(), world.distanceField().rule(),
+                              world.robot.radius + options.shape_margin);
     }
     if (options.global_planner == "risk") {
         // M2's model of the robot's odometry ([Odometry]: the wheels'
@@ -731,7 +746,14 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
         nav.setMinLoggingLevel(mrpt::system::LVL_ERROR);
     }
 
-    const auto wps = lapWaypoints(setup.laps.value_or(options.laps));
+    auto wps = lapWaypoints(setup.laps.value_or(options.laps));
+    // the end is aimed at within arrival_radius, judged against its own
+    // allowed distance (see TNavigateOptions::arrival_radius)
+    const double goalAllowed =
+        wps.waypoints.empty() ? 0.0 : wps.waypoints.back().allowed_distance;
+    if (!wps.waypoints.empty())
+        wps.waypoints.back().allowed_distance =
+            std::min(goalAllowed, options.arrival_radius);
     r.waypointCount = int(wps.waypoints.size());
     const size_t lapLen = waypoints.waypoints.size();
     auto tagOf = [&](int i) -> const TWaypointTag* {
@@ -1050,8 +1072,7 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
             r.goalTrueDistance = std::min(
                 r.goalTrueDistance, std::hypot(r.track[k].x - g.x, r.track[k].y - g.y));
     }
-    if (r.status == "goal_reached" &&
-        !(r.goalTrueDistance <= wps.waypoints.back().allowed_distance + 0.03)) {
+    if (r.status == "goal_reached" && !(r.goalTrueDistance <= goalAllowed + 0.03)) {
         char b[300];
         std::snprintf(b, sizeof(b),
                       "MRPT reached the goal on the believed pose, but the robot truly "

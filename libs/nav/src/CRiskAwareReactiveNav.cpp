@@ -5,6 +5,7 @@
 #include <risknav/nav/CLayeredConfig.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
 #include <risknav/nav/escape_heading.h>
+#include <risknav/nav/plan_follow.h>
 #include <risknav/sim/CSimRobotInterface.h>
 
 #include <mrpt/config/CConfigFileMemory.h>
@@ -819,6 +820,11 @@ void CRiskAwareReactiveNav::TOptions::loadFromConfigFile(
     unstick_time = readDouble(c, s, "unstick_time", unstick_time);
     unstick_heading_deg = readDouble(c, s, "unstick_heading_deg", unstick_heading_deg);
     guide_lookahead = readDouble(c, s, "guide_lookahead", guide_lookahead);
+    plan_follow_after = readDouble(c, s, "plan_follow_after", plan_follow_after);
+    plan_follow_speed = readDouble(c, s, "plan_follow_speed", plan_follow_speed);
+    plan_follow_distance = readDouble(c, s, "plan_follow_distance", plan_follow_distance);
+    plan_follow_margin = readDouble(c, s, "plan_follow_margin", plan_follow_margin);
+    final_approach_speed = readDouble(c, s, "final_approach_speed", final_approach_speed);
 }
 
 void CRiskAwareReactiveNav::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
@@ -833,6 +839,11 @@ void CRiskAwareReactiveNav::TOptions::saveToConfigFile(mrpt::config::CConfigFile
     writeKey(c, s, "unstick_time", unstick_time);
     writeKey(c, s, "unstick_heading_deg", unstick_heading_deg);
     writeKey(c, s, "guide_lookahead", guide_lookahead);
+    writeKey(c, s, "plan_follow_after", plan_follow_after);
+    writeKey(c, s, "plan_follow_speed", plan_follow_speed);
+    writeKey(c, s, "plan_follow_distance", plan_follow_distance);
+    writeKey(c, s, "plan_follow_margin", plan_follow_margin);
+    writeKey(c, s, "final_approach_speed", final_approach_speed);
 }
 
 void CRiskAwareReactiveNav::TOptions::validate() const {
@@ -860,6 +871,19 @@ void CRiskAwareReactiveNav::TOptions::validate() const {
     checkKey(kSection, "unstick_heading_deg", unstick_heading_deg,
              TRange::closed(1, 180, "deg"));
     checkKey(kSection, "guide_lookahead", guide_lookahead, TRange::closed(0, 20, "m"));
+    checkKey(kSection, "plan_follow_after", plan_follow_after,
+             TRange::closed(0, 1e5, "s"));
+    checkRule(plan_follow_after == 0 || plan_follow_after >= 2, kSection,
+              "plan_follow_after", numberText(plan_follow_after),
+              "must be 0 (off) or at least 2 s");
+    checkKey(kSection, "plan_follow_speed", plan_follow_speed,
+             TRange::closed(0.02, 2, "m/s"));
+    checkKey(kSection, "plan_follow_distance", plan_follow_distance,
+             TRange::closed(0.1, 100, "m"));
+    checkKey(kSection, "plan_follow_margin", plan_follow_margin,
+             TRange::closed(0, 1, "m"));
+    checkKey(kSection, "final_approach_speed", final_approach_speed,
+             TRange::closed(0, 2, "m/s"));
 }
 
 CRiskAwareReactiveNav::CRiskAwareReactiveNav(mrpt::nav::CRobot2NavInterface& r,
@@ -885,9 +909,10 @@ std::optional<CRiskAwareReactiveNav::TCurrentTarget> CRiskAwareReactiveNav::curr
     const mrpt::nav::TWaypointStatusSequence& st) const {
     if (getCurrentState() != NAVIGATING && !m_requestPending)
         return std::nullopt;
-    for (const auto& w : st.waypoints)
-        if (!w.reached)
-            return TCurrentTarget{w.target, w.allowed_distance};
+    for (size_t i = 0; i < st.waypoints.size(); i++)
+        if (const auto& w = st.waypoints[i]; !w.reached)
+            return TCurrentTarget{w.target, w.allowed_distance,
+                                  i + 1 == st.waypoints.size()};
     if (m_navigationParams)
         return TCurrentTarget{
             mrpt::math::TPoint2D(m_navigationParams->target.target_coords.x,
@@ -900,13 +925,15 @@ void CRiskAwareReactiveNav::navigationStep() {
     const double limitDeg = riskOptions.turn_in_place_deg;
     std::optional<mrpt::math::TPoint2D> target;
     double targetAllowed = 0;
+    bool lastTarget = false;
     std::optional<mrpt::math::TPoint2D> lastStepPose;
     if (limitDeg > 0 || riskOptions.unstick_time > 0 || riskOptions.start_turn_deg > 0 ||
-        m_planner) {
+        riskOptions.final_approach_speed > 0 || m_planner) {
         const auto st = getWaypointNavStatus();  // one copy for both
         if (const auto ct = currentTarget(st)) {
             target = ct->point;
             targetAllowed = ct->allowedDistance;
+            lastTarget = ct->last;
             if (st.last_robot_pose.x != mrpt::nav::TWaypoint::INVALID_NUM)
                 lastStepPose =
                     mrpt::math::TPoint2D(st.last_robot_pose.x, st.last_robot_pose.y);
@@ -932,6 +959,10 @@ void CRiskAwareReactiveNav::navigationStep() {
             !reachedByMrpt(pose)) {
             if (m_planner && !updatePlanner(pose, *target))
                 return;  // no way: stopped
+            if (m_planner && followPlan(pose))
+                return;  // the robot follows the plan itself this cycle
+            if (lastTarget && finalApproach(pose, *target, targetAllowed))
+                return;  // the end, inside MRPT's shape: driven to
             // stuck: neither 5 cm nor 5 deg of motion for unstick_time (a
             // robot MRPT dithers by +-5 deg is not caught: turned to a
             // target behind a corner, MRPT's way round it was lost); a clock
@@ -1091,11 +1122,13 @@ void CRiskAwareReactiveNav::navigationStep() {
 bool CRiskAwareReactiveNav::updatePlanner(const mrpt::math::TPose2D& pose,
                                           const mrpt::math::TPoint2D& target) {
     const double now = mrpt::Clock::toDouble(mrpt::Clock::now());
-    if (m_planner->update(pose, target, now))  // a new plan: its own headway
+    const auto ev = m_planner->update(pose, target, now);
+    if (ev)  // a new plan: its own headway
         m_planBest = std::numeric_limits<double>::infinity();
     const auto& plan = m_planner->current();
     if (!plan.found) {
         m_planFailure = plan;
+        m_following.reset();
         doEmergencyStop("[CGlobalPlanner] no way to the target: " + plan.reason);
         return false;
     }
@@ -1106,6 +1139,135 @@ bool CRiskAwareReactiveNav::updatePlanner(const mrpt::math::TPose2D& pose,
         m_planBest = left;
         m_badNavAlarm_lastMinDistTime = mrpt::Clock::now();
     }
+    if (ev && ev->why == "new_target") {
+        m_headBest = left, m_headwayAt = now;
+        m_following.reset();
+    } else if (ev || now < m_headwayAt)
+        m_headBest = left;  // (a clock gone back: a new run)
+    else if (left < m_headBest - 0.1)
+        m_headBest = left, m_headwayAt = now;
+    if (now < m_headwayAt)
+        m_headwayAt = now;
+    return true;
+}
+
+bool CRiskAwareReactiveNav::followPlan(const mrpt::math::TPose2D& pose) {
+    const auto& o = riskOptions;
+    if (!(o.plan_follow_after > 0))
+        return false;
+    const double now = mrpt::Clock::toDouble(mrpt::Clock::now());
+    const double left = m_planner->remainingLength(pose);
+    const size_t plans = m_planner->replans().size();
+    if (!m_following) {
+        // the end is MRPT's (it marks the waypoint reached, stops on it)
+        if (now - m_headwayAt < o.plan_follow_after || left < 2 * o.plan_follow_distance)
+            return false;
+        m_following = TFollowing{now, pose, 0.0, plans};
+    } else {
+        auto& f = *m_following;
+        f.driven += std::hypot(pose.x - f.last.x, pose.y - f.last.y);
+        f.last = pose;
+        if (f.driven >= o.plan_follow_distance || plans != f.plans ||
+            left < o.plan_follow_distance) {
+            m_following.reset();  // far enough, or a new plan: MRPT steers again
+            m_headBest = left, m_headwayAt = now;
+            return false;
+        }
+    }
+    const auto pts = senseNow(pose, now);
+    // the plan from the robot's nearest point on
+    const auto& plan = m_planner->current().points;
+    size_t k0 = 0;
+    double best = 1e300;
+    for (size_t k = 0; k < plan.size(); k++)
+        if (const double d = std::hypot(plan[k].x - pose.x, plan[k].y - pose.y); d < best)
+            best = d, k0 = k;
+    const std::vector<mrpt::math::TPoint2D> ahead(plan.begin() + long(k0), plan.end());
+    const double wMax = o.turn_rate_deg * M_PI / 180;
+    const auto cmd =
+        planFollowCommand(pose, ahead, pts, shapeRadius() - o.plan_follow_margin,
+                          o.plan_follow_speed, wMax);
+    if (cmd.blocked) {
+        // the follower cannot either: MRPT (and its unstick turns) again,
+        // and another try after plan_follow_after
+        m_following.reset();
+        m_headwayAt = now;
+        return false;
+    }
+    char why[200];
+    std::snprintf(why, sizeof(why),
+                  "no headway along the global plan for %.0f s: the robot follows it "
+                  "itself (%s), %.2f of %.2f m",
+                  now - m_following->since + o.plan_follow_after, cmd.what.c_str(),
+                  m_following->driven, o.plan_follow_distance);
+    sendOwnCommand(cmd, "plan_follow", why);
+    return true;
+}
+
+void CRiskAwareReactiveNav::sendOwnCommand(const TFollowCommand& cmd, const char* limiter,
+                                           const std::string& reason) {
+    mrpt::kinematics::CVehicleVelCmd_DiffDriven vc;
+    vc.lin_vel = cmd.v;
+    vc.ang_vel = cmd.w;
+    m_robot.changeSpeeds(vc);
+    m_last = {};
+    m_last.limiter = limiter;
+    m_last.desired = m_last.limit = cmd.v;
+    m_last.reason = reason;
+}
+
+double CRiskAwareReactiveNav::shapeRadius() const {
+    double r = 0;
+    for (const auto& v : m_robotShape)
+        r = std::max(r, std::hypot(v.x, v.y));
+    return m_robotShape.empty() ? m_robotShapeCircularRadius : r;
+}
+
+std::vector<mrpt::math::TPoint2D> CRiskAwareReactiveNav::senseNow(
+    const mrpt::math::TPose2D& pose, double now) {
+    // MRPT's last scans are a cycle old, and it does not sense while the
+    // navigator drives: the robot's own, robot frame now
+    mrpt::maps::CSimplePointsMap sensed;
+    mrpt::system::TTimeStamp ts;
+    std::vector<mrpt::math::TPoint2D> pts;
+    if (m_robot.senseObstacles(sensed, ts)) {
+        const auto& xs = sensed.getPointsBufferRef_x();
+        const auto& ys = sensed.getPointsBufferRef_y();
+        pts.reserve(xs.size());
+        for (size_t k = 0; k < xs.size(); k++)
+            pts.emplace_back(xs[k], ys[k]);
+        if (m_planner)
+            m_planner->addSensed(pose, pts, now);
+    }
+    return pts;
+}
+
+bool CRiskAwareReactiveNav::finalApproach(const mrpt::math::TPose2D& pose,
+                                          const mrpt::math::TPoint2D& target,
+                                          double allowed) {
+    const auto& o = riskOptions;
+    const double d = std::hypot(target.x - pose.x, target.y - pose.y);
+    const double shape = shapeRadius();
+    if (!(o.final_approach_speed > 0) || d <= allowed || d > shape + 0.1)
+        return false;  // MRPT's (within allowed: its step marks it reached)
+    const double now = mrpt::Clock::toDouble(mrpt::Clock::now());
+    const auto pts = senseNow(pose, now);
+    // the plan follower on the straight stretch to the end (it turns in
+    // place first when off it), slowly: a cycle's move (2 cm at 0.1 m/s
+    // and 0.2 s) does not overshoot the allowed distance
+    const std::vector<mrpt::math::TPoint2D> way{mrpt::math::TPoint2D(pose.x, pose.y),
+                                                target};
+    const auto cmd =
+        planFollowCommand(pose, way, pts, shape - o.plan_follow_margin,
+                          o.final_approach_speed, o.turn_rate_deg * M_PI / 180, d);
+    if (cmd.blocked)
+        return false;
+    char why[200];
+    std::snprintf(why, sizeof(why),
+                  "the end %.2f m away, inside MRPT's robot shape (%.2f m): driven to "
+                  "(%s)",
+                  d, shape, cmd.what.c_str());
+    sendOwnCommand(cmd, "final_approach", why);
     return true;
 }
 

@@ -37,6 +37,7 @@ void TNavigateOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
     risk_config = optionalFile(c, s, "risk_config", risk_config);
     risk_route = readString(c, s, "risk_route", risk_route);
     goal_tolerance = readDouble(c, s, "goal_tolerance", goal_tolerance);
+    arrival_radius = readDouble(c, s, "arrival_radius", arrival_radius);
     mode = readChoice(c, s, "mode", mode, {"once", "back_and_forth", "loop"});
     laps = readInt(c, s, "laps", laps);
     localization = readChoice(c, s, "localization", localization,
@@ -79,6 +80,7 @@ void TNavigateOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
     writeKey(c, s, "risk_config", risk_config);
     writeKey(c, s, "risk_route", risk_route);
     writeKey(c, s, "goal_tolerance", goal_tolerance);
+    writeKey(c, s, "arrival_radius", arrival_radius);
     writeKey(c, s, "mode", mode);
     writeKey(c, s, "laps", laps);
     writeKey(c, s, "localization", localization);
@@ -118,6 +120,7 @@ void TNavigateOptions::validate() const {
     checkRule(risk_route == "best" || !risk_config.empty(), s, "risk_route", risk_route,
               "only with risk_config (the risk evaluator's routes)");
     checkKey(s, "goal_tolerance", goal_tolerance, TRange::closed(0.05, 10, "m"));
+    checkKey(s, "arrival_radius", arrival_radius, TRange::closed(0.01, 10, "m"));
     checkKey(s, "laps", laps, TRange::closed(1, 1000, "laps"));
     checkKey(s, "start_sigma", std::vector<double>{start_sigma[0], start_sigma[1]},
              TRange::closed(0, 10, "m"));

@@ -84,6 +84,13 @@ class CGlobalPlanner {
          * (global_planner = risk) picks from, the least-cost way first. */
         int candidates = 3;
         double replan_interval = 1.0;  ///< [s] at least between replans for blocking
+        /** known: the map given to setMap() is the world's (its obstacles
+         * planned round, sensed ones remembered obstacle_memory seconds);
+         * built: the robot does not know the world (M1's setting): setMap()
+         * gives only the extent, every cell counts as free until sensed
+         * (the free-space assumption of planning in unknown terrain), and a
+         * sensed obstacle stays until a later beam passes through it. */
+        std::string map = "known";
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                 const std::string& section) override;
@@ -174,8 +181,18 @@ class CGlobalPlanner {
     std::vector<TReplanEvent> m_events;
     float costOf(double clearanceEdge) const;
     bool liveSeen(size_t i, double now) const {
-        return now - double(m_seenAt[i]) <= options.obstacle_memory;
+        return m_seenAt[i] != kNeverSeen &&
+               (m_keepSeen || now - double(m_seenAt[i]) <= options.obstacle_memory);
     }
+    static constexpr float kNeverSeen = -std::numeric_limits<float>::infinity();
+    bool m_keepSeen = false;  ///< map = built: sensed obstacles are the map
+    /** [m] per cell of L: its centre to the nearest live sensed cell's edge
+     * (the least over a coarse cell's own cells, as its clearEdge), +inf
+     * where that is beyond disc + clearance_soft (no cost). */
+    void sensedClearance(const TLevel& L, std::vector<float>& out) const;
+    mutable std::vector<float> m_sensedEdge;
+    mutable std::vector<uint8_t> m_sensedMask;
+    mutable std::vector<int32_t> m_sensedD2;
     bool blockedAhead(const mrpt::math::TPose2D& pose, double now) const;
     double m_now = 0;
     size_t m_progress = 0;  ///< the plan's point the robot was nearest last

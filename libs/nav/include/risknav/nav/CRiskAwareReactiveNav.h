@@ -3,6 +3,7 @@
 #include <risknav/common/CValidatedOptions.h>
 #include <risknav/common/TRobotOptions.h>
 #include <risknav/nav/CGlobalPlanner.h>
+#include <risknav/nav/plan_follow.h>
 
 #include <mrpt/nav/reactive/CReactiveNavigationSystem.h>
 
@@ -69,6 +70,29 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
          * waypoint is still what is reached, timed and logged. Used while
          * the waypoint is farther than this. 0 = off. */
         double guide_lookahead = 0;
+        /** [s] Beyond MRPT: with a global plan (CGlobalPlanner), a robot
+         * that has not got 0.1 m further along it for this long (MRPT 2.5.8
+         * stands at ~1e-4 m/s, dithering a few degrees, in a gap its shape
+         * fits by a few cm) follows the plan itself (planFollowCommand(),
+         * pure pursuit, fresh scans checked) at up to plan_follow_speed
+         * until it has driven plan_follow_distance or the plan changes,
+         * then MRPT steers again (0 = off). Blocked, it hands back at once;
+         * within 2 plan_follow_distance of the target it never takes over
+         * (the end, and the waypoint's "reached", are MRPT's). */
+        double plan_follow_after = 8;
+        double plan_follow_speed = 0.2;     ///< [m/s] see plan_follow_after
+        double plan_follow_distance = 1.0;  ///< [m] see plan_follow_after
+        /** [m] how far inside MRPT's robot shape a sensed point may come
+         * while the robot follows the plan itself (the plan keeps the whole
+         * shape off the map's obstacles: this is room for tracking error). */
+        double plan_follow_margin = 0.05;
+        /** [m/s] Beyond MRPT: the route's end, nearer than MRPT's robot
+         * shape's radius + 0.1 m yet not within its allowed distance, is
+         * driven to straight at this speed (fresh scans checked as
+         * plan_follow_margin says); MRPT's next step marks it reached.
+         * MRPT 2.5.8 maps a target inside its shape to no motion and stands
+         * (0.15-0.3 m off an end 0.15 m asked, for minutes). 0 = off. */
+        double final_approach_speed = 0.1;
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                 const std::string& section) override;
@@ -148,6 +172,7 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     struct TCurrentTarget {
         mrpt::math::TPoint2D point;
         double allowedDistance = 0;
+        bool last = true;  ///< the route's end (no waypoint after it)
     };
     std::optional<TCurrentTarget> currentTarget() const;
     /** MRPT's, and the request is known as a target before MRPT's first
@@ -218,6 +243,37 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     std::shared_ptr<CGlobalPlanner> m_planner;
     std::optional<TGlobalPlan> m_planFailure;
     double m_planBest = 0;  ///< [m] the least way left along the plan so far
+    /** [m] the least way left along the plans to this target, and when the
+     * robot last got 0.1 m further (plan_follow_after; a replan does not
+     * count as headway). */
+    double m_headBest = 0;
+    double m_headwayAt = 0;
+    /** While the robot follows the plan itself: since when, the pose of
+     * the last cycle and the distance driven since. */
+    struct TFollowing {
+        double since = 0;
+        mrpt::math::TPose2D last;
+        double driven = 0;
+        size_t plans = 0;  ///< the planner's replans when it began
+    };
+    std::optional<TFollowing> m_following;
+    /** plan_follow_after: follows the plan this cycle (true: commanded). */
+    bool followPlan(const mrpt::math::TPose2D& pose);
+    /** final_approach_speed: drives to the route's end this cycle (true:
+     * commanded). */
+    bool finalApproach(const mrpt::math::TPose2D& pose,
+                       const mrpt::math::TPoint2D& target, double allowed);
+    /** Sends the navigator's own command (not MRPT's) and records it as
+     * the cycle's limit, `limiter` and `reason`. */
+    void sendOwnCommand(const TFollowCommand& cmd, const char* limiter,
+                        const std::string& reason);
+    /** [m] MRPT's robot shape as a disc of its farthest vertex (or its
+     * circular radius). */
+    double shapeRadius() const;
+    /** Fresh obstacle points from the robot (robot frame), also given to
+     * the global planner; MRPT does not sense while the navigator drives. */
+    std::vector<mrpt::math::TPoint2D> senseNow(const mrpt::math::TPose2D& pose,
+                                               double now);
     /** The planner's cycle: replan for `pose` going to `target`. False: no
      * way (the navigation was stopped). */
     bool updatePlanner(const mrpt::math::TPose2D& pose,

@@ -20,8 +20,14 @@ struct TNavigateOptions : public common::CValidatedOptions {
     std::string risk_config;          ///< risknav-risk-eval config
     std::string risk_route = "best";  ///< best | worst | a route name
     double goal_tolerance = 0.3;      ///< [m] allowed distance to each waypoint
-    std::string mode = "once";        ///< once | back_and_forth | loop
-    int laps = 1;                     ///< passes of the route (mode != once)
+    /** [m] MRPT's engine is asked to come within min(this, the last
+     * waypoint's allowed distance) of the route's end on the believed pose;
+     * the run is judged on the true pose against the allowed distance. Below
+     * the tolerance so that a belief off by up to the difference (MCL: a few
+     * cm) still ends truly within it, as risknav-explore's arrival_radius. */
+    double arrival_radius = 0.15;
+    std::string mode = "once";                  ///< once | back_and_forth | loop
+    int laps = 1;                               ///< passes of the route (mode != once)
     std::string localization = "ground_truth";  ///< ground_truth | odometry | mcl
     /** localization = odometry: sigmas x [m], y [m], heading (radians in code)
      * of the belief's error at the start, drawn once per seed (0 0 0 = the
