@@ -341,3 +341,46 @@ TEST(CGlobalPlanner, ANewRunForgetsTheLastRunsSensedObstacles) {
     ASSERT_TRUE(p.current().found);
     EXPECT_LT(p.current().length, 11.0);  // the lower corridor again
 }
+
+TEST(CGlobalPlanner, ABuiltMapKeepsWhatItSensedUntilABeamPassesThrough) {
+    // map = built: the planner is given the extent only (every cell free);
+    // a wall the laser senses across the straight way closes it for good
+    // (not only obstacle_memory seconds), until a later beam passes through
+    const auto blank = makeMap(12, 8, {});
+    nav::CGlobalPlanner p;
+    p.options.margin = 0;
+    p.options.map = "built";
+    p.options.obstacle_memory = 5;
+    p.setMap(blank, mapping::TObstacleRule{}, 0.35);
+    const TPoint2D goal(10, 4);
+    EXPECT_LT(p.plan({2, 4}, goal, true).length, 8.0 + 0.1);  // straight
+    // a 4 m wall at x = 6 (y 2-6), seen from (2, 4): robot frame points
+    std::vector<TPoint2D> wall;
+    for (double y = 2.0; y <= 6.0; y += 0.05)
+        wall.emplace_back(6.0 - 2.0, y - 4.0);
+    p.addSensed(TPose2D(2, 4, 0), wall, 1.0);
+    // an hour later, nothing else sensed: still round the wall
+    p.addSensed(TPose2D(2, 4, 0), {}, 3600.0);
+    const auto round = p.plan({2, 4}, goal, true);
+    ASSERT_TRUE(round.found) << round.reason;
+    EXPECT_GT(round.length, 8.0 + 0.5);
+    double far = 0;
+    for (const auto& q : round.points)
+        far = std::max(far, std::abs(q.y - 4.0));
+    EXPECT_GT(far, 2.0 + 0.35 - 0.05);  // past the wall's end with the disc
+    // the wall moved away: beams from (2, 4) end on the far border
+    std::vector<TPoint2D> through;
+    for (double y = 2.0; y <= 6.0; y += 0.025)
+        through.emplace_back(11.95 - 2.0, y - 4.0);
+    p.addSensed(TPose2D(2, 4, 0), through, 3601.0);
+    EXPECT_LT(p.plan({2, 4}, goal, true).length, 8.0 + 0.1);
+    // with map = known the same wall is forgotten after obstacle_memory
+    nav::CGlobalPlanner k;
+    k.options.margin = 0;
+    k.options.obstacle_memory = 5;
+    k.setMap(blank, mapping::TObstacleRule{}, 0.35);
+    k.addSensed(TPose2D(2, 4, 0), wall, 1.0);
+    EXPECT_GT(k.plan({2, 4}, goal, true).length, 8.0 + 0.5);
+    k.addSensed(TPose2D(2, 4, 0), {}, 10.0);
+    EXPECT_LT(k.plan({2, 4}, goal, true).length, 8.0 + 0.1);
+}
