@@ -132,6 +132,7 @@ void CGlobalPlanner::resetFollowing() {
     m_target.reset();
     m_lastPose.reset();
     m_plan = TGlobalPlan{};
+    m_planSlack = 0;
     m_events.clear();
     m_choices.clear();
     m_lastBlockedReplan = -1e18;
@@ -219,7 +220,7 @@ void CGlobalPlanner::sensedClearance(const TLevel& L, std::vector<float>& out) c
     if (live == 0)
         return;
     auto take = [&](int x, int y, double d) {
-        const double e = std::max(0.0, d - 0.5 * fres);
+        const double e = std::max(0.0, d - 0.5 * fres) + m_sensedSlack;
         if (e > reachM)
             return;
         float& o = out[L.cost.index(x / k, y / k)];
@@ -473,7 +474,7 @@ bool CGlobalPlanner::blockedAhead(const TPose2D& pose, double now) const {
         // second); one the way crosses is not (map = built: the face of a
         // wall first seen from close by, the plan through it).
         const bool near = std::hypot(pts[k].x - pose.x, pts[k].y - pose.y) < m_disc + 0.2;
-        const double within = near ? 1.5 * res : m_disc;
+        const double within = near ? 1.5 * res : m_disc - m_planSlack;
         const int r = near ? 2 : reach;
         const int cx = m_field.x2idx(pts[k].x), cy = m_field.y2idx(pts[k].y);
         for (int dy = -r; dy <= r; dy++)
@@ -528,6 +529,7 @@ std::optional<TReplanEvent> CGlobalPlanner::update(const TPose2D& pose,
         if (cands[0].found)
             choice = routeChooser(cands);
         m_plan = std::move(cands[std::min(choice.chosen, cands.size() - 1)]);
+        m_planSlack = 0;
         ev.length = m_plan.found ? m_plan.length : 0.0;
         m_progress = 0;
         m_target = target;
@@ -536,16 +538,31 @@ std::optional<TReplanEvent> CGlobalPlanner::update(const TPose2D& pose,
         return ev;
     }
     TGlobalPlan p = plan(from, target, true);
+    double slack = 0;
     if (!p.found && !m_seenCells.empty()) {
+        // the disc off the sensed points closes every way: within a cell of
+        // them (their range noise; the engine keeps the robot's own shape
+        // off what it senses)
+        m_sensedSlack = slack = m_fine.cost.resolution;
+        TGlobalPlan q = plan(from, target, true);
+        m_sensedSlack = 0;
+        q.ms += p.ms;
+        p = std::move(q);
+    }
+    if (!p.found && !m_seenCells.empty() && !m_keepSeen) {
         // the sensed obstacles close every way: the map's way, round which
-        // the engine avoids what it senses (people move on)
+        // the engine avoids what it senses (people move on). Not on a built
+        // map, whose sensed obstacles are all it knows of the world.
         TGlobalPlan q = plan(from, target, false);
         q.ms += p.ms;
-        if (q.found || why == "new_target")
+        if (q.found || why == "new_target") {
             p = std::move(q);
+            slack = 0;
+        }
     }
     TReplanEvent ev{now, why, pose.x, pose.y, p.found ? p.length : 0.0, p.ms};
     if (why == "new_target" || p.found) {
+        m_planSlack = slack;
         m_plan = std::move(p);
         m_progress = 0;
         m_target = target;

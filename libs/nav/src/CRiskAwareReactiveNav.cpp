@@ -1157,19 +1157,19 @@ bool CRiskAwareReactiveNav::followPlan(const mrpt::math::TPose2D& pose) {
         return false;
     const double now = mrpt::Clock::toDouble(mrpt::Clock::now());
     const double left = m_planner->remainingLength(pose);
-    const size_t plans = m_planner->replans().size();
     if (!m_following) {
         // the end is MRPT's (it marks the waypoint reached, stops on it)
         if (now - m_headwayAt < o.plan_follow_after || left < 2 * o.plan_follow_distance)
             return false;
-        m_following = TFollowing{now, pose, 0.0, plans};
+        m_following = TFollowing{now, pose, 0.0};
     } else {
         auto& f = *m_following;
         f.driven += std::hypot(pose.x - f.last.x, pose.y - f.last.y);
         f.last = pose;
-        if (f.driven >= o.plan_follow_distance || plans != f.plans ||
-            left < o.plan_follow_distance) {
-            m_following.reset();  // far enough, or a new plan: MRPT steers again
+        // a replan does not end it: the follower takes the current plan
+        // each cycle (on a built map the sensed walls replan it often)
+        if (f.driven >= o.plan_follow_distance || left < o.plan_follow_distance) {
+            m_following.reset();  // far enough: MRPT steers again
             m_headBest = left, m_headwayAt = now;
             return false;
         }

@@ -190,6 +190,12 @@ class CGlobalPlanner {
      * (the least over a coarse cell's own cells, as its clearEdge), +inf
      * where that is beyond disc + clearance_soft (no cost). */
     void sensedClearance(const TLevel& L, std::vector<float>& out) const;
+    /** [m] added to every sensed clearance while planning: 0, or one cell
+     * when no way keeps the whole disc off the sensed points (a laser's
+     * range noise puts a surface's points up to a cell in front of it, so
+     * a gap the disc fits by centimetres senses a cell narrower). */
+    mutable double m_sensedSlack = 0;
+    double m_planSlack = 0;  ///< the slack the current plan was made with
     mutable std::vector<float> m_sensedEdge;
     mutable std::vector<uint8_t> m_sensedMask;
     mutable std::vector<int32_t> m_sensedD2;

@@ -75,8 +75,8 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
          * stands at ~1e-4 m/s, dithering a few degrees, in a gap its shape
          * fits by a few cm) follows the plan itself (planFollowCommand(),
          * pure pursuit, fresh scans checked) at up to plan_follow_speed
-         * until it has driven plan_follow_distance or the plan changes,
-         * then MRPT steers again (0 = off). Blocked, it hands back at once;
+         * until it has driven plan_follow_distance (along whichever plan is
+         * current), then MRPT steers again (0 = off). Blocked, it hands back at once;
          * within 2 plan_follow_distance of the target it never takes over
          * (the end, and the waypoint's "reached", are MRPT's). */
         double plan_follow_after = 8;
@@ -254,7 +254,6 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
         double since = 0;
         mrpt::math::TPose2D last;
         double driven = 0;
-        size_t plans = 0;  ///< the planner's replans when it began
     };
     std::optional<TFollowing> m_following;
     /** plan_follow_after: follows the plan this cycle (true: commanded). */
