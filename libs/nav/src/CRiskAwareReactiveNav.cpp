@@ -959,7 +959,7 @@ void CRiskAwareReactiveNav::navigationStep() {
             !reachedByMrpt(pose)) {
             if (m_planner && !updatePlanner(pose, *target))
                 return;  // no way: stopped
-            if (m_planner && followPlan(pose))
+            if (m_planner && followPlan(pose, targetAllowed, lastTarget))
                 return;  // the robot follows the plan itself this cycle
             if (lastTarget && finalApproach(pose, *target, targetAllowed))
                 return;  // the end, inside MRPT's shape: driven to
@@ -1151,15 +1151,20 @@ bool CRiskAwareReactiveNav::updatePlanner(const mrpt::math::TPose2D& pose,
     return true;
 }
 
-bool CRiskAwareReactiveNav::followPlan(const mrpt::math::TPose2D& pose) {
+bool CRiskAwareReactiveNav::followPlan(const mrpt::math::TPose2D& pose, double allowed,
+                                       bool lastTarget) {
     const auto& o = riskOptions;
     if (!(o.plan_follow_after > 0))
         return false;
     const double now = mrpt::Clock::toDouble(mrpt::Clock::now());
     const double left = m_planner->remainingLength(pose);
+    // the target's own zone: within its allowed distance MRPT marks it
+    // reached; the route's end within MRPT's shape is finalApproach()'s
+    const double endZone = lastTarget && o.final_approach_speed > 0
+                               ? std::max(allowed, shapeRadius() + 0.1)
+                               : allowed;
     if (!m_following) {
-        // the end is MRPT's (it marks the waypoint reached, stops on it)
-        if (now - m_headwayAt < o.plan_follow_after || left < 2 * o.plan_follow_distance)
+        if (now - m_headwayAt < o.plan_follow_after || left <= endZone)
             return false;
         m_following = TFollowing{now, pose, 0.0};
     } else {
@@ -1168,7 +1173,7 @@ bool CRiskAwareReactiveNav::followPlan(const mrpt::math::TPose2D& pose) {
         f.last = pose;
         // a replan does not end it: the follower takes the current plan
         // each cycle (on a built map the sensed walls replan it often)
-        if (f.driven >= o.plan_follow_distance || left < o.plan_follow_distance) {
+        if (f.driven >= o.plan_follow_distance || left <= endZone) {
             m_following.reset();  // far enough: MRPT steers again
             m_headBest = left, m_headwayAt = now;
             return false;

@@ -76,9 +76,9 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
          * fits by a few cm) follows the plan itself (planFollowCommand(),
          * pure pursuit, fresh scans checked) at up to plan_follow_speed
          * until it has driven plan_follow_distance (along whichever plan is
-         * current), then MRPT steers again (0 = off). Blocked, it hands back at once;
-         * within 2 plan_follow_distance of the target it never takes over
-         * (the end, and the waypoint's "reached", are MRPT's). */
+         * current), then MRPT steers again (0 = off). Blocked, it hands back at once.
+         * It stops short of the target's allowed distance (MRPT marks it
+         * reached), of the route's end at final_approach_speed's reach. */
         double plan_follow_after = 8;
         double plan_follow_speed = 0.2;     ///< [m/s] see plan_follow_after
         double plan_follow_distance = 1.0;  ///< [m] see plan_follow_after
@@ -257,7 +257,7 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     };
     std::optional<TFollowing> m_following;
     /** plan_follow_after: follows the plan this cycle (true: commanded). */
-    bool followPlan(const mrpt::math::TPose2D& pose);
+    bool followPlan(const mrpt::math::TPose2D& pose, double allowed, bool lastTarget);
     /** final_approach_speed: drives to the route's end this cycle (true:
      * commanded). */
     bool finalApproach(const mrpt::math::TPose2D& pose,
