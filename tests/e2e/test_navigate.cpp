@@ -1247,6 +1247,30 @@ TEST(NavigateE2E, WhereMrptStallsThePlanItselfIsFollowed) {
     EXPECT_FALSE(off["time_per_limiter_s"].contains("plan_follow"));
 }
 
+TEST(NavigateE2E, M1PlansOnTheMapItBuildsAndStillGetsThere) {
+    // M1 (the adaptive limiter, datasets/office/navigate_m1.ini) with the
+    // grid planner on the map it builds: the first plan knows no wall, the
+    // straight 12.5 m into the lower-right room; the walls sensed on the
+    // way replan it, and the goal is reached. Given the known map, the first
+    // plan goes round the walls (~22 m).
+    const std::string cfg = sourcePath("datasets/office/navigate_m1.ini");
+    const std::string run =
+        " --seed 1 --set Navigate.global_planner=grid"
+        " --set 'Navigate.goals=15.0 2.5' --set Navigate.duration_max=150";
+    const json built =
+        navRun(cfg, freshDir("built"), run + " --set GlobalPlanner.map=built");
+    EXPECT_EQ(built["status"], "goal_reached") << built["navigation_error"];
+    EXPECT_EQ(built["collisions"], 0);
+    EXPECT_LE(built["goal_true_distance_m"].get<double>(), 0.3 + 0.03);
+    const double straight = std::hypot(15.0 - 2.5, 2.5 - 3.2);
+    EXPECT_LT(built["plan"]["first_length_m"].get<double>(), straight + 0.5);
+    ASSERT_TRUE(built["plan"]["replans"].contains("blocked"));
+    EXPECT_GE(built["plan"]["replans"]["blocked"].get<int>(), 1);
+    const json known = navRun(cfg, freshDir("known"), run);
+    EXPECT_EQ(known["status"], "goal_reached") << known["navigation_error"];
+    EXPECT_GT(known["plan"]["first_length_m"].get<double>(), straight + 5.0);
+}
+
 TEST(NavigateE2E, AWaypointBesideTheRobotIsTurnedToFirst) {
     // 0.5 m to the side, 66 deg off the heading: MRPT's forward PTGs from a
     // standstill found no motion to it (5 failed cycles, exit 2); turned to
