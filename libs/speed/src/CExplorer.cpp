@@ -117,9 +117,31 @@ CAdaptiveSpeedPipeline::TParams CExplorer::pipelineParams() const {
     p.robotRadius = world.robot.radius;
     p.localMapSize = explore.local_map_size;
     p.localMapResolution = explore.local_map_resolution;
-    p.memorySize = explore.memory_size;
+    p.memorySize = memorySize();
     p.memoryResolution = explore.memory_resolution;
     return p;
+}
+
+double exploreMemorySize(double configured, double resolution, double localMapSize,
+                         const mrpt::math::TPoint2D& start,
+                         const std::vector<double>& destinations, int maxCells) {
+    if (!(configured > 0))
+        return 0;
+    double farthest = 0;
+    for (size_t k = 0; k + 1 < destinations.size(); k += 2)
+        farthest = std::max(farthest, std::hypot(destinations[k] - start.x,
+                                                 destinations[k + 1] - start.y));
+    const double needed = 2 * (farthest + localMapSize);
+    // one cell short of the cap: (cells x resolution) / resolution may round up
+    return std::max(configured, std::min(needed, (maxCells - 1) * resolution));
+}
+
+double CExplorer::memorySize() const {
+    if (explore.start.size() < 2)
+        return explore.memory_size;
+    return exploreMemorySize(explore.memory_size, explore.memory_resolution,
+                             explore.local_map_size, {explore.start[0], explore.start[1]},
+                             explore.destinations);
 }
 
 int CExplorer::necessaryObservations() const {

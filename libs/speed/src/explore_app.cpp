@@ -311,6 +311,8 @@ void runExploreApp(const TAppContext& ctx) {
     summary["speeds"] = ex.speed.speeds;
     summary["margins"] = ex.speed.margins;
     summary["ego_motion"] = ex.explore.ego_motion;
+    // the memory's side as used: memory_size grown to hold the destinations
+    summary["memory_size_m"] = ex.memorySize();
     json modesJ = json::array();
     for (const auto& r : runs)
         modesJ.push_back(modeSummary(r, ex.speed));

@@ -905,3 +905,55 @@ TEST(ExploreArrival, ADestinationByAWallCountsAtTheNearestPointTheRobotMayCome) 
     // a negative nearest distance is none
     EXPECT_DOUBLE_EQ(judgeArrival(dest, TPose2D(), TPose2D(), 0.3, -1).allowed, 0.3);
 }
+
+// A memory smaller than the run (risknav-explore's 50 m on maps of 50-150 m)
+// ends between the robot and its destination: where the local map reaches
+// its edge, the border cells are closed (the local map's free cells, or
+// grown by the radius from a wall), the way on across the edge costs +inf,
+// and the robot took a side room instead (and back, as the local map
+// changed) until the not-approaching alarm gave the destination up.
+TEST(ExploreMemory, CoversEveryDestinationSoTheWayOnAtItsEdgeStaysOpen) {
+    // the configured side grows to hold every destination with a local map
+    // to spare; 0 (no memory) stays 0; a larger one is kept
+    EXPECT_DOUBLE_EQ(exploreMemorySize(50, 0.25, 10, {0, 0}, {40, 0, -5, 3}), 100);
+    EXPECT_DOUBLE_EQ(exploreMemorySize(0, 0.25, 10, {0, 0}, {40, 0}), 0);
+    EXPECT_DOUBLE_EQ(exploreMemorySize(300, 0.25, 10, {0, 0}, {40, 0}), 300);
+    EXPECT_DOUBLE_EQ(exploreMemorySize(50, 0.25, 10, {0, 0}, {4000, 0}), 4095 * 0.25);
+    CExplorer ex;
+    ex.explore.start = {1.0, 2.0, 0.0};
+    ex.explore.destinations = {41.0, 2.0};
+    ex.explore.memory_size = 50;
+    EXPECT_DOUBLE_EQ(ex.pipelineParams().memorySize, 100);
+
+    // the local map: a corridor 1.2 m wide along y = 0 from the robot at
+    // x = 20 east to the map's edge at x = 25, and a side room to the north,
+    // open to the unknown; the goal lies 20 m further east
+    auto local = risknav::test::localMap(20, 0, 10.0, TFusedCell::Obstacle);
+    fillRect(local, 15.0, -0.6, 25.0, 0.6, TFusedCell::Free);
+    fillRect(local, 19.0, 0.4, 21.0, 3.0, TFusedCell::Free);
+    fillRect(local, 19.0, 3.0, 21.0, 5.0, TFusedCell::Undecided);
+    const auto f = computePlanningField(local, 0.25);
+    const CAdaptiveSpeedController c(TSpeedControlOptions{}, 0.25, 5);
+    const TPoint2D goal(45.0, 0.0);
+    auto choose = [&](double memorySide) {
+        risknav::mapping::CFreeSpaceMemory mem(memorySide, 0.25, 0.0, 0.0);
+        mem.update(local);
+        mem.computeCostToGoal(goal, 2.0, f.map, 0.25);
+        TTargetHints hints;
+        hints.goalCost = [&](double x, double y) { return mem.costToGoal(x, y, 0.45); };
+        TPoint2D target;
+        bool temporary = false;
+        EXPECT_TRUE(c.chooseTarget(f, {20, 0}, goal, target, temporary, hints));
+        EXPECT_TRUE(temporary);
+        return target;
+    };
+    // a memory that ends at x = 25, with the local map: its border cells
+    // are the local map's free ones (the local planner's part) or grown
+    // by the radius from the walls beside them, so the way east is closed
+    const TPoint2D small = choose(50);
+    EXPECT_GT(small.y, 2.0) << small.x << " " << small.y;
+    // one that holds the goal: east, along the corridor
+    const TPoint2D sized = choose(exploreMemorySize(50, 0.25, 10, {0, 0}, {45, 0}));
+    EXPECT_GT(sized.x, 24.0) << sized.x << " " << sized.y;
+    EXPECT_LT(std::abs(sized.y), 0.3);
+}

@@ -125,6 +125,22 @@ struct TModeResult {
     bool allReached() const;
 };
 
+/** [m] The side of a memory centred on `start` that holds every destination
+ * (x y pairs) with a local map of side `localMapSize` around it on every
+ * side: max(configured, 2 (farthest destination + localMapSize)), at most
+ * (maxCells - 1) x resolution; 0 stays 0 (no memory). Beyond the paper: a
+ * memory that ends between the robot and its destination ranks the ways on
+ * beyond its edge by the straight line from its border cells
+ * (CFreeSpaceMemory::computeCostToGoal), and where the local map reaches
+ * that edge those cells are the local map's free ones (left to the local
+ * planner) or grown by the radius from the walls beside them: the way on
+ * across the edge costs +inf. On maps larger than the 50 m memory the robot
+ * swung between that way and a side room, or along a wall, until the
+ * not-approaching alarm gave a reachable destination up. */
+double exploreMemorySize(double configured, double resolution, double localMapSize,
+                         const mrpt::math::TPoint2D& start,
+                         const std::vector<double>& destinations, int maxCells = 4096);
+
 /** risknav-explore's loop (Miura et al. 2006, section 5, Fig. 13): a robot
  * that does not know the world visits destinations; each cycle of T it
  * senses (laser + RANGE2), moves its two local grids by the ego-motion,
@@ -164,8 +180,14 @@ class CExplorer {
                         const std::function<void(double)>& progress = nullptr);
 
     /** The per-cycle pipeline's parameters from these options (the same
-     * pipeline nav::CAdaptiveSpeedLimiter runs inside MRPT's engine). */
+     * pipeline nav::CAdaptiveSpeedLimiter runs inside MRPT's engine); the
+     * memory's side is memorySize(). */
     CAdaptiveSpeedPipeline::TParams pipelineParams() const;
+
+    /** [m] The side of the memory the runs use (beyond the paper): [Explore]
+     * memory_size, grown to exploreMemorySize() of the start and the
+     * destinations; 0 when memory_size is 0 (no memory). */
+    double memorySize() const;
 
   private:
     /** The pose the robot moves its maps by and steers with (the ego frame):

@@ -21,8 +21,10 @@ struct TExploreOptions : public common::CValidatedOptions {
     double local_map_size = 10.0;        ///< [m] side of the robot-centred grids
     double local_map_resolution = 0.05;  ///< [m]
     /** [m] side of the coarse memory (CFreeSpaceMemory) that ranks the ways
-     * on to a destination beyond the local map; 0 = none (the paper's
-     * straight line). Beyond the paper. */
+     * on to a destination beyond the local map, at least: the runs grow it
+     * to hold every destination with a local map to spare
+     * (exploreMemorySize()); 0 = none (the paper's straight line). Beyond
+     * the paper. */
     double memory_size = 50.0;
     double memory_resolution = 0.25;  ///< [m]
     double sim_dt = 0.05;             ///< [s] physics step inside a cycle
