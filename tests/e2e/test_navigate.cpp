@@ -1307,6 +1307,21 @@ TEST(NavigateE2E, NoWayIsAnOutcomeWithItsReasonNotBadInput) {
     EXPECT_EQ(open["status"], "goal_reached") << open["navigation_error"];
 }
 
+TEST(NavigateE2E, AGoalNearerAWallThanTheDiscIsReachedWithinItsTolerance) {
+    // the goal 0.15 m from the right wall, MRPT's disc 0.25 m: the robot's
+    // centre cannot come within arrival_radius (0.15 m) of it (it stood
+    // 0.21 m off until the timeout); it is asked within what the disc
+    // allows (+ 0.1 m), still inside goal_tolerance, and reached
+    const std::string d = freshDir("w");
+    const json s =
+        navRun(twoRoomsConfig(d, 1.2, "grid"), freshDir("out"),
+               "--set 'Navigate.goals=4.75 1.5' --set Navigate.duration_max=90");
+    EXPECT_EQ(s["status"], "goal_reached") << s["navigation_error"];
+    EXPECT_EQ(s["collisions"], 0);
+    EXPECT_LE(s["goal_true_distance_m"].get<double>(), 0.3 + 0.03);
+    EXPECT_LT(s["time_s"].get<double>(), 60.0);
+}
+
 TEST(NavigateE2E, RiskPlannerChoosesTheLowestUWayOfDistinctClasses) {
     // The two-routes world from the start room to the goal room: the 3 m hall
     // (route A) and the 1.2 m corridor (route B, shorter). M2 as the route

@@ -751,9 +751,19 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
     // allowed distance (see TNavigateOptions::arrival_radius)
     const double goalAllowed =
         wps.waypoints.empty() ? 0.0 : wps.waypoints.back().allowed_distance;
-    if (!wps.waypoints.empty())
-        wps.waypoints.back().allowed_distance =
-            std::min(goalAllowed, options.arrival_radius);
+    if (!wps.waypoints.empty()) {
+        // a goal nearer an obstacle than MRPT's disc: its centre stops
+        // disc - clearance short of it at best; asked within that + 0.1 m
+        // (still at most the goal's own allowed distance), not within
+        // arrival_radius it cannot come to
+        auto& end = wps.waypoints.back();
+        const double disc = world.robot.radius + options.shape_margin;
+        const double clear =
+            world.distanceField().pointClearance(end.target.x, end.target.y, disc + 0.2);
+        const double shortOf = std::max(0.0, disc - clear);
+        end.allowed_distance =
+            std::min(goalAllowed, std::max(options.arrival_radius, shortOf + 0.1));
+    }
     r.waypointCount = int(wps.waypoints.size());
     const size_t lapLen = waypoints.waypoints.size();
     auto tagOf = [&](int i) -> const TWaypointTag* {

@@ -24,7 +24,9 @@ struct TNavigateOptions : public common::CValidatedOptions {
      * waypoint's allowed distance) of the route's end on the believed pose;
      * the run is judged on the true pose against the allowed distance. Below
      * the tolerance so that a belief off by up to the difference (MCL: a few
-     * cm) still ends truly within it, as risknav-explore's arrival_radius. */
+     * cm) still ends truly within it, as risknav-explore's arrival_radius.
+     * A goal nearer an obstacle than MRPT's disc is asked within the
+     * nearest the disc lets the centre come (+ 0.1 m) instead. */
     double arrival_radius = 0.15;
     std::string mode = "once";                  ///< once | back_and_forth | loop
     int laps = 1;                               ///< passes of the route (mode != once)
