@@ -146,6 +146,8 @@ std::pair<uint64_t, uint64_t> setSizeCells(float x0, float x1, float y0, float y
 struct TImageHeader {
     std::string format;  ///< empty: not a format risknav reads
     uint64_t width = 0, height = 0;
+    /** PGM/PPM: the header's maximum value (white), 0 elsewhere. */
+    uint64_t maxval = 0;
 };
 
 /** Reads the header of a PNG, BMP, PBM/PGM/PPM, JPEG or TIFF file (the
@@ -180,9 +182,11 @@ TImageHeader imageHeader(const std::string& file) {
     } else if (n >= 2 && h[0] == 'P' && h[1] >= '1' && h[1] <= '6') {
         // "P5 <w> <h> ...", comments (#...) between the fields
         r.format = "PNM";
+        // P1 / P4 (bitmaps) have no maximum value
+        const size_t fields = h[1] == '1' || h[1] == '4' ? 2 : 3;
         std::vector<uint64_t> v;
         size_t i = 2;
-        while (v.size() < 2 && i < n) {
+        while (v.size() < fields && i < n) {
             if (h[i] == '#') {
                 while (i < n && h[i] != '\n')
                     i++;
@@ -199,8 +203,10 @@ TImageHeader imageHeader(const std::string& file) {
             }
             i++;
         }
-        if (v.size() == 2)
+        if (v.size() >= 2)
             r.width = v[0], r.height = v[1];
+        if (v.size() == 3)
+            r.maxval = v[2];
     } else if (n >= 4 && uint8_t(h[0]) == 0xFF && uint8_t(h[1]) == 0xD8 &&
                uint8_t(h[2]) == 0xFF) {
         // JPEG: walk the segments to the first start-of-frame (SOFn)
@@ -315,11 +321,16 @@ COccupancyGridMap2D fromImage(const std::string& file, double res, double ox, do
     // Cell centres: the grid spans exactly the image (cols*res by rows*res).
     g.setSize(x0, x1, y0, y1, static_cast<float>(res), 0.5f);
     const int nx = static_cast<int>(g.getSizeX()), ny = static_cast<int>(g.getSizeY());
+    // a PGM's white is its header's maximum value; OpenCV keeps an 8-bit
+    // one's samples as they are (a map saved with maximum 100 read as grey)
+    const double white = hd.format == "PNM" && hd.maxval > 0 && hd.maxval < 255
+                             ? double(hd.maxval)
+                             : 255.0;
     for (int cy = 0; cy < ny; cy++) {
         const int row = img.rows - 1 - std::min(cy, img.rows - 1);  // image row 0 = top
         const uint8_t* p = img.ptr<uint8_t>(row);
         for (int cx = 0; cx < nx; cx++) {
-            const double grey = p[std::min(cx, img.cols - 1)] / 255.0;
+            const double grey = std::min(1.0, p[std::min(cx, img.cols - 1)] / white);
             double pfree = grey;
             if (model != TPixelModel::FreeIsWhite) {
                 const double occ = ros.negate ? grey : 1.0 - grey;

@@ -307,6 +307,30 @@ TEST(MapReaders, ImageSizesAreReadFromEveryHeaderBeforeDecoding) {
     }
 }
 
+// A PGM's white is its header's maximum value (the format's definition, and
+// how Nav2's map_server reads it): a map saved with maximum 100 is the same
+// map as one saved with 255, its 50 the middle grey.
+TEST(MapReaders, PgmSamplesAreScaledByTheHeadersMaximum) {
+    const std::string d = freshDir("maxval");
+    for (const int maxval : {255, 100, 1}) {
+        // 4 x 2 px: top row white, black, white, black; bottom row grey
+        const int grey = maxval / 2;
+        std::string px;
+        for (const int v : {maxval, 0, maxval, 0, grey, grey, grey, grey})
+            px += char(v);
+        const std::string f = d + "/m" + std::to_string(maxval) + ".pgm";
+        writeFile(f, "P5\n4 2\n" + std::to_string(maxval) + "\n" + px);
+        TMapSourceOptions s;
+        s.map_file = f;
+        const auto g = loadOccupancyGrid(s);
+        ASSERT_EQ(g.getSizeX(), 4u);
+        // MRPT's cells hold p(free): white free, black occupied (row y 1 = top)
+        EXPECT_GT(g.getCell(0, 1), 0.99f) << maxval;
+        EXPECT_LT(g.getCell(1, 1), 0.01f) << maxval;
+        EXPECT_NEAR(g.getCell(0, 0), double(grey) / maxval, 0.02) << maxval;
+    }
+}
+
 // ROS map YAML parsed as YAML: a key given twice, an origin that is not three
 // numbers, are refused naming the file, line and key; a '#' inside a plain
 // scalar is part of it.
