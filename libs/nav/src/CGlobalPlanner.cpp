@@ -435,6 +435,31 @@ void CGlobalPlanner::addSensed(const TPose2D& pose, const std::vector<TPoint2D>&
                       m_seenCells.end());
 }
 
+std::vector<TPoint2D> CGlobalPlanner::sensedNear(const TPose2D& pose,
+                                                 double reach) const {
+    std::vector<TPoint2D> out;
+    if (!hasMap() || m_seenCells.empty())
+        return out;
+    const double res = m_fine.cost.resolution;
+    const int r = int(std::ceil(reach / res));
+    const int cx = m_field.x2idx(pose.x), cy = m_field.y2idx(pose.y);
+    const double c = std::cos(pose.phi), s = std::sin(pose.phi);
+    for (int y = cy - r; y <= cy + r; y++)
+        for (int x = cx - r; x <= cx + r; x++) {
+            if (!m_fine.cost.inside(x, y) || !liveSeen(m_fine.cost.index(x, y), m_now))
+                continue;
+            double dx = m_field.idx2x(x) - pose.x, dy = m_field.idx2y(y) - pose.y;
+            const double d = std::hypot(dx, dy);
+            if (d > reach)
+                continue;
+            // the cell's surface may stand half a cell nearer than its centre
+            const double f = d > 0.5 * res ? (d - 0.5 * res) / d : 0.0;
+            dx *= f, dy *= f;
+            out.emplace_back(c * dx + s * dy, -s * dx + c * dy);
+        }
+    return out;
+}
+
 size_t CGlobalPlanner::nearestIndex(const TPose2D& pose) const {
     // searched from the progress made on, over the next ~5 m of the plan (a
     // plan that turns round a thin wall passes near itself: the global

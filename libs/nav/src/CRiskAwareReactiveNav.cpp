@@ -1179,7 +1179,11 @@ bool CRiskAwareReactiveNav::followPlan(const mrpt::math::TPose2D& pose, double a
             return false;
         }
     }
-    const auto pts = senseNow(pose, now);
+    auto pts = senseNow(pose, now);
+    // and what it sensed before beside and behind it (its laser looks
+    // ahead; an arc swings the shape's side round a post seen earlier)
+    const auto before = m_planner->sensedNear(pose, shapeRadius() + 0.5);
+    pts.insert(pts.end(), before.begin(), before.end());
     // the plan from the robot's nearest point on
     const auto& plan = m_planner->current().points;
     size_t k0 = 0;
@@ -1191,7 +1195,7 @@ bool CRiskAwareReactiveNav::followPlan(const mrpt::math::TPose2D& pose, double a
     const double wMax = o.turn_rate_deg * M_PI / 180;
     const auto cmd =
         planFollowCommand(pose, ahead, pts, shapeRadius() - o.plan_follow_margin,
-                          o.plan_follow_speed, wMax);
+                          o.plan_follow_speed, wMax, 0.5, 1.0, bodyFloor());
     if (cmd.blocked) {
         // the follower cannot either: MRPT (and its unstick turns) again,
         // and another try after plan_follow_after
@@ -1219,6 +1223,11 @@ void CRiskAwareReactiveNav::sendOwnCommand(const TFollowCommand& cmd, const char
     m_last.limiter = limiter;
     m_last.desired = m_last.limit = cmd.v;
     m_last.reason = reason;
+}
+
+double CRiskAwareReactiveNav::bodyFloor() const {
+    // [Robot] radius and 2 cm: the laser's range noise (1 cm) and more
+    return std::min(robot.radius + 0.02, shapeRadius() - riskOptions.plan_follow_margin);
 }
 
 double CRiskAwareReactiveNav::shapeRadius() const {
@@ -1256,15 +1265,19 @@ bool CRiskAwareReactiveNav::finalApproach(const mrpt::math::TPose2D& pose,
     if (!(o.final_approach_speed > 0) || d <= allowed || d > shape + 0.1)
         return false;  // MRPT's (within allowed: its step marks it reached)
     const double now = mrpt::Clock::toDouble(mrpt::Clock::now());
-    const auto pts = senseNow(pose, now);
+    auto pts = senseNow(pose, now);
+    if (m_planner) {  // and what it sensed before beside it (followPlan())
+        const auto before = m_planner->sensedNear(pose, shape + 0.5);
+        pts.insert(pts.end(), before.begin(), before.end());
+    }
     // the plan follower on the straight stretch to the end (it turns in
     // place first when off it), slowly: a cycle's move (2 cm at 0.1 m/s
     // and 0.2 s) does not overshoot the allowed distance
     const std::vector<mrpt::math::TPoint2D> way{mrpt::math::TPoint2D(pose.x, pose.y),
                                                 target};
-    const auto cmd =
-        planFollowCommand(pose, way, pts, shape - o.plan_follow_margin,
-                          o.final_approach_speed, o.turn_rate_deg * M_PI / 180, d);
+    const auto cmd = planFollowCommand(pose, way, pts, shape - o.plan_follow_margin,
+                                       o.final_approach_speed,
+                                       o.turn_rate_deg * M_PI / 180, d, 1.0, bodyFloor());
     if (cmd.blocked)
         return false;
     char why[200];

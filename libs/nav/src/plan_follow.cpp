@@ -31,7 +31,7 @@ TFollowCommand planFollowCommand(const mrpt::math::TPose2D& pose,
                                  const std::vector<TPoint2D>& ahead,
                                  const std::vector<TPoint2D>& obstacles, double clearance,
                                  double vMax, double wMax, double lookahead,
-                                 double horizon) {
+                                 double horizon, double floor) {
     TFollowCommand out;
     if (ahead.empty() || !(vMax > 0) || !(wMax > 0)) {
         out.blocked = true, out.what = "blocked";
@@ -68,8 +68,13 @@ TFollowCommand planFollowCommand(const mrpt::math::TPose2D& pose,
     if (std::abs(kappa) * v > wMax)
         v = wMax / std::abs(kappa);
     // a robot already nearer than `clearance` (stopped there by its
-    // engine) may move on if it gets no nearer
-    const double need = std::min(clearance, arcClearance(obstacles, 0, 0, 0) - 0.005);
+    // engine) may move on if it gets no nearer (5 mm of the scan's noise
+    // allowed), but not nearer than `floor`; one already nearer than that
+    // gets no nearer at all (the 5 mm, cycle after cycle, had let it creep
+    // onto a post)
+    const double start = arcClearance(obstacles, 0, 0, 0);
+    const double need =
+        start >= floor ? std::max(floor, std::min(clearance, start - 0.005)) : start;
     for (; v >= vMax / 8 - 1e-12; v /= 2) {
         if (arcClearance(obstacles, v, v * kappa, v * horizon + 0.05) >= need) {
             out.v = v, out.w = v * kappa, out.what = "drive";

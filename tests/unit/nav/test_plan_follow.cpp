@@ -148,3 +148,25 @@ TEST(PlanFollow, NoPlanOrNoSpeedIsBlocked) {
         planFollowCommand(TPose2D(0, 0, 0), straightPlan(0, 0, 1, 0), {}, 0.28, 0, 0.5)
             .blocked);
 }
+
+TEST(PlanFollow, ARobotWithinItsBodyFloorGetsNoNearerAtAll) {
+    // straight ahead along the plan, a post 0.255 m beside the way 5 cm on:
+    // the robot stands 0.260 m from it. Without a floor the 5 mm allowed
+    // for the scan's noise lets it drive past at 0.255 m, and cycle after
+    // cycle onto the post; with the body's floor (0.27 m) it gets no nearer
+    const auto plan = straightPlan(0, 0, 5, 0);
+    const std::vector<TPoint2D> post{TPoint2D(0.05, 0.255)};
+    const TPose2D at(0, 0, 0);
+    EXPECT_EQ(planFollowCommand(at, plan, post, 0.28, 0.2, 0.5).what, "drive");
+    EXPECT_TRUE(
+        planFollowCommand(at, plan, post, 0.28, 0.2, 0.5, 0.5, 1.0, 0.27).blocked);
+    // a post beside the robot it leaves behind: it may drive away
+    const std::vector<TPoint2D> beside{TPoint2D(-0.05, 0.255)};
+    EXPECT_EQ(planFollowCommand(at, plan, beside, 0.28, 0.2, 0.5, 0.5, 1.0, 0.27).what,
+              "drive");
+    // from 0.2726 m (above the floor) to 0.268 m: below the floor, blocked
+    const std::vector<TPoint2D> ahead{TPoint2D(0.05, 0.268)};
+    EXPECT_EQ(planFollowCommand(at, plan, ahead, 0.28, 0.2, 0.5).what, "drive");
+    EXPECT_TRUE(
+        planFollowCommand(at, plan, ahead, 0.28, 0.2, 0.5, 0.5, 1.0, 0.27).blocked);
+}

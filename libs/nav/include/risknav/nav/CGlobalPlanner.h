@@ -135,6 +135,13 @@ class CGlobalPlanner {
     void addSensed(const mrpt::math::TPose2D& pose,
                    const std::vector<mrpt::math::TPoint2D>& robotFrame, double now);
 
+    /** The remembered sensed obstacle cells (each its point nearest the
+     * robot, half a cell short of its centre) within `reach`
+     * [m] of `pose`, in its robot frame: what the robot saw beside or
+     * behind it, outside its laser's view now. */
+    std::vector<mrpt::math::TPoint2D> sensedNear(const mrpt::math::TPose2D& pose,
+                                                 double reach) const;
+
     /** Before each engine step: replans as needed for the robot at `pose`
      * going to `target` at time `now`. Returns the replan made (if any). */
     std::optional<TReplanEvent> update(const mrpt::math::TPose2D& pose,

@@ -269,6 +269,9 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     /** [m] MRPT's robot shape as a disc of its farthest vertex (or its
      * circular radius). */
     double shapeRadius() const;
+    /** [m] the nearest the robot's own following lets a sensed point come
+     * to its centre, whatever the start: [Robot] radius + 2 cm. */
+    double bodyFloor() const;
     /** Fresh obstacle points from the robot (robot frame), also given to
      * the global planner; MRPT does not sense while the navigator drives. */
     std::vector<mrpt::math::TPoint2D> senseNow(const mrpt::math::TPose2D& pose,

@@ -30,7 +30,9 @@ struct TFollowCommand {
  * sweeping anything new); else the arc to it at up to `vMax`, slower the
  * more it bends, checked pose by pose (2 cm apart) for `horizon` [s] of
  * motion plus 5 cm against `clearance` (or, for a robot already nearer,
- * against where it stands less 5 mm: it may move on, getting no nearer);
+ * against where it stands less 5 mm: it may move on, getting no nearer;
+ * never below `floor`, the robot's own body with its sensing error, and a
+ * robot already within `floor` against where it stands exactly);
  * halved down to vMax / 8 when not clear; then, more than 3 deg off the
  * aim, turned to it in place (every arc leaves along the heading: one
  * aimed past a door post nears it before it bends), else blocked. The robot
@@ -40,7 +42,8 @@ TFollowCommand planFollowCommand(const mrpt::math::TPose2D& pose,
                                  const std::vector<mrpt::math::TPoint2D>& ahead,
                                  const std::vector<mrpt::math::TPoint2D>& obstacles,
                                  double clearance, double vMax, double wMax,
-                                 double lookahead = 0.5, double horizon = 1.0);
+                                 double lookahead = 0.5, double horizon = 1.0,
+                                 double floor = 0.0);
 
 /** [m] the least distance from the robot's centre to `obstacles` (robot
  * frame at the start) over the unicycle arc of speed v, turn rate w, driven
