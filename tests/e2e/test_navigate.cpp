@@ -214,15 +214,20 @@ TEST(NavigateE2E, UnreachableGoalIsANavigationErrorInTheSummary) {
     writeFile(w + "/n.ini", cfg);
     const json s = navRun(w + "/n.ini", freshDir("out"));
     EXPECT_EQ(s["goal_reached"], false);
-    // MRPT's engine raises no error here: it creeps toward the wall at
-    // ~1e-4 m/s, which keeps its "not approaching" alarm quiet (with
-    // stall_timeout = 0 this run ends by duration_max, "timeout", at 120 s).
-    // The stall check ends it after 30 s on one spot, and says where.
-    EXPECT_EQ(s["status"], "stalled");
-    EXPECT_NE(s["navigation_error"].get<std::string>().find("stalled: within 0.10 m of"),
-              std::string::npos)
-        << s["navigation_error"];
-    EXPECT_LT(s["time_s"].get<double>(), 60.0);
+    // The goal lies nearer the wall than the robot's disc lets it come
+    // within goal_tolerance. The run must end with its reason before
+    // duration_max (120 s), not by the clock ("timeout"), and without the
+    // navigator's own motions (the final approach, plan following, unstick
+    // turns) undoing each other: either the stall check (30 s on one spot,
+    // it says where) or MRPT's "not approaching" alarm (60 s), whichever
+    // the robot's last motions leave to fire.
+    const std::string status = s["status"], why = s["navigation_error"];
+    EXPECT_TRUE((status == "stalled" &&
+                 why.find("stalled: within 0.10 m of") != std::string::npos) ||
+                (status == "navigation_error" &&
+                 why.find("Timeout approaching the target") != std::string::npos))
+        << status << ": " << why;
+    EXPECT_LT(s["time_s"].get<double>(), 100.0);
     EXPECT_EQ(s["waypoints_reached"], 1);
 }
 

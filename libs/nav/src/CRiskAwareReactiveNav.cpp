@@ -1164,7 +1164,8 @@ bool CRiskAwareReactiveNav::followPlan(const mrpt::math::TPose2D& pose, double a
                                ? std::max(allowed, shapeRadius() + 0.1)
                                : allowed;
     if (!m_following) {
-        if (now - m_headwayAt < o.plan_follow_after || left <= endZone)
+        if (now - m_headwayAt < o.plan_follow_after || left <= endZone ||
+            blockedHere(m_followBlockedAt, pose, m_planner->current().points.back()))
             return false;
         m_following = TFollowing{now, pose, 0.0};
     } else {
@@ -1201,6 +1202,7 @@ bool CRiskAwareReactiveNav::followPlan(const mrpt::math::TPose2D& pose, double a
         // and another try after plan_follow_after
         m_following.reset();
         m_headwayAt = now;
+        m_followBlockedAt = mrpt::math::TPoint2D(pose.x, pose.y);
         return false;
     }
     char why[200];
@@ -1223,6 +1225,19 @@ void CRiskAwareReactiveNav::sendOwnCommand(const TFollowCommand& cmd, const char
     m_last.limiter = limiter;
     m_last.desired = m_last.limit = cmd.v;
     m_last.reason = reason;
+}
+
+bool CRiskAwareReactiveNav::blockedHere(std::optional<mrpt::math::TPoint2D>& at,
+                                        const mrpt::math::TPose2D& pose,
+                                        const mrpt::math::TPoint2D& target) {
+    if (!m_blockedTarget ||
+        std::hypot(m_blockedTarget->x - target.x, m_blockedTarget->y - target.y) > 1e-6) {
+        m_followBlockedAt.reset(), m_finalBlockedAt.reset();
+        m_blockedTarget = target;
+    }
+    if (at && std::hypot(pose.x - at->x, pose.y - at->y) > 0.1)
+        at.reset();
+    return at.has_value();
 }
 
 double CRiskAwareReactiveNav::bodyFloor() const {
@@ -1262,7 +1277,8 @@ bool CRiskAwareReactiveNav::finalApproach(const mrpt::math::TPose2D& pose,
     const auto& o = riskOptions;
     const double d = std::hypot(target.x - pose.x, target.y - pose.y);
     const double shape = shapeRadius();
-    if (!(o.final_approach_speed > 0) || d <= allowed || d > shape + 0.1)
+    if (!(o.final_approach_speed > 0) || d <= allowed || d > shape + 0.1 ||
+        blockedHere(m_finalBlockedAt, pose, target))
         return false;  // MRPT's (within allowed: its step marks it reached)
     const double now = mrpt::Clock::toDouble(mrpt::Clock::now());
     auto pts = senseNow(pose, now);
@@ -1278,8 +1294,10 @@ bool CRiskAwareReactiveNav::finalApproach(const mrpt::math::TPose2D& pose,
     const auto cmd = planFollowCommand(pose, way, pts, shape - o.plan_follow_margin,
                                        o.final_approach_speed,
                                        o.turn_rate_deg * M_PI / 180, d, 1.0, bodyFloor());
-    if (cmd.blocked)
+    if (cmd.blocked) {
+        m_finalBlockedAt = mrpt::math::TPoint2D(pose.x, pose.y);
         return false;
+    }
     char why[200];
     std::snprintf(why, sizeof(why),
                   "the end %.2f m away, inside MRPT's robot shape (%.2f m): driven to "

@@ -256,6 +256,13 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
         double driven = 0;
     };
     std::optional<TFollowing> m_following;
+    /** Where followPlan() / finalApproach() found every motion blocked:
+     * not tried again until the robot has moved 0.1 m from there or has a
+     * new target (else they and the unstick turns undo each other). */
+    std::optional<mrpt::math::TPoint2D> m_followBlockedAt, m_finalBlockedAt;
+    std::optional<mrpt::math::TPoint2D> m_blockedTarget;
+    bool blockedHere(std::optional<mrpt::math::TPoint2D>& at,
+                     const mrpt::math::TPose2D& pose, const mrpt::math::TPoint2D& target);
     /** plan_follow_after: follows the plan this cycle (true: commanded). */
     bool followPlan(const mrpt::math::TPose2D& pose, double allowed, bool lastTarget);
     /** final_approach_speed: drives to the route's end this cycle (true:
