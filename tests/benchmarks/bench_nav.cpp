@@ -258,7 +258,7 @@ struct TNavBench {
         if (globalPlanner && risk) {
             // risknav-navigate's default: the global plan on the office map,
             // replanned as the run needs (the engine's disc: the robot's)
-            auto p = std::make_shared<nav::CGlobalPlanner>();
+            auto p = std::make_shared<planning::CGlobalPlanner>();
             p->setMap(world.grid(), world.distanceField().rule(), world.robot.radius);
             risk->setGlobalPlanner(p);
         }

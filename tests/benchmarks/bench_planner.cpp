@@ -6,7 +6,7 @@
 // cells. Wall time and the thread's CPU time are the same here (one thread).
 #include <risknav/common/grid_io.h>
 #include <risknav/mapping/TObstacleRule.h>
-#include <risknav/nav/CGlobalPlanner.h>
+#include <risknav/planning/CGlobalPlanner.h>
 
 #include <benchmark/benchmark.h>
 
@@ -19,7 +19,7 @@ const std::string kSource = RISKNAV_SOURCE_DIR;
 
 struct TWarehouse {
     mrpt::maps::COccupancyGridMap2D grid;
-    nav::CGlobalPlanner planner;
+    planning::CGlobalPlanner planner;
     mrpt::math::TPoint2D a, b;
     TWarehouse() {
         common::TMapSourceOptions src;
@@ -49,7 +49,7 @@ TWarehouse& warehouse() {
 void BM_GlobalPlan_WarehouseSetMap(benchmark::State& state) {
     auto& w = warehouse();
     for (auto _ : state) {
-        nav::CGlobalPlanner p;
+        planning::CGlobalPlanner p;
         p.setMap(w.grid, mapping::TObstacleRule{}, 0.35);
         benchmark::DoNotOptimize(p.hasMap());
     }
@@ -59,7 +59,7 @@ BENCHMARK(BM_GlobalPlan_WarehouseSetMap)->Unit(benchmark::kMillisecond)->UseReal
 
 void BM_GlobalPlan_WarehouseAcross(benchmark::State& state) {
     auto& w = warehouse();
-    nav::TGlobalPlan plan;
+    planning::TGlobalPlan plan;
     for (auto _ : state)
         plan = w.planner.plan(w.a, w.b);
     if (!plan.found)

@@ -152,7 +152,7 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
     m_planner.reset();
     m_chooser.reset();
     if (options.global_planner != "none") {
-        m_planner = std::make_shared<CGlobalPlanner>();
+        m_planner = std::make_shared<planning::CGlobalPlanner>();
         m_planner->options = plannerOptions;
         if (plannerOptions.map == "built") {
             // the robot knows the world's extent only: every cell free
@@ -178,12 +178,13 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
                                      options.start_sigma[1] * options.start_sigma[1],
                                      options.start_sigma[2] * options.start_sigma[2])
                          .asDiagonal();
-        m_chooser = std::make_unique<CRiskRouteChooser>(
+        m_chooser = std::make_unique<risk::CRiskRouteChooser>(
             world.grid(), world.distanceField().rule(), world.robot.radius, ro,
             *m_planner);
-        m_planner->routeChooser = [this](const std::vector<TGlobalPlan>& cands) {
-            return m_chooser->choose(cands);
-        };
+        m_planner->routeChooser =
+            [this](const std::vector<planning::TGlobalPlan>& cands) {
+                return m_chooser->choose(cands);
+            };
     }
     // Too few start particles around the start lose the robot, and a lost
     // filter runs at KLD_maxSampleSize every cycle: refused before the run,

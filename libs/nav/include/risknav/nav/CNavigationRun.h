@@ -1,10 +1,10 @@
 #pragma once
 #include <risknav/common/CIniConfig.h>
 #include <risknav/localization/CRawlogMcl.h>
-#include <risknav/nav/CGlobalPlanner.h>
-#include <risknav/nav/CRiskRouteChooser.h>
 #include <risknav/nav/TNavigateOptions.h>
 #include <risknav/nav/waypoint_file.h>
+#include <risknav/planning/CGlobalPlanner.h>
+#include <risknav/risk/CRiskRouteChooser.h>
 #include <risknav/sim/CAgentsSim.h>
 #include <risknav/sim/CSafetyMonitor.h>
 #include <risknav/sim/CSimRobotInterface.h>
@@ -75,14 +75,15 @@ struct TNavRunResult {
     std::string firstMrptError;  ///< the first one's message
     std::string navlogFile;      ///< MRPT's file (in the run's log folder), "" if none
     /** The global planner's plans (global_planner = grid): every (re)plan. */
-    std::vector<TReplanEvent> plans;
+    std::vector<planning::TReplanEvent> plans;
     /** Every plan followed (a new one at each plan or replan that found a
      * way), in order. */
     std::vector<std::vector<mrpt::math::TPoint2D>> planPaths;
     double firstPlanLength = 0;  ///< [m]
     std::string noPathFailure;   ///< no way to a target: start_blocked | ...
     int localizationLost = 0;    ///< MCL found lost (and re-spread), localization = mcl
-    std::vector<TRouteChoice> routeChoices;  ///< global_planner = risk: per target
+    std::vector<planning::TRouteChoice>
+        routeChoices;  ///< global_planner = risk: per target
     /** [m] the least true distance of the robot to the last waypoint while
      * it was the target (+inf: never its target). "goal_reached" is MRPT's
      * verdict on the believed pose; farther than goal_tolerance (+ 3 cm:
@@ -130,7 +131,7 @@ class CNavigationRun {
     std::map<size_t, TWaypointTag> tags;     ///< by waypoint index
     std::string routeName;                   ///< where the route came from
     /** [GlobalPlanner] (global_planner = grid). */
-    CGlobalPlanner::TOptions plannerOptions;
+    planning::CGlobalPlanner::TOptions plannerOptions;
 
     /** Loads and checks everything (the world, the route against the map,
      * MRPT's engine and the limiters through a probe navigator), before any
@@ -156,9 +157,9 @@ class CNavigationRun {
     std::unique_ptr<common::CIniConfig> m_engine;  // [Navigate] engine_config
     // the probe navigator's saveConfigFile(): the engine and limiter sections
     mrpt::config::CConfigFileMemory m_navigatorConfig;
-    std::shared_ptr<CGlobalPlanner> m_planner;     // its map set up once
-    std::unique_ptr<CRiskRouteChooser> m_chooser;  // global_planner = risk
-    risk::TPropagationOptions m_propagation;       // [Odometry], for the chooser
+    std::shared_ptr<planning::CGlobalPlanner> m_planner;  // its map set up once
+    std::unique_ptr<risk::CRiskRouteChooser> m_chooser;   // global_planner = risk
+    risk::TPropagationOptions m_propagation;              // [Odometry], for the chooser
     void loadRoute(common::CIniConfig& c);
     void checkAgainstMap(const common::CIniConfig& c) const;
     /** MRPT's engine as configured (limiters aside) on MRPT's own simulated

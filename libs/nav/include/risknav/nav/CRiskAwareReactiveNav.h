@@ -2,8 +2,8 @@
 #include <risknav/common/CSpeedLimiter.h>
 #include <risknav/common/CValidatedOptions.h>
 #include <risknav/common/TRobotOptions.h>
-#include <risknav/nav/CGlobalPlanner.h>
 #include <risknav/nav/plan_follow.h>
+#include <risknav/planning/CGlobalPlanner.h>
 
 #include <mrpt/nav/reactive/CReactiveNavigationSystem.h>
 
@@ -161,10 +161,16 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
      * "not approaching the target" alarm then watches the way left along
      * the plan, not the straight distance. A target it finds no way to
      * stops the navigation (NAV_ERROR), planFailure() says why. */
-    void setGlobalPlanner(std::shared_ptr<CGlobalPlanner> p) { m_planner = std::move(p); }
-    const std::shared_ptr<CGlobalPlanner>& globalPlanner() const { return m_planner; }
+    void setGlobalPlanner(std::shared_ptr<planning::CGlobalPlanner> p) {
+        m_planner = std::move(p);
+    }
+    const std::shared_ptr<planning::CGlobalPlanner>& globalPlanner() const {
+        return m_planner;
+    }
     /** The plan that found no way, when that stopped the navigation. */
-    const std::optional<TGlobalPlan>& planFailure() const { return m_planFailure; }
+    const std::optional<planning::TGlobalPlan>& planFailure() const {
+        return m_planFailure;
+    }
     const TLimitRecord& lastLimit() const { return m_last; }
 
     /** What MRPT aims at while navigating: the first waypoint not yet
@@ -240,8 +246,8 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
      * target then. */
     std::optional<std::pair<mrpt::math::TPoint2D, mrpt::math::TPoint2D>> m_guidePausedAt;
     const mrpt::config::CConfigFileBase* m_engine = nullptr;
-    std::shared_ptr<CGlobalPlanner> m_planner;
-    std::optional<TGlobalPlan> m_planFailure;
+    std::shared_ptr<planning::CGlobalPlanner> m_planner;
+    std::optional<planning::TGlobalPlan> m_planFailure;
     double m_planBest = 0;  ///< [m] the least way left along the plan so far
     /** [m] the least way left along the plans to this target, and when the
      * robot last got 0.1 m further (plan_follow_after; a replan does not

@@ -1,11 +1,11 @@
 #include <risknav/common/CQuadHeap.h>
 #include <risknav/common/TGridSearchScratch.h>
-#include <risknav/nav/grid_search.h>
+#include <risknav/planning/grid_search.h>
 
 #include <algorithm>
 #include <cmath>
 
-namespace risknav::nav {
+namespace risknav::planning {
 namespace {
 /** An open entry: f, then h (of equal f the one nearer the goal first:
  * on a grid many paths tie, and without this A* opens all of them) */
@@ -117,4 +117,4 @@ double widestWayClearance(const std::vector<float>& clearance, int w, int h,
     }
     return 0;
 }
-}  // namespace risknav::nav
+}  // namespace risknav::planning

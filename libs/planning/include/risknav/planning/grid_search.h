@@ -3,7 +3,7 @@
 #include <limits>
 #include <vector>
 
-namespace risknav::nav {
+namespace risknav::planning {
 /** A grid of traversal costs for the global planner: per cell a cost per
  * metre >= 1 (+inf: the robot may not be there), row-major w x h, square
  * cells of `resolution` [m]. */
@@ -43,4 +43,4 @@ TGridPath gridAStar(const TCostGrid& g, int32_t start, int32_t goal);
  * that does not connect the two (0). */
 double widestWayClearance(const std::vector<float>& clearance, int w, int h,
                           int32_t start, int32_t goal);
-}  // namespace risknav::nav
+}  // namespace risknav::planning

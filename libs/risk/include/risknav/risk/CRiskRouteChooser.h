@@ -1,13 +1,13 @@
 #pragma once
 #include <risknav/common/TOdometryOptions.h>
-#include <risknav/nav/CGlobalPlanner.h>
+#include <risknav/planning/CGlobalPlanner.h>
 #include <risknav/risk/CObstacleField.h>
 #include <risknav/risk/TPropagationOptions.h>
 #include <risknav/risk/path_risk.h>
 
 #include <memory>
 
-namespace risknav::nav {
+namespace risknav::risk {
 /** global_planner = risk: M2 (Irie, Nagatani, Gofuku) as the global
  * planner's route chooser. Each candidate (CGlobalPlanner::alternatives(),
  * the best way of each of up to [GlobalPlanner] candidates homotopy classes;
@@ -22,14 +22,16 @@ class CRiskRouteChooser {
   public:
     CRiskRouteChooser(const mrpt::maps::COccupancyGridMap2D& grid,
                       const mapping::TObstacleRule& rule, double robotRadius,
-                      const risk::TRiskOptions& risk, const CGlobalPlanner& planner);
-    TRouteChoice choose(const std::vector<TGlobalPlan>& candidates) const;
+                      const TRiskOptions& riskOptions,
+                      const planning::CGlobalPlanner& planner);
+    planning::TRouteChoice choose(
+        const std::vector<planning::TGlobalPlan>& candidates) const;
     /** A candidate as the evaluator drives it (straight legs). */
-    std::vector<mrpt::math::TPoint2D> legs(const TGlobalPlan& c) const;
+    std::vector<mrpt::math::TPoint2D> legs(const planning::TGlobalPlan& c) const;
 
   private:
-    risk::CObstacleField m_field;
-    risk::TRiskOptions m_risk;
-    const CGlobalPlanner& m_planner;
+    CObstacleField m_field;
+    TRiskOptions m_risk;
+    const planning::CGlobalPlanner& m_planner;
 };
-}  // namespace risknav::nav
+}  // namespace risknav::risk

@@ -1,18 +1,19 @@
 #include <risknav/geometry/polyline.h>
-#include <risknav/nav/CRiskRouteChooser.h>
+#include <risknav/risk/CRiskRouteChooser.h>
 
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
-namespace risknav::nav {
+namespace risknav::risk {
 CRiskRouteChooser::CRiskRouteChooser(const mrpt::maps::COccupancyGridMap2D& grid,
                                      const mapping::TObstacleRule& rule,
-                                     double robotRadius, const risk::TRiskOptions& risk,
-                                     const CGlobalPlanner& planner)
-    : m_field(grid, rule, robotRadius), m_risk(risk), m_planner(planner) {}
+                                     double robotRadius, const TRiskOptions& riskOptions,
+                                     const planning::CGlobalPlanner& planner)
+    : m_field(grid, rule, robotRadius), m_risk(riskOptions), m_planner(planner) {}
 
-std::vector<mrpt::math::TPoint2D> CRiskRouteChooser::legs(const TGlobalPlan& c) const {
+std::vector<mrpt::math::TPoint2D> CRiskRouteChooser::legs(
+    const planning::TGlobalPlan& c) const {
     const auto& f = m_planner.field();
     const double disc = m_planner.discRadius(), step = 0.5 * f.resolution();
     return geometry::simplifyDouglasPeucker(
@@ -26,13 +27,14 @@ std::vector<mrpt::math::TPoint2D> CRiskRouteChooser::legs(const TGlobalPlan& c) 
         });
 }
 
-TRouteChoice CRiskRouteChooser::choose(const std::vector<TGlobalPlan>& cands) const {
-    TRouteChoice out;
+planning::TRouteChoice CRiskRouteChooser::choose(
+    const std::vector<planning::TGlobalPlan>& cands) const {
+    planning::TRouteChoice out;
     double best = std::numeric_limits<double>::infinity();
     for (size_t i = 0; i < cands.size(); i++) {
         double U = std::numeric_limits<double>::infinity();
         if (cands[i].found) {
-            const auto r = risk::evaluatePathRisk(legs(cands[i]), {}, m_field, m_risk);
+            const auto r = evaluatePathRisk(legs(cands[i]), {}, m_field, m_risk);
             if (r.failure.empty() && !r.blocked)
                 U = r.U;
         }
@@ -54,4 +56,4 @@ TRouteChoice CRiskRouteChooser::choose(const std::vector<TGlobalPlan>& cands) co
         out.chosen = 0;
     return out;
 }
-}  // namespace risknav::nav
+}  // namespace risknav::risk

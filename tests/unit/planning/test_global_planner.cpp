@@ -1,7 +1,7 @@
 // The global planner: grid A* against Bellman-Ford, the widest way, and
 // CGlobalPlanner's plans, replans and reasons on synthetic maps.
-#include <risknav/nav/CGlobalPlanner.h>
-#include <risknav/nav/grid_search.h>
+#include <risknav/planning/CGlobalPlanner.h>
+#include <risknav/planning/grid_search.h>
 
 #include <mrpt/maps/COccupancyGridMap2D.h>
 
@@ -21,7 +21,7 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 // Bellman-Ford over the same graph as gridAStar (8-connected, a move costs
 // its length times the mean of the two cells' costs, no corner cutting):
 // relax every edge until nothing changes. Independent of the A* code.
-double bellmanFord(const nav::TCostGrid& g, int s, int t) {
+double bellmanFord(const planning::TCostGrid& g, int s, int t) {
     const size_t n = g.cost.size();
     std::vector<double> d(n, std::numeric_limits<double>::infinity());
     if (!(g.cost[size_t(s)] < kInf) || !(g.cost[size_t(t)] < kInf))
@@ -83,9 +83,9 @@ mrpt::maps::COccupancyGridMap2D makeMap(double w, double h,
     return g;
 }
 
-nav::CGlobalPlanner plannerOn(const mrpt::maps::COccupancyGridMap2D& g,
-                              double disc = 0.35) {
-    nav::CGlobalPlanner p;
+planning::CGlobalPlanner plannerOn(const mrpt::maps::COccupancyGridMap2D& g,
+                                   double disc = 0.35) {
+    planning::CGlobalPlanner p;
     p.options.margin = 0;  // the disc as given
     mapping::TObstacleRule rule;
     p.setMap(g, rule, disc);
@@ -97,7 +97,7 @@ TEST(GridSearch, AStarCostEqualsBellmanFordOnRandomGrids) {
     std::mt19937 rng(7);
     int found = 0, none = 0;
     for (int trial = 0; trial < 60; trial++) {
-        nav::TCostGrid g;
+        planning::TCostGrid g;
         g.w = 6 + int(rng() % 10);
         g.h = 5 + int(rng() % 10);
         g.resolution = 0.1;
@@ -106,7 +106,7 @@ TEST(GridSearch, AStarCostEqualsBellmanFordOnRandomGrids) {
         for (auto& c : g.cost)
             c = (rng() % 100) < 28 ? kInf : cost(rng);
         const int s = int(rng() % g.cost.size()), t = int(rng() % g.cost.size());
-        const auto p = nav::gridAStar(g, s, t);
+        const auto p = planning::gridAStar(g, s, t);
         const double bf = bellmanFord(g, s, t);
         if (std::isinf(bf)) {
             EXPECT_TRUE(p.cells.empty()) << trial;
@@ -144,11 +144,13 @@ TEST(GridSearch, WidestWayIsTheNarrowestClearanceOfTheBestWay) {
         c[size_t(0 * w + x)] = 0.5f;
         c[size_t(1 * w + x)] = x == 0 || x == w - 1 ? 0.9f : 0.0f;
     }
-    EXPECT_FLOAT_EQ(float(nav::widestWayClearance(c, w, h, 2 * w, 2 * w + w - 1)), 0.5f);
+    EXPECT_FLOAT_EQ(float(planning::widestWayClearance(c, w, h, 2 * w, 2 * w + w - 1)),
+                    0.5f);
     c[size_t(0 * w + 3)] = 0.0f;  // the bottom row cut: only the top row's 0.2
-    EXPECT_FLOAT_EQ(float(nav::widestWayClearance(c, w, h, 2 * w, 2 * w + w - 1)), 0.2f);
+    EXPECT_FLOAT_EQ(float(planning::widestWayClearance(c, w, h, 2 * w, 2 * w + w - 1)),
+                    0.2f);
     c[size_t(2 * w + 3)] = 0.0f;  // both cut
-    EXPECT_EQ(nav::widestWayClearance(c, w, h, 2 * w, 2 * w + w - 1), 0.0);
+    EXPECT_EQ(planning::widestWayClearance(c, w, h, 2 * w, 2 * w + w - 1), 0.0);
 }
 
 TEST(CGlobalPlanner, AGoalBehindAWallIsPlannedAroundIt) {
@@ -265,7 +267,7 @@ TEST(CGlobalPlanner, StrayingAndAPoseJumpReplan) {
     EXPECT_EQ(ev->why, "pose_jump");
     // pushed 1.5 m off the plan over several cycles
     double y = 4.7;
-    std::optional<nav::TReplanEvent> last;
+    std::optional<planning::TReplanEvent> last;
     for (int k = 0; k < 10 && !last; k++) {
         y += 0.2;
         last = p.update(TPose2D(2.4, y, 0), goal, 0.6 + 0.2 * k);
@@ -280,7 +282,7 @@ TEST(CGlobalPlanner, StrayingAndAPoseJumpReplan) {
 }
 
 TEST(CGlobalPlanner, OptionsAreChecked) {
-    nav::CGlobalPlanner::TOptions o;
+    planning::CGlobalPlanner::TOptions o;
     o.lookahead = 0;
     EXPECT_THROW(o.validate(), std::exception);
     o = {};
@@ -347,7 +349,7 @@ TEST(CGlobalPlanner, ABuiltMapKeepsWhatItSensedUntilABeamPassesThrough) {
     // a wall the laser senses across the straight way closes it for good
     // (not only obstacle_memory seconds), until a later beam passes through
     const auto blank = makeMap(12, 8, {});
-    nav::CGlobalPlanner p;
+    planning::CGlobalPlanner p;
     p.options.margin = 0;
     p.options.map = "built";
     p.options.obstacle_memory = 5;
@@ -375,7 +377,7 @@ TEST(CGlobalPlanner, ABuiltMapKeepsWhatItSensedUntilABeamPassesThrough) {
     p.addSensed(TPose2D(2, 4, 0), through, 3601.0);
     EXPECT_LT(p.plan({2, 4}, goal, true).length, 8.0 + 0.1);
     // with map = known the same wall is forgotten after obstacle_memory
-    nav::CGlobalPlanner k;
+    planning::CGlobalPlanner k;
     k.options.margin = 0;
     k.options.obstacle_memory = 5;
     k.setMap(blank, mapping::TObstacleRule{}, 0.35);
@@ -392,7 +394,7 @@ TEST(CGlobalPlanner, AGapTheDiscFitsWithinACellOfTheSensedPointsIsPlannedOnce) {
     // cell it does. The way goes through the gap and is not found blocked
     // by the same points a cycle later (no replan every second).
     const auto blank = makeMap(12, 8, {});
-    nav::CGlobalPlanner p;
+    planning::CGlobalPlanner p;
     p.options.margin = 0;
     p.options.map = "built";
     p.setMap(blank, mapping::TObstacleRule{}, 0.35);

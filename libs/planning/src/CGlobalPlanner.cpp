@@ -2,7 +2,7 @@
 #include <risknav/geometry/homotopy.h>
 #include <risknav/geometry/polyline.h>
 #include <risknav/mapping/distance_transform.h>
-#include <risknav/nav/CGlobalPlanner.h>
+#include <risknav/planning/CGlobalPlanner.h>
 
 #include <algorithm>
 #include <chrono>
@@ -13,7 +13,7 @@ using namespace risknav::common;
 using mrpt::math::TPoint2D;
 using mrpt::math::TPose2D;
 
-namespace risknav::nav {
+namespace risknav::planning {
 namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
 std::string metres(double v) {
@@ -634,4 +634,4 @@ double CGlobalPlanner::remainingLength(const TPose2D& pose) const {
         rest += std::hypot(pts[k].x - pts[k - 1].x, pts[k].y - pts[k - 1].y);
     return rest;
 }
-}  // namespace risknav::nav
+}  // namespace risknav::planning

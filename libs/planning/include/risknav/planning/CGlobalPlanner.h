@@ -1,7 +1,7 @@
 #pragma once
 #include <risknav/common/CValidatedOptions.h>
 #include <risknav/mapping/CDistanceField.h>
-#include <risknav/nav/grid_search.h>
+#include <risknav/planning/grid_search.h>
 
 #include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/math/TPoint2D.h>
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace risknav::nav {
+namespace risknav::planning {
 /** One global plan. */
 struct TGlobalPlan {
     bool found = false;
@@ -211,4 +211,4 @@ class CGlobalPlanner {
     size_t m_progress = 0;  ///< the plan's point the robot was nearest last
     size_t nearestIndex(const mrpt::math::TPose2D& pose) const;
 };
-}  // namespace risknav::nav
+}  // namespace risknav::planning
