@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <random>
@@ -235,7 +237,7 @@ TEST(RiskEvalE2E, PaperModelValuesAreCloseToTable1) {
 
 TEST(RiskEvalE2E, GvgFindsBothWaysAndTheOutputsAreComplete) {
     const std::string d = freshDir("out");
-    const auto s = evalRun(d);
+    const auto s = evalRun(d, "--set RiskEval.grid_routes=0");  // the paper's candidates
     // Two distinct ways around the central block: the corridor and the hall.
     std::vector<std::string> gvg;
     for (const auto& r : s["routes"])
@@ -393,6 +395,33 @@ TEST(RiskEvalE2E, UnreachableGoalIsAResultNotAnError) {
     EXPECT_TRUE(s["best"].is_null());
     EXPECT_TRUE(s["table"].empty());
     EXPECT_TRUE(fs::is_regular_file(d + "/paths.png"));
+    // and the grid planner says why: no way for the disc joins them
+    ASSERT_TRUE(s["no_way"].is_object()) << s.dump();
+    EXPECT_EQ(s["no_way"]["failure"], "disconnected");
+    EXPECT_NE(s["no_way"]["reason"].get<std::string>(), "");
+}
+
+TEST(RiskEvalE2E, GridWaysOfDistinctClassesAreCandidates) {
+    // The corridor and the hall round the central block: the least-cost
+    // grid way of each is a candidate, scored like the others.
+    const auto s = evalRun(freshDir("out"));
+    std::vector<double> lengths;
+    for (const auto& r : s["routes"])
+        if (r["source"] == "grid")
+            lengths.push_back(r["length_m"].get<double>());
+    ASSERT_EQ(lengths.size(), 2u) << s["routes"].dump();  // only two classes exist
+    std::sort(lengths.begin(), lengths.end());
+    EXPECT_NEAR(lengths[0], 20.0, 0.3);  // the corridor, B's way
+    EXPECT_GT(lengths[1], 22.0);         // over the hall
+    EXPECT_TRUE(s["no_way"].is_null());
+    for (const auto& row : s["table"])
+        if (row["sensing"] == "none") {
+            EXPECT_FALSE(row["excluded"].get<bool>()) << row.dump();
+            EXPECT_TRUE(std::isfinite(row["U"].get<double>())) << row.dump();
+        }
+    // the paper's best row stays the best: G2 (the hall) visiting SP2
+    EXPECT_EQ(s["best"]["route"], "G2");
+    EXPECT_EQ(s["best"]["sensing"], "SP2");
 }
 
 TEST(RiskEvalE2E, ZeroCovarianceGivesNoNaN) {
@@ -484,9 +513,9 @@ INSTANTIATE_TEST_SUITE_P(
         TBad{"negative_init_sigma", "", "", "--set Odometry.init_sigma_x=-1",
              "[Odometry] init_sigma_x = '-1'"},
         TBad{"no_candidates", "\\[Route1\\][^]*?(?=\\[SensingPoint1\\])", "",
-             "--set RiskEval.gvg_routes=0",
-             "no candidate routes: add [RouteN] sections or set [RiskEval] gvg_routes > "
-             "0"},
+             "--set RiskEval.gvg_routes=0 --set RiskEval.grid_routes=0",
+             "no candidate routes: add [RouteN] sections or set [RiskEval] gvg_routes "
+             "or grid_routes > 0"},
         TBad{"missing_map", "map_file           = two_routes.png", "map_file = none.png",
              "", "file not found"},
         TBad{"unknown_key", "\\[Odometry\\]\n", "[Odometry]\nwheel_radius = 0.06\n", "",
@@ -500,9 +529,9 @@ INSTANTIATE_TEST_SUITE_P(
         // bounded before any is done; sigmas are bounded so that no
         // covariance can overflow into D_max = inf, U = 0.
         TBad{"tiny_speed", "", "", "--set Odometry.speed=1e-5",
-             "[Odometry] speed = '1e-05': the 16 rows need"},
+             "[Odometry] speed = '1e-05': the 24 rows need"},
         TBad{"tiny_turn_rate", "", "", "--set Odometry.turn_rate_deg=1e-6",
-             "[Odometry] turn_rate_deg = '1e-06': the 16 rows need"},
+             "[Odometry] turn_rate_deg = '1e-06': the 24 rows need"},
         TBad{"huge_init_sigma", "", "", "--set Odometry.init_sigma_x=1e154",
              "[Odometry] init_sigma_x = '1e154': must be in [0, 1000] m"},
         TBad{"huge_noise_sigma", "", "", "--set Odometry.noise_sigma_theta_deg=1e200",
@@ -514,12 +543,12 @@ INSTANTIATE_TEST_SUITE_P(
         TBad{"too_many_rows", "\\[SensingPoint2\\]",
              manySensingPoints(18) + "[SensingPoint2]",
              "--set RiskEval.max_sensing_subset=6",
-             "[RiskEval] max_sensing_subset = '6': 5 candidate routes x 60460 subsets of "
-             "the 20 sensing points = 302300 rows to evaluate; at most 1000"},
+             "[RiskEval] max_sensing_subset = '6': 8 candidate routes x 60460 subsets of "
+             "the 20 sensing points = 483680 rows to evaluate; at most 1000"},
         TBad{"too_many_routes", "\\[SensingPoint1\\]", manyRoutes(60) + "[SensingPoint1]",
              "--set RiskEval.gvg_routes=50",
-             "[RiskEval] gvg_routes = '50': 62 [RouteN] sections + gvg_routes = 112 "
-             "candidate routes; at most 100"},
+             "[RiskEval] gvg_routes = '50': 62 [RouteN] sections + gvg_routes 50 + "
+             "grid_routes 3 = 115 candidate routes; at most 100"},
         // a tester's: the straight line in silence, two routes driven by one
         // name, a route from the start to itself
         TBad{"route_without_waypoints", "", "",
@@ -530,5 +559,5 @@ INSTANTIATE_TEST_SUITE_P(
              "[RiskEval] goal = '(2.00, 7.00)': the goal must differ from the start"},
         TBad{"too_much_sampling", "", "",
              "--set Odometry.propagation=sampled --set Odometry.samples=100000",
-             "[Odometry] propagation = 'sampled': the 16 rows need"}),
+             "[Odometry] propagation = 'sampled': the 24 rows need"}),
     [](const ::testing::TestParamInfo<TBad>& i) { return i.param.name; });

@@ -391,6 +391,21 @@ std::vector<TGlobalPlan> CGlobalPlanner::alternatives(const TPoint2D& from,
     return out;
 }
 
+std::vector<TPoint2D> CGlobalPlanner::legs(const TGlobalPlan& way) const {
+    const auto& f = m_field;
+    const double step = 0.5 * f.resolution();
+    return geometry::simplifyDouglasPeucker(
+        way.points, 0.1, [&](const TPoint2D& a, const TPoint2D& b) {
+            // a leg keeps the disc's clearance (or the lesser of its ends')
+            const double need =
+                std::min({m_disc, f.clearanceAt(a.x, a.y), f.clearanceAt(b.x, b.y)}) -
+                step;
+            return geometry::segmentFree(
+                a.x, a.y, b.x, b.y, step,
+                [&](double x, double y) { return f.clearanceAt(x, y) < need; });
+        });
+}
+
 void CGlobalPlanner::addSensed(const TPose2D& pose, const std::vector<TPoint2D>& pts,
                                double now) {
     m_now = now;

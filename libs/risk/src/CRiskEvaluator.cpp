@@ -1,5 +1,6 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/config_read.h>
+#include <risknav/planning/CGlobalPlanner.h>
 #include <risknav/risk/CRiskEvaluator.h>
 
 #include <algorithm>
@@ -51,9 +52,14 @@ std::pair<const TSensingPointOptions*, std::string> longestCovFile(
     std::vector<std::string> visit;
     for (const auto* p : longest)
         visit.push_back(p->name);
-    std::string route = ev.options.gvg_routes > 0
-                            ? CRiskEvaluator::gvgRouteName(size_t(ev.options.gvg_routes))
-                            : "";
+    std::string route;
+    if (ev.options.gvg_routes > 0)
+        route = CRiskEvaluator::gvgRouteName(size_t(ev.options.gvg_routes));
+    if (ev.options.grid_routes > 0) {
+        const auto g = CRiskEvaluator::gridRouteName(size_t(ev.options.grid_routes));
+        if (g.size() > route.size())
+            route = g;
+    }
     for (const auto& r : ev.configRoutes)
         if (r.name.size() > route.size())
             route = r.name;
@@ -71,6 +77,7 @@ void CRiskEvaluator::TOptions::loadFromConfigFile(const mrpt::config::CConfigFil
     u_threshold = readDouble(c, s, "u_threshold", u_threshold);
     max_sensing_subset = readInt(c, s, "max_sensing_subset", max_sensing_subset);
     gvg_routes = readInt(c, s, "gvg_routes", gvg_routes);
+    grid_routes = readInt(c, s, "grid_routes", grid_routes);
     gvg.loadFromConfigFile(c, s);
     ellipse_interval = readDouble(c, s, "ellipse_interval", ellipse_interval);
     eval_step = readDouble(c, s, "eval_step", eval_step);
@@ -88,6 +95,7 @@ void CRiskEvaluator::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c
     writeKey(c, s, "u_threshold", u_threshold);
     writeKey(c, s, "max_sensing_subset", max_sensing_subset);
     writeKey(c, s, "gvg_routes", gvg_routes);
+    writeKey(c, s, "grid_routes", grid_routes);
     gvg.saveToConfigFile(c, s);
     writeKey(c, s, "ellipse_interval", ellipse_interval);
     writeKey(c, s, "eval_step", eval_step);
@@ -108,6 +116,7 @@ void CRiskEvaluator::TOptions::validate() const {
              TRange::nonNegative("(u = 1/D_max^2 is dimensionless)"));
     checkKey(section, "max_sensing_subset", max_sensing_subset, TRange::closed(0, 6));
     checkKey(section, "gvg_routes", gvg_routes, TRange::closed(0, 50));
+    checkKey(section, "grid_routes", grid_routes, TRange::closed(0, 10));
     checkKey(section, "ellipse_interval", ellipse_interval,
              TRange::closed(0.1, 100, "m"));
     checkKey(section, "eval_step", eval_step, TRange::closed(0.005, 5, "m"));
@@ -170,6 +179,10 @@ void CRiskEvaluator::validate() const {
         routeFiles[fileNamePart(gvgRouteName(k))] =
             "GVG route " + gvgRouteName(k) + " ([" + options.section +
             "] gvg_routes = " + std::to_string(options.gvg_routes) + ")";
+    for (size_t k = 1; k <= size_t(std::max(0, options.grid_routes)); k++)
+        routeFiles[fileNamePart(gridRouteName(k))] =
+            "grid way " + gridRouteName(k) + " ([" + options.section +
+            "] grid_routes = " + std::to_string(options.grid_routes) + ")";
     routeFiles["best"] = "the best row (ellipses_best.png)";
     for (const auto& r : configRoutes) {
         r.validate();
@@ -201,16 +214,18 @@ void CRiskEvaluator::validate() const {
     }
     if (const auto [p, file] = longestCovFile(*this); p)
         checkOutputFileName(p->section, "name", p->name, file);
-    checkRule(!configRoutes.empty() || options.gvg_routes > 0, options.section,
-              "gvg_routes", std::to_string(options.gvg_routes),
+    checkRule(!configRoutes.empty() || options.gvg_routes > 0 || options.grid_routes > 0,
+              options.section, "gvg_routes", std::to_string(options.gvg_routes),
               "no candidate routes: add [RouteN] sections or set [RiskEval] gvg_routes "
-              "> 0");
+              "or grid_routes > 0");
     // The work of a run, as far as the config decides it.
-    const size_t routes = configRoutes.size() + size_t(options.gvg_routes);
+    const size_t routes =
+        configRoutes.size() + size_t(options.gvg_routes) + size_t(options.grid_routes);
     checkRule(routes <= kMaxRoutes, options.section, "gvg_routes",
               std::to_string(options.gvg_routes),
-              std::to_string(configRoutes.size()) +
-                  " [RouteN] sections + gvg_routes = " + std::to_string(routes) +
+              std::to_string(configRoutes.size()) + " [RouteN] sections + gvg_routes " +
+                  std::to_string(options.gvg_routes) + " + grid_routes " +
+                  std::to_string(options.grid_routes) + " = " + std::to_string(routes) +
                   " candidate routes; at most " + std::to_string(kMaxRoutes));
     const double rows = double(routes) * sensingSubsets();
     char b[200];
@@ -301,7 +316,7 @@ void CRiskEvaluator::evaluate() {
     // The configured routes run from start to goal: add them unless already there.
     m_routes.clear();
     for (const auto& r : configRoutes) {
-        TRoute route{r.name, {}, false};
+        TRoute route{r.name, {}, "config"};
         for (size_t i = 0; i + 1 < r.waypoints.size(); i += 2)
             route.waypoints.emplace_back(r.waypoints[i], r.waypoints[i + 1]);
         auto& w = route.waypoints;
@@ -316,7 +331,25 @@ void CRiskEvaluator::evaluate() {
         m_gvg = std::make_unique<CGvgRoutes>(*m_field, options.gvg);
         const auto g = m_gvg->routes(start, goal, size_t(options.gvg_routes));
         for (size_t i = 0; i < g.size(); i++)
-            m_routes.push_back({gvgRouteName(i + 1), g[i], true});
+            m_routes.push_back({gvgRouteName(i + 1), g[i], "gvg"});
+    }
+    const size_t firstGrid = m_routes.size();
+    m_noWayFailure.clear();
+    m_noWayReason.clear();
+    if (options.grid_routes > 0) {
+        // the same disc and obstacle rule as the field the routes are
+        // scored on: a way the planner finds is one the field lets through
+        planning::CGlobalPlanner planner;
+        planner.setMap(m_grid, options.obstacles, robot.radius);
+        const auto ways = planner.alternatives(start, goal, options.grid_routes);
+        for (const auto& w : ways)
+            if (w.found)
+                m_routes.push_back({gridRouteName(m_routes.size() + 1 - firstGrid),
+                                    planner.legs(w), "grid"});
+        if (!ways.empty() && !ways.front().found) {
+            m_noWayFailure = ways.front().failure;
+            m_noWayReason = ways.front().reason;
+        }
     }
     // Every subset of sensing points up to max_sensing_subset, smallest first,
     // each size in colexicographic order (validate() bounded their number).
@@ -452,6 +485,10 @@ std::string CRiskEvaluator::ellipsesFileName(const std::string& route) {
 
 std::string CRiskEvaluator::gvgRouteName(size_t k) {
     return "G" + std::to_string(k);
+}
+
+std::string CRiskEvaluator::gridRouteName(size_t k) {
+    return "W" + std::to_string(k);
 }
 
 void CRiskEvaluator::checkOutputPaths(const mrpt::config::CConfigFileBase& c,

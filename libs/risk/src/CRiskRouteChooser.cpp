@@ -1,4 +1,3 @@
-#include <risknav/geometry/polyline.h>
 #include <risknav/risk/CRiskRouteChooser.h>
 
 #include <cmath>
@@ -12,21 +11,6 @@ CRiskRouteChooser::CRiskRouteChooser(const mrpt::maps::COccupancyGridMap2D& grid
                                      const planning::CGlobalPlanner& planner)
     : m_field(grid, rule, robotRadius), m_risk(riskOptions), m_planner(planner) {}
 
-std::vector<mrpt::math::TPoint2D> CRiskRouteChooser::legs(
-    const planning::TGlobalPlan& c) const {
-    const auto& f = m_planner.field();
-    const double disc = m_planner.discRadius(), step = 0.5 * f.resolution();
-    return geometry::simplifyDouglasPeucker(
-        c.points, 0.1, [&](const mrpt::math::TPoint2D& a, const mrpt::math::TPoint2D& b) {
-            // a leg keeps the disc's clearance (or the lesser of its ends')
-            const double need =
-                std::min({disc, f.clearanceAt(a.x, a.y), f.clearanceAt(b.x, b.y)}) - step;
-            return geometry::segmentFree(
-                a.x, a.y, b.x, b.y, step,
-                [&](double x, double y) { return f.clearanceAt(x, y) < need; });
-        });
-}
-
 planning::TRouteChoice CRiskRouteChooser::choose(
     const std::vector<planning::TGlobalPlan>& cands) const {
     planning::TRouteChoice out;
@@ -34,7 +18,8 @@ planning::TRouteChoice CRiskRouteChooser::choose(
     for (size_t i = 0; i < cands.size(); i++) {
         double U = std::numeric_limits<double>::infinity();
         if (cands[i].found) {
-            const auto r = evaluatePathRisk(legs(cands[i]), {}, m_field, m_risk);
+            const auto r =
+                evaluatePathRisk(m_planner.legs(cands[i]), {}, m_field, m_risk);
             if (r.failure.empty() && !r.blocked)
                 U = r.U;
         }

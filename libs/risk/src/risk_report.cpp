@@ -95,6 +95,12 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
     const long best = ev.best();
     json j;
     j["status"] = routes.empty() ? "no route" : (best < 0 ? "all excluded" : "ok");
+    // why the grid has no way for the robot disc (null: it has one, or
+    // grid_routes = 0)
+    if (ev.noWayFailure().empty())
+        j["no_way"] = nullptr;
+    else
+        j["no_way"] = {{"failure", ev.noWayFailure()}, {"reason", ev.noWayReason()}};
 
     // Table.
     CCsvWriter csv(out.stage("risk_table.csv"),
@@ -107,11 +113,10 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
         for (const auto& s : r.result.sensed)
             sensed += (sensed.empty() ? "" : "+") + s;
         const bool ok = r.feasible;
-        csv.row({routes[r.route].name, routes[r.route].fromGvg ? "gvg" : "config",
-                 ev.sensingName(r), ok ? num(r.result.length) : "",
-                 ok ? num(r.result.U) : "", ok ? num(r.result.uMax) : "",
-                 ok ? num(r.result.sMaxU) : "", r.excluded ? "true" : "false", r.reason,
-                 sensed});
+        csv.row({routes[r.route].name, routes[r.route].source, ev.sensingName(r),
+                 ok ? num(r.result.length) : "", ok ? num(r.result.U) : "",
+                 ok ? num(r.result.uMax) : "", ok ? num(r.result.sMaxU) : "",
+                 r.excluded ? "true" : "false", r.reason, sensed});
         table.push_back({{"route", routes[r.route].name},
                          {"sensing", ev.sensingName(r)},
                          {"length_m", ok ? finite(r.result.length) : json(nullptr)},
@@ -139,7 +144,7 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
         for (const auto& p : r.waypoints)
             w.push_back({p.x, p.y});
         jr.push_back({{"name", r.name},
-                      {"source", r.fromGvg ? "gvg" : "config"},
+                      {"source", r.source},
                       {"length_m", polylineLength(r.waypoints)},
                       {"waypoints", w}});
     }
@@ -171,7 +176,7 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
             const bool isBest = best >= 0 && rows[size_t(best)].route == r;
             const TRgb c = seriesColour(r);
             img.polyline(routes[r].waypoints, c, isBest ? 5 : 2,
-                         routes[r].fromGvg && !isBest);
+                         routes[r].source != "config" && !isBest);
             // Labels at different fractions of the routes' lengths, so they do
             // not sit on each other.
             const auto& w = routes[r].waypoints;
@@ -192,7 +197,10 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
             std::snprintf(label, sizeof(label), "%s: U=%.2f", routes[r].name.c_str(),
                           plain.result.U);
             img.text({mid.x + 0.15, mid.y + 0.15}, label, c, 0.5);
-            img.legendLine(routes[r].name + (routes[r].fromGvg ? " (GVG)" : "") +
+            img.legendLine(routes[r].name +
+                               (routes[r].source == "gvg"    ? " (GVG)"
+                                : routes[r].source == "grid" ? " (grid)"
+                                                             : "") +
                                (isBest ? " - best" : ""),
                            c, isBest ? 5 : 2);
         }
@@ -344,8 +352,10 @@ void runRiskEvalApp(const TAppContext& ctx) {
                          ev.routes()[b.route].name.c_str(), ev.sensingName(b).c_str(),
                          b.result.U, out.dir().c_str());
         } else
-            std::fprintf(stderr, "%s: %s -> %s\n", ctx.info.name.c_str(),
-                         summary["status"].get<std::string>().c_str(), out.dir().c_str());
+            std::fprintf(stderr, "%s: %s%s%s -> %s\n", ctx.info.name.c_str(),
+                         summary["status"].get<std::string>().c_str(),
+                         ev.noWayReason().empty() ? "" : ": ", ev.noWayReason().c_str(),
+                         out.dir().c_str());
     }
 }
 

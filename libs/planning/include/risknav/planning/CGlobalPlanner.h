@@ -123,6 +123,11 @@ class CGlobalPlanner {
      * ends) closed. Fewer when no other class exists. */
     std::vector<TGlobalPlan> alternatives(const mrpt::math::TPoint2D& from,
                                           const mrpt::math::TPoint2D& to, int k) const;
+    /** A way as straight legs (Douglas-Peucker, 0.1 m): no leg passes
+     * nearer an obstacle than the disc (or than the nearer of its ends,
+     * where a start or goal lies nearer). What a route evaluator drives. */
+    std::vector<mrpt::math::TPoint2D> legs(const TGlobalPlan& way) const;
+
     /** Picks the route to a new target among alternatives() (nullptr: the
      * least-cost way): global_planner = risk, M2's U. */
     std::function<TRouteChoice(const std::vector<TGlobalPlan>&)> routeChooser;

@@ -25,9 +25,12 @@ namespace risknav::risk {
 /** Ranks candidate routes from start to goal by their integrated risk of
  * collision under odometry drift (Irie, Nagatani, Gofuku (001); PAPER_NOTES
  * M2), for every subset of sensing points a route may visit (like the paper's
- * Table 1). Candidates: [RouteN] sections of the config and/or the k
- * shortest GVG routes. Config sections: [RiskEval] (options), [Robot]
- * (robot: its radius grows the obstacles), [Odometry] (odometry + propagation),
+ * Table 1). Candidates: [RouteN] sections of the config, the k shortest GVG
+ * routes (the paper's), and the least-cost grid ways of distinct homotopy
+ * classes for the robot disc (planning::CGlobalPlanner::alternatives(),
+ * beyond the paper: a grid way exists wherever the disc fits, on SLAM maps
+ * whose GVG breaks up or weaves between speckles). Config sections: [RiskEval] (options),
+ * [Robot] (robot: its radius grows the obstacles), [Odometry] (odometry + propagation),
  * [RouteN] (configRoutes), [SensingPointN] (sensingPoints), documented in
  * config/risknav-risk-eval.ini. */
 class CRiskEvaluator {
@@ -39,7 +42,7 @@ class CRiskEvaluator {
      * paths before it propagates any. Exceeding one: CBadInputError (exit 2)
      * naming the key to change.
      * @{ */
-    /** Candidate routes: [RouteN] sections + gvg_routes. */
+    /** Candidate routes: [RouteN] sections + gvg_routes + grid_routes. */
     static constexpr size_t kMaxRoutes = 100;
     /** Rows = candidates x sensing subsets (sum_{k <= max_sensing_subset} C(n, k)). */
     static constexpr size_t kMaxRows = 1000;
@@ -62,8 +65,11 @@ class CRiskEvaluator {
         mrpt::math::TPoint2D goal{std::nan(""), std::nan("")};   ///< [m] required
         double u_threshold =
             0;  ///< exclude rows whose max u exceeds this (section 5.3); 0: off
-        int max_sensing_subset = 2;   ///< subsets of sensing points up to this size
-        int gvg_routes = 3;           ///< k shortest GVG routes (0: only [RouteN])
+        int max_sensing_subset = 2;  ///< subsets of sensing points up to this size
+        int gvg_routes = 3;          ///< k shortest GVG routes (0: none)
+        /** Least-cost grid ways of distinct homotopy classes for the robot
+         * disc (0: none); the first is the least-cost way (plan()). */
+        int grid_routes = 3;
         double ellipse_interval = 2;  ///< [m] between drawn ellipses
         double eval_step = 0.05;      ///< [m] D_max / u sampling along the path
         uint64_t seed = 1;  ///< of [Odometry] propagation = sampled; --seed overrides
@@ -80,7 +86,8 @@ class CRiskEvaluator {
     struct TRoute {
         std::string name;
         std::vector<mrpt::math::TPoint2D> waypoints;  ///< from start to goal
-        bool fromGvg = false;
+        /** Where it came from: config ([RouteN]), gvg or grid. */
+        std::string source = "config";
     };
     /** One row of the table: a route driven with one subset of sensing points. */
     struct TRow {
@@ -127,6 +134,8 @@ class CRiskEvaluator {
     static std::string ellipsesFileName(const std::string& route);
     /** The name of the k-th GVG route (1-based). */
     static std::string gvgRouteName(size_t k);
+    /** The name of the k-th grid way (1-based). */
+    static std::string gridRouteName(size_t k);
     /** Throws CBadInputError naming the key when a file this run writes into
      * `outDir` would have a path longer than PATH_MAX. */
     void checkOutputPaths(const mrpt::config::CConfigFileBase& c,
@@ -151,6 +160,11 @@ class CRiskEvaluator {
     const CGvgRoutes* gvg() const { return m_gvg.get(); }
     const std::vector<TRoute>& routes() const { return m_routes; }
     const std::vector<TRow>& rows() const { return m_rows; }
+    /** With grid_routes > 0 and no grid way: why none exists for the robot
+     * disc (planning::TGlobalPlan::failure and reason: start_blocked,
+     * goal_blocked, narrow_gap, disconnected); empty otherwise. */
+    const std::string& noWayFailure() const { return m_noWayFailure; }
+    const std::string& noWayReason() const { return m_noWayReason; }
     /** Index of the best row (lowest U among the rows not excluded), -1 if none. */
     long best() const { return m_best; }
     /** "none" or "SP1+SP2". */
@@ -175,6 +189,7 @@ class CRiskEvaluator {
     std::vector<TRoute> m_routes;
     std::vector<TRow> m_rows;
     long m_best = -1;
+    std::string m_noWayFailure, m_noWayReason;
 };
 
 }  // namespace risknav::risk

@@ -26,8 +26,6 @@ class CRiskRouteChooser {
                       const planning::CGlobalPlanner& planner);
     planning::TRouteChoice choose(
         const std::vector<planning::TGlobalPlan>& candidates) const;
-    /** A candidate as the evaluator drives it (straight legs). */
-    std::vector<mrpt::math::TPoint2D> legs(const planning::TGlobalPlan& c) const;
 
   private:
     CObstacleField m_field;
