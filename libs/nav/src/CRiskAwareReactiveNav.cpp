@@ -1180,11 +1180,7 @@ bool CRiskAwareReactiveNav::followPlan(const mrpt::math::TPose2D& pose, double a
             return false;
         }
     }
-    auto pts = senseNow(pose, now);
-    // and what it sensed before beside and behind it (its laser looks
-    // ahead; an arc swings the shape's side round a post seen earlier)
-    const auto before = m_planner->sensedNear(pose, shapeRadius() + 0.5);
-    pts.insert(pts.end(), before.begin(), before.end());
+    const auto pts = sensedAround(pose, now);
     // the plan from the robot's nearest point on
     const auto& plan = m_planner->current().points;
     size_t k0 = 0;
@@ -1271,6 +1267,18 @@ std::vector<mrpt::math::TPoint2D> CRiskAwareReactiveNav::senseNow(
     return pts;
 }
 
+std::vector<mrpt::math::TPoint2D> CRiskAwareReactiveNav::sensedAround(
+    const mrpt::math::TPose2D& pose, double now) {
+    auto pts = senseNow(pose, now);
+    // and what it sensed before beside and behind it (its laser looks
+    // ahead; an arc swings the shape's side round a post seen earlier)
+    if (m_planner) {
+        const auto before = m_planner->sensedNear(pose, shapeRadius() + 0.5);
+        pts.insert(pts.end(), before.begin(), before.end());
+    }
+    return pts;
+}
+
 bool CRiskAwareReactiveNav::finalApproach(const mrpt::math::TPose2D& pose,
                                           const mrpt::math::TPoint2D& target,
                                           double allowed) {
@@ -1281,11 +1289,7 @@ bool CRiskAwareReactiveNav::finalApproach(const mrpt::math::TPose2D& pose,
         blockedHere(m_finalBlockedAt, pose, target))
         return false;  // MRPT's (within allowed: its step marks it reached)
     const double now = mrpt::Clock::toDouble(mrpt::Clock::now());
-    auto pts = senseNow(pose, now);
-    if (m_planner) {  // and what it sensed before beside it (followPlan())
-        const auto before = m_planner->sensedNear(pose, shape + 0.5);
-        pts.insert(pts.end(), before.begin(), before.end());
-    }
+    const auto pts = sensedAround(pose, now);
     // the plan follower on the straight stretch to the end (it turns in
     // place first when off it), slowly: a cycle's move (2 cm at 0.1 m/s
     // and 0.2 s) does not overshoot the allowed distance

@@ -289,6 +289,11 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
      * the global planner; MRPT does not sense while the navigator drives. */
     std::vector<mrpt::math::TPoint2D> senseNow(const mrpt::math::TPose2D& pose,
                                                double now);
+    /** senseNow() and the global planner's remembered sensed cells within
+     * the shape's radius + 0.5 m (robot frame): what the robot's own
+     * motions (plan following, final approach) keep their body off. */
+    std::vector<mrpt::math::TPoint2D> sensedAround(const mrpt::math::TPose2D& pose,
+                                                   double now);
     /** The planner's cycle: replan for `pose` going to `target`. False: no
      * way (the navigation was stopped). */
     bool updatePlanner(const mrpt::math::TPose2D& pose,
