@@ -30,6 +30,10 @@ Each pair is then run:
             boxes (CAdaptiveSpeedLimiter: the map unknown to the robot)
   explore   risknav-explore on datasets/office/explore.ini without its boxes,
             the pair's goal as the one destination, modes = adaptive
+  risk-eval risknav-risk-eval with the pair's start and goal and the app's
+            defaults (3 GVG routes, 3 grid ways of distinct classes, the
+            navigate config's [Robot] radius): "reached" = a route found
+            (status ok: the best row is not excluded, its U finite)
 with --set World.map_file, the start, the goal and duration_max (time_limit
 for explore) = 60 s + 4 x straight distance / [Robot] max_v, and --seed SEED.
 --planner P adds --set Navigate.global_planner=P (without it nothing is
@@ -45,15 +49,15 @@ failure: the app refused what this script thinks is valid input).
 
 Usage:
   python3 scripts/validate_maps.py [--seed N | --seeds 1,2,3] [--maps a,b | none]
-      [--map-file PATH ...] [--mode navigate|m1|explore]
+      [--map-file PATH ...] [--mode navigate|m1|explore|risk-eval]
       [--planner grid|risk|none] [--localization ground_truth|mcl]
       [--jobs 2] [--out DIR] [--pairs 12] [--set SECTION.KEY=V ...]
       [--list] [--dry-run]
 Prints a markdown table (one row per map and an overall row) and every
 failure; writes DIR/results.json (pairs, runs, per-map figures). Progress on
 stderr. Exit status 0 when the runs were made (whatever they gave), 2 on bad
-usage. Env RISKNAV_NAVIGATE / RISKNAV_EXPLORE / RISKNAV_SIMULATE: other
-builds of the apps.
+usage. Env RISKNAV_NAVIGATE / RISKNAV_EXPLORE / RISKNAV_SIMULATE /
+RISKNAV_RISK_EVAL: other builds of the apps.
 """
 import argparse
 import collections
@@ -78,6 +82,7 @@ APPS = {
     "navigate": os.environ.get("RISKNAV_NAVIGATE", os.path.join(BIN, "risknav-navigate")),
     "explore": os.environ.get("RISKNAV_EXPLORE", os.path.join(BIN, "risknav-explore")),
     "simulate": os.environ.get("RISKNAV_SIMULATE", os.path.join(BIN, "risknav-simulate")),
+    "risk-eval": os.environ.get("RISKNAV_RISK_EVAL", os.path.join(BIN, "risknav-risk-eval")),
 }
 MRPT_DATASETS = "/usr/share/mrpt/datasets"
 
@@ -623,6 +628,16 @@ def draw_pairs(grid, an, rng, n):
 def base_config(mode, out):
     """The base config of a mode, written into `out` where it must lose the
     office's boxes (m1, explore)."""
+    if mode == "risk-eval":
+        # the app's defaults and the navigate runs' robot
+        nav = read_ini(os.path.join(ROOT, BASE["navigate"]))
+        path = os.path.join(out, "base_risk-eval.ini")
+        os.makedirs(out, exist_ok=True)
+        with open(path, "w") as f:
+            f.write("; written by scripts/validate_maps.py: risknav-risk-eval's defaults, the\n"
+                    "; robot of " + BASE["navigate"] + "\n[RiskEval]\n[Robot]\nradius = "
+                    + str(ini_get(nav, "Robot", "radius", 0.25)) + "\n")
+        return path
     src = os.path.join(ROOT, BASE[mode])
     if mode == "navigate":
         return src
@@ -647,7 +662,11 @@ def run_pair(job):
     sx, sy, sh = p["start"]
     gx, gy = p["goal"]
     sets = [f"World.map_file={job['map_path']}"]
-    if mode == "explore":
+    if mode == "risk-eval":
+        app = APPS["risk-eval"]
+        sets = [f"RiskEval.map_file={job['map_path']}", f"RiskEval.start={sx} {sy}",
+                f"RiskEval.goal={gx} {gy}"]
+    elif mode == "explore":
         app = APPS["explore"]
         sets += [f"Explore.start={sx} {sy} {sh}", f"Explore.destinations={gx} {gy}",
                  "Explore.modes=adaptive", f"Explore.time_limit={limit}"]
@@ -680,6 +699,8 @@ def run_pair(job):
     rec.update(judge(mode, out, job["tol"], p, rc, err))
     if rec["time_s"] is not None:
         rec["time_s"] = round(rec["time_s"], 2)
+    if mode == "risk-eval":
+        rec["time_s"] = rec["wall_s"]
     return rec
 
 
@@ -699,6 +720,22 @@ def judge(mode, out, tol, p, rc, err):
     with open(summ) as f:
         s = json.load(f)
     gx, gy = p["goal"]
+    if mode == "risk-eval":
+        j["status"] = s.get("status")
+        best = s.get("best") or {}
+        routes = s.get("routes") or []
+        src = {r["name"]: r["source"] for r in routes}
+        j["best_route"] = best.get("route")
+        j["best_source"] = src.get(best.get("route"))
+        j["best_U"] = best.get("U")
+        j["routes"] = collections.Counter(r["source"] for r in routes)
+        j["excluded_plain"] = sum(1 for r in s.get("table") or []
+                                  if r["sensing"] == "none" and r["excluded"])
+        j["reached"] = j["status"] == "ok" and j["best_U"] is not None
+        if not j["reached"]:
+            nw = s.get("no_way") or {}
+            j["reason"] = (j["status"] or "?") + (": " + nw["reason"] if nw.get("reason") else "")
+        return j
     if mode == "explore":
         md = (s.get("modes") or [{}])[0]
         j["status"] = s.get("status")
@@ -796,7 +833,8 @@ def main():
                     help="one more map (any format the apps read; a plain image at [World] "
                          "map_resolution / map_origin_*, e.g. via --set), named after its "
                          "file; repeatable")
-    ap.add_argument("--mode", choices=("navigate", "m1", "explore"), default="navigate")
+    ap.add_argument("--mode", choices=("navigate", "m1", "explore", "risk-eval"),
+                    default="navigate")
     ap.add_argument("--planner", choices=("grid", "risk", "none"), default=None,
                     help="passed as --set Navigate.global_planner=...; absent: nothing passed")
     ap.add_argument("--localization", choices=("ground_truth", "mcl"), default=None,
@@ -814,7 +852,7 @@ def main():
     ap.add_argument("--list", action="store_true", help="list the maps and exit")
     ap.add_argument("--dry-run", action="store_true", help="draw the pairs, run nothing")
     a = ap.parse_args()
-    if a.mode == "explore" and (a.planner or a.localization):
+    if a.mode in ("explore", "risk-eval") and (a.planner or a.localization):
         ap.error("--planner and --localization are for --mode navigate / m1")
     if a.seeds and a.seed is not None:
         ap.error("give --seed or --seeds, not both")
@@ -841,7 +879,7 @@ def main():
         maps[n] = os.path.abspath(p)
     if not maps:
         ap.error("no maps")
-    for app in ([APPS["explore"]] if a.mode == "explore" else [APPS["navigate"]]):
+    for app in [APPS[a.mode if a.mode in ("explore", "risk-eval") else "navigate"]]:
         if not a.dry_run and not os.access(app, os.X_OK):
             sys.exit(f"validate_maps: {app} is missing (bash scripts/build.sh)")
 
@@ -859,6 +897,8 @@ def main():
     max_v = float(ini_get(cfg, "Robot", "max_v", 0.8))
     tol = float(ini_get(cfg, "Explore" if a.mode == "explore" else "Navigate",
                         "goal_tolerance", 0.3))
+    if a.mode == "risk-eval":
+        max_v = 1.0  # no motion: the time budget is not used
 
     results = {"mode": a.mode, "planner": a.planner, "localization": a.localization,
                "seeds": seeds, "config": config, "sets": a.set or [],
@@ -965,7 +1005,8 @@ def report(results, maps):
              f"localization {results['localization'] or '(config)'}, seeds "
              f"{','.join(map(str, results['seeds']))}")
     print(f"### validate_maps: {title}\n")
-    print("| map | pairs | reached (true pose) | runs with collisions (episodes) | "
+    print("| map | pairs | " + ("route found" if results["mode"] == "risk-eval" else
+                               "reached (true pose)") + " | runs with collisions (episodes) | "
           "belief error at the end [m], median (max) | "
           "failures by reason (a run may count under two) |")
     print("|---|---|---|---|---|---|")
@@ -974,6 +1015,17 @@ def report(results, maps):
     fails = "; ".join(f"{k} x{v}" for k, v in tot_reasons.most_common()) or "none"
     print(f"| **overall** | {tot['pairs']} | **{tot['reached']}/{tot['pairs']}** | "
           f"{tot['col_runs']} ({tot['col_eps']}) | {belief(all_errs)} | {fails} |")
+    if results["mode"] == "risk-eval":
+        won = collections.Counter(r.get("best_source") for r in results["runs"] if r["reached"])
+        cands = collections.Counter()
+        for r in results["runs"]:
+            cands.update(r.get("routes") or {})
+        excl = sum(r.get("excluded_plain") or 0 for r in results["runs"])
+        print(f"\nThe best row's route came from: "
+              + ", ".join(f"{k} {v}" for k, v in won.most_common())
+              + f"; candidates over all runs: "
+              + ", ".join(f"{k} {v}" for k, v in cands.most_common())
+              + f", of which {excl} excluded (collide or a sensing detour fails).")
     failed = [r for r in results["runs"] if r.get("reason")]
     if failed:
         print("\nEvery failure (start x y heading_deg -> goal x y; straight distance; "
