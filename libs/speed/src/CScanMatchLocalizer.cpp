@@ -13,6 +13,56 @@ using mrpt::math::TPose2D;
 using mrpt::poses::CPose2D;
 
 namespace risknav::speed {
+namespace {
+/** Solves H d = -g for a symmetric positive definite n x n H (n <= 4),
+ * Gaussian elimination with partial pivoting; false if singular. */
+template <int N>
+bool solveNormalEquations(double (&H)[N][N], const double (&g)[N], double (&d)[N]) {
+    double A[N][N + 1];
+    for (int u = 0; u < N; u++) {
+        for (int v = 0; v < N; v++)
+            A[u][v] = H[u][v];
+        A[u][N] = -g[u];
+    }
+    for (int col = 0; col < N; col++) {
+        int piv = col;
+        for (int u = col + 1; u < N; u++)
+            if (std::abs(A[u][col]) > std::abs(A[piv][col]))
+                piv = u;
+        if (!(std::abs(A[piv][col]) > 1e-18))
+            return false;
+        if (piv != col)
+            for (int v = 0; v <= N; v++)
+                std::swap(A[col][v], A[piv][v]);
+        for (int u = col + 1; u < N; u++) {
+            const double f = A[u][col] / A[col][col];
+            for (int v = col; v <= N; v++)
+                A[u][v] -= f * A[col][v];
+        }
+    }
+    for (int u = N - 1; u >= 0; u--) {
+        double acc = A[u][N];
+        for (int v = u + 1; v < N; v++)
+            acc -= A[u][v] * d[v];
+        d[u] = acc / A[u][u];
+    }
+    return true;
+}
+
+/** The unit directions of the beams that ended at robot-frame points, from
+ * the sensor's position (robot frame). */
+std::vector<mrpt::math::TPoint2D> beamDirections(
+    const std::vector<mrpt::math::TPoint2D>& pts, double sensorX, double sensorY) {
+    std::vector<mrpt::math::TPoint2D> u;
+    u.reserve(pts.size());
+    for (const auto& p : pts) {
+        const double dx = p.x - sensorX, dy = p.y - sensorY, r = std::hypot(dx, dy);
+        u.emplace_back(r > 0 ? dx / r : 0.0, r > 0 ? dy / r : 0.0);
+    }
+    return u;
+}
+}  // namespace
+
 void TScanMatchOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                            const std::string& s) {
     section = s;
@@ -29,6 +79,10 @@ void TScanMatchOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& 
     odometry_sigma_deg = readDouble(c, s, "odometry_sigma_deg", odometry_sigma_deg);
     odometry_relative = readDouble(c, s, "odometry_relative", odometry_relative);
     point_sigma = readDouble(c, s, "point_sigma", point_sigma);
+    estimate_range_bias = readBool(c, s, "estimate_range_bias", estimate_range_bias);
+    range_bias_sigma = readDouble(c, s, "range_bias_sigma", range_bias_sigma);
+    range_bias_rate = readDouble(c, s, "range_bias_rate", range_bias_rate);
+    max_range_bias = readDouble(c, s, "max_range_bias", max_range_bias);
 }
 
 void TScanMatchOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
@@ -46,6 +100,10 @@ void TScanMatchOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
     writeKey(c, s, "odometry_sigma_deg", odometry_sigma_deg);
     writeKey(c, s, "odometry_relative", odometry_relative);
     writeKey(c, s, "point_sigma", point_sigma);
+    writeKey(c, s, "estimate_range_bias", estimate_range_bias);
+    writeKey(c, s, "range_bias_sigma", range_bias_sigma);
+    writeKey(c, s, "range_bias_rate", range_bias_rate);
+    writeKey(c, s, "max_range_bias", max_range_bias);
 }
 
 void TScanMatchOptions::validate() const {
@@ -72,6 +130,10 @@ void TScanMatchOptions::validate() const {
              TRange{0, 180, true, false, "deg"});
     checkKey(section, "odometry_relative", odometry_relative, TRange::closed(0, 10));
     checkKey(section, "point_sigma", point_sigma, TRange{0, 10, true, false, "m"});
+    checkKey(section, "range_bias_sigma", range_bias_sigma,
+             TRange{0, 1, true, false, "m"});
+    checkKey(section, "range_bias_rate", range_bias_rate, TRange{0, 1, true, false, ""});
+    checkKey(section, "max_range_bias", max_range_bias, TRange::closed(0, 1, "m"));
 }
 
 CScanMatchLocalizer::CScanMatchLocalizer(const TScanMatchOptions& o) : m_o(o) {
@@ -86,19 +148,38 @@ TPose2D CScanMatchLocalizer::predict(const TPose2D& odometry) const {
     return (CPose2D(m_pose) + (CPose2D(odometry) - CPose2D(m_odometry))).asTPose();
 }
 
+void CScanMatchLocalizer::applyRangeBiasToMap() {
+    if (m_mapRangeBias == m_rangeBias)
+        return;
+    for (size_t j = 0; j < m_raw.size(); j++)
+        m_map.setPointFast(j, float(m_raw[j].x - m_rangeBias * m_beam[j].x),
+                           float(m_raw[j].y - m_rangeBias * m_beam[j].y), 0);
+    m_mapRangeBias = m_rangeBias;
+}
+
 void CScanMatchLocalizer::addToMap(const std::vector<mrpt::math::TPoint2D>& pts,
+                                   const std::vector<mrpt::math::TPoint2D>& dirs,
                                    const TPose2D& at) {
+    // the points already in the map at the current range offset first
+    applyRangeBiasToMap();
     const double c = std::cos(at.phi), s = std::sin(at.phi);
     const double inv = 1.0 / m_o.map_point_spacing;
-    for (const auto& p : pts) {
-        const double x = at.x + c * p.x - s * p.y;
-        const double y = at.y + s * p.x + c * p.y;
+    for (size_t i = 0; i < pts.size(); i++) {
+        const auto& p = pts[i];
+        const double rx = at.x + c * p.x - s * p.y;
+        const double ry = at.y + s * p.x + c * p.y;
+        const double ux = c * dirs[i].x - s * dirs[i].y,
+                     uy = s * dirs[i].x + c * dirs[i].y;
+        const double x = rx - m_rangeBias * ux, y = ry - m_rangeBias * uy;
         const int64_t ix = int64_t(std::floor(x * inv)),
                       iy = int64_t(std::floor(y * inv));
         // unsigned: shifting a negative index left is undefined
         const uint64_t key = (uint64_t(ix) << 32) ^ (uint64_t(iy) & 0xffffffffULL);
-        if (m_cells.insert(key).second)
+        if (m_cells.insert(key).second) {
             m_map.insertPointFast(float(x), float(y), 0);
+            m_raw.emplace_back(rx, ry);
+            m_beam.emplace_back(ux, uy);
+        }
     }
     // insertPointFast() does not tell the map (its k-d tree) it changed
     m_map.mark_as_modified();
@@ -165,90 +246,119 @@ const CScanMatchLocalizer::TNormal& CScanMatchLocalizer::normalOf(size_t j) cons
 CScanMatchLocalizer::TAlignment CScanMatchLocalizer::align(
     const std::vector<mrpt::math::TPoint2D>& pts, const TPose2D& prior,
     double priorSigmaXY, double priorSigmaPhi) const {
+    return alignImpl(pts, nullptr, prior, priorSigmaXY, priorSigmaPhi);
+}
+
+CScanMatchLocalizer::TAlignment CScanMatchLocalizer::alignImpl(
+    const std::vector<mrpt::math::TPoint2D>& pts,
+    const std::vector<mrpt::math::TPoint2D>* dirs, const TPose2D& prior,
+    double priorSigmaXY, double priorSigmaPhi) const {
     // Gauss-Newton on point-to-line distances (the map point's line, from
     // its neighbours; point to point where they form no line), a Cauchy
     // kernel, and the prediction as a weak prior (it holds the directions a
     // scan does not constrain, e.g. along a corridor). The correspondence
-    // threshold halves on convergence down to min_match_distance.
+    // threshold halves on convergence down to min_match_distance. With the
+    // beams' directions a 4th unknown: the change of the range offset, which
+    // moves the scan's points and the map's along their own beams (a wall
+    // seen from two places moves differently: that is what tells it).
     TAlignment a;
     TPose2D x = prior;
+    double bias = 0;  // the offset's change
+    const bool withBias = dirs != nullptr && dirs->size() == pts.size();
+    const int n = withBias ? 4 : 3;
     double thr = m_o.match_distance;
     const auto& xs = m_map.getPointsBufferRef_x();
     const auto& ys = m_map.getPointsBufferRef_y();
     const double sigma = m_o.point_sigma;
     const double priorXY = 1 / (priorSigmaXY * priorSigmaXY),
-                 priorPhi = 1 / (priorSigmaPhi * priorSigmaPhi);
+                 priorPhi = 1 / (priorSigmaPhi * priorSigmaPhi),
+                 priorBias = 1 / (m_o.range_bias_sigma * m_o.range_bias_sigma);
     size_t matched = 0;
     for (int it = 0; it < m_o.max_iterations; it++) {
         const double c = std::cos(x.phi), s = std::sin(x.phi);
-        double H[3][3] = {{0}}, g[3] = {0};
+        double H[4][4] = {{0}}, g[4] = {0};
         matched = 0;
-        for (const auto& p : pts) {
-            const double qx = x.x + c * p.x - s * p.y, qy = x.y + s * p.x + c * p.y;
+        for (size_t i = 0; i < pts.size(); i++) {
+            const auto& p = pts[i];
+            double px = p.x, py = p.y;
+            if (withBias) {
+                px -= bias * (*dirs)[i].x;
+                py -= bias * (*dirs)[i].y;
+            }
+            const double qx = x.x + c * px - s * py, qy = x.y + s * px + c * py;
             float d2 = 0;
             const size_t j = m_map.kdTreeClosestPoint2D(float(qx), float(qy), d2);
             if (d2 > thr * thr)
                 continue;
-            // d q / d phi
-            const double dqx = -s * p.x - c * p.y, dqy = c * p.x - s * p.y;
-            const TNormal& n = normalOf(j);
-            auto add = [&](double r, double jx, double jy, double jphi) {
-                const double w = 1 / (1 + r * r / (sigma * sigma));  // Cauchy
-                const double J[3] = {jx, jy, jphi};
-                for (int u = 0; u < 3; u++) {
-                    g[u] += w * J[u] * r;
-                    for (int v = 0; v < 3; v++)
-                        H[u][v] += w * J[u] * J[v];
-                }
-            };
+            const TNormal& nj = normalOf(j);
             // only map points on a line: a point that ends what the map has
             // seen (the edge of a wall's seen part) would pull a scan that
             // sees on along the wall back to it, point to point
-            if (!n.line)
+            if (!nj.line)
                 continue;
             matched++;
-            add(n.nx * (qx - xs[j]) + n.ny * (qy - ys[j]), n.nx, n.ny,
-                n.nx * dqx + n.ny * dqy);
+            // d q / d phi
+            const double dqx = -s * px - c * py, dqy = c * px - s * py;
+            const double mx = xs[j] - (withBias ? bias * m_beam[j].x : 0.0),
+                         my = ys[j] - (withBias ? bias * m_beam[j].y : 0.0);
+            const double r = nj.nx * (qx - mx) + nj.ny * (qy - my);
+            double J[4] = {nj.nx, nj.ny, nj.nx * dqx + nj.ny * dqy, 0};
+            if (withBias) {
+                // the scan's point moves by -bias along its beam (world
+                // frame), the map's by -bias along its own
+                const double ux = c * (*dirs)[i].x - s * (*dirs)[i].y,
+                             uy = s * (*dirs)[i].x + c * (*dirs)[i].y;
+                J[3] = nj.nx * (m_beam[j].x - ux) + nj.ny * (m_beam[j].y - uy);
+            }
+            const double w = 1 / (1 + r * r / (sigma * sigma));  // Cauchy
+            for (int u = 0; u < n; u++) {
+                g[u] += w * J[u] * r;
+                for (int v = 0; v < n; v++)
+                    H[u][v] += w * J[u] * J[v];
+            }
         }
         if (matched < 3)
             break;
-        // the prior, in units of the points' noise
+        // the priors, in units of the points' noise
         const double k2 = sigma * sigma;
-        const double ep[3] = {x.x - prior.x, x.y - prior.y,
-                              mrpt::math::wrapToPi(x.phi - prior.phi)};
-        const double pw[3] = {priorXY * k2, priorXY * k2, priorPhi * k2};
-        for (int u = 0; u < 3; u++) {
+        const double ep[4] = {x.x - prior.x, x.y - prior.y,
+                              mrpt::math::wrapToPi(x.phi - prior.phi), bias};
+        const double pw[4] = {priorXY * k2, priorXY * k2, priorPhi * k2, priorBias * k2};
+        for (int u = 0; u < n; u++) {
             H[u][u] += pw[u];
             g[u] += pw[u] * ep[u];
         }
-        // solve H d = -g (3x3, Cramer)
-        const double det = H[0][0] * (H[1][1] * H[2][2] - H[1][2] * H[2][1]) -
-                           H[0][1] * (H[1][0] * H[2][2] - H[1][2] * H[2][0]) +
-                           H[0][2] * (H[1][0] * H[2][1] - H[1][1] * H[2][0]);
-        if (!(std::abs(det) > 1e-18))
-            break;
-        double d[3];
-        for (int col = 0; col < 3; col++) {
-            double M[3][3];
-            for (int u = 0; u < 3; u++)
+        double d[4] = {0, 0, 0, 0};
+        bool ok = false;
+        if (withBias) {
+            ok = solveNormalEquations<4>(H, g, d);
+        } else {
+            double H3[3][3], g3[3], d3[3];
+            for (int u = 0; u < 3; u++) {
+                g3[u] = g[u];
                 for (int v = 0; v < 3; v++)
-                    M[u][v] = v == col ? -g[u] : H[u][v];
-            d[col] = (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
-                      M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
-                      M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0])) /
-                     det;
+                    H3[u][v] = H[u][v];
+            }
+            ok = solveNormalEquations<3>(H3, g3, d3);
+            for (int u = 0; u < 3; u++)
+                d[u] = d3[u];
         }
+        if (!ok)
+            break;
         x.x += d[0];
         x.y += d[1];
         x.phi = mrpt::math::wrapToPi(x.phi + d[2]);
+        bias += d[3];
         a.iterations = it + 1;
-        if (std::hypot(d[0], d[1]) < 1e-4 && std::abs(d[2]) < 1e-4) {
+        if (std::hypot(d[0], d[1]) < 1e-4 && std::abs(d[2]) < 1e-4 &&
+            std::abs(d[3]) < 1e-4) {
             if (thr <= m_o.min_match_distance)
                 break;
             thr = std::max(m_o.min_match_distance, thr / 2);
         }
     }
     a.pose = x;
+    a.rangeBiasChange = bias;
     a.goodness = pts.empty() ? 0.0 : double(matched) / double(pts.size());
     return a;
 }
@@ -264,11 +374,19 @@ TPose2D CScanMatchLocalizer::update(const TPose2D& odometry,
     if (!scan)
         return m_pose;
     m_stats.scans++;
-    // the scan's points in the robot frame (valid ranges only)
-    const auto pts = mapping::scanToRobotFrame(*scan);
+    // the scan's points in the robot frame (valid ranges only), and their
+    // beams' directions
+    const auto raw = mapping::scanToRobotFrame(*scan);
+    const auto dirs = beamDirections(raw, scan->sensorPose.x(), scan->sensorPose.y());
     if (first || m_map.size() == 0) {
-        addToMap(pts, m_pose);
+        addToMap(raw, dirs, m_pose);
         return m_pose;
+    }
+    // less the range offset the map is at
+    std::vector<mrpt::math::TPoint2D> pts = raw;
+    for (size_t i = 0; i < pts.size(); i++) {
+        pts[i].x -= m_mapRangeBias * dirs[i].x;
+        pts[i].y -= m_mapRangeBias * dirs[i].y;
     }
     if (pts.size() >= 3) {
         // the odometry's motion since the last scan: the prior's spread
@@ -278,7 +396,8 @@ TPose2D CScanMatchLocalizer::update(const TPose2D& odometry,
         // size turn the robot as it drives; 1 rad per metre at the same rate)
         const double sPhi = m_o.odometry_sigma_deg * M_PI / 180 +
                             m_o.odometry_relative * (std::abs(step.phi()) + step.norm());
-        const TAlignment a = align(pts, prior, sXY, sPhi);
+        const TAlignment a =
+            alignImpl(pts, m_o.estimate_range_bias ? &dirs : nullptr, prior, sXY, sPhi);
         const double dxy = std::hypot(a.pose.x - prior.x, a.pose.y - prior.y);
         const double dphi = std::abs(mrpt::math::wrapToPi(a.pose.phi - prior.phi));
         m_stats.lastGoodness = a.goodness;
@@ -287,6 +406,14 @@ TPose2D CScanMatchLocalizer::update(const TPose2D& odometry,
             m_pose = a.pose;
             m_stats.accepted++;
             m_stats.lastCorrection = dxy;
+            // the offset is the sensor's: the running estimate moves a share
+            // of the way to this match's (the map's offset and its change)
+            if (m_o.estimate_range_bias) {
+                const double estimate = m_mapRangeBias + a.rangeBiasChange;
+                m_rangeBias = std::clamp(
+                    m_rangeBias + m_o.range_bias_rate * (estimate - m_rangeBias),
+                    -m_o.max_range_bias, m_o.max_range_bias);
+            }
         } else {
             m_stats.refused++;
         }
@@ -295,7 +422,7 @@ TPose2D CScanMatchLocalizer::update(const TPose2D& odometry,
             m_o.keyframe_distance ||
         std::abs(mrpt::math::wrapToPi(m_pose.phi - m_keyframe.phi)) >=
             m_o.keyframe_angle_deg * M_PI / 180)
-        addToMap(pts, m_pose);
+        addToMap(raw, dirs, m_pose);
     return m_pose;
 }
 }  // namespace risknav::speed

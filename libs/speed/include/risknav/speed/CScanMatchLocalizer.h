@@ -50,6 +50,20 @@ struct TScanMatchOptions : public common::CValidatedOptions {
     /** [m] a scan point's distance to the map's line (range noise and the
      * map's own), as weighed against the prior. */
     double point_sigma = 0.05;
+    /** Estimate the laser's constant range offset with the matches and take
+     * it off the scans and the map. A range offset pushes every wall away
+     * along the beams, by its cosine to the wall's normal: a wall seen
+     * square from one place and obliquely from another does not lie where
+     * it was, and the match turns the robot to fit it; each keyframe adds
+     * that turn to the map, so the belief drifts (a simulated laser's rays
+     * end inside the cell they hit: half a cell further on average). */
+    bool estimate_range_bias = true;
+    /** [m] the prior's spread of the offset's change in one match. */
+    double range_bias_sigma = 0.05;
+    /** Share of one match's offset estimate taken into the running one
+     * (the offset is a property of the sensor: averaged over matches). */
+    double range_bias_rate = 0.1;
+    double max_range_bias = 0.2;  ///< [m] |offset| at most
     std::string section = "ScanMatching";
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                             const std::string& section) override;
@@ -114,14 +128,31 @@ class CScanMatchLocalizer {
         mrpt::math::TPose2D pose;
         double goodness = 0;  ///< share of the points with a map point near
         int iterations = 0;
+        /** [m] the change of the range offset that fits best (with beam
+         * directions only) */
+        double rangeBiasChange = 0;
     };
     TAlignment align(const std::vector<mrpt::math::TPoint2D>& robotFramePoints,
                      const mrpt::math::TPose2D& prior, double priorSigmaXY,
                      double priorSigmaPhi) const;
 
+    /** [m] the laser's range offset as estimated so far (0 without
+     * estimate_range_bias): the scans' and the map's ranges less it. */
+    double rangeBias() const { return m_rangeBias; }
+
   private:
+    /** The alignment; with the beams' directions (robot frame, one per
+     * point) the range offset's change is estimated too. */
+    TAlignment alignImpl(const std::vector<mrpt::math::TPoint2D>& robotFramePoints,
+                         const std::vector<mrpt::math::TPoint2D>* beamDirections,
+                         const mrpt::math::TPose2D& prior, double priorSigmaXY,
+                         double priorSigmaPhi) const;
     void addToMap(const std::vector<mrpt::math::TPoint2D>& robotFramePoints,
+                  const std::vector<mrpt::math::TPoint2D>& beamDirections,
                   const mrpt::math::TPose2D& at);
+    /** Every map point at its raw position less the current range offset
+     * along its beam. */
+    void applyRangeBiasToMap();
     struct TNormal {
         bool known = false, line = false;
         double nx = 0, ny = 0;
@@ -133,7 +164,11 @@ class CScanMatchLocalizer {
     mrpt::math::TPose2D m_pose, m_pose0, m_odometry, m_keyframe;
     mrpt::maps::CSimplePointsMap m_map;
     std::unordered_set<uint64_t> m_cells;
-    mutable std::vector<TNormal> m_normals;  ///< per map point, when first asked
+    /** per map point: where its beam ended (the raw range) and the beam's
+     * unit direction, world frame */
+    std::vector<mrpt::math::TPoint2D> m_raw, m_beam;
+    double m_rangeBias = 0, m_mapRangeBias = 0;  ///< now, and the map's
+    mutable std::vector<TNormal> m_normals;      ///< per map point, when first asked
     TStats m_stats;
 };
 }  // namespace risknav::speed
