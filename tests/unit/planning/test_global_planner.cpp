@@ -411,3 +411,67 @@ TEST(CGlobalPlanner, AGapTheDiscFitsWithinACellOfTheSensedPointsIsPlannedOnce) {
     p.addSensed(TPose2D(2, 4, 0), wall, 2.0);
     EXPECT_FALSE(p.update(TPose2D(2, 4, 0), {10, 4}, 2.0));
 }
+
+TEST(CGlobalPlanner, ABuiltMapTakesAGapWithinACellOverALongDetour) {
+    // map = built, a sensed wall at x = 6 with a gap whose points stand
+    // 0.76 m apart (the 0.35 m disc fits it only within a cell of them, as
+    // above). Round the wall's end is a way for the whole disc: taken when
+    // it is about as short, not when it is a long detour (the laser's
+    // points sit up to a cell in front of a surface: the gap is there).
+    auto wallWithGap = [](double y0, double y1) {
+        std::vector<TPoint2D> w;
+        for (double y = y0; y <= y1 + 1e-9; y += 0.02)
+            if (y < 3.63 || y > 4.37)  // the gap's points at 3.62 and 4.38 m
+                w.emplace_back(6.0 - 2.0, y - 4.0);
+        return w;
+    };
+    const auto blank = makeMap(12, 20, {});
+    for (const bool longDetour : {true, false}) {
+        planning::CGlobalPlanner p;
+        p.options.margin = 0;
+        p.options.map = "built";
+        p.setMap(blank, mapping::TObstacleRule{}, 0.35);
+        // long: the wall from the floor to y = 14 (round its end ~23 m);
+        // short: y 2.5-5.5 (round its end ~9 m, the straight way 8 m)
+        p.addSensed(TPose2D(2, 4, 0),
+                    longDetour ? wallWithGap(0.1, 14) : wallWithGap(2.5, 5.5), 0.0);
+        ASSERT_TRUE(p.update(TPose2D(2, 4, 0), {10, 4}, 0.0));
+        ASSERT_TRUE(p.current().found) << p.current().reason;
+        if (longDetour)
+            EXPECT_LT(p.current().length, 8.0 + 0.2);  // through the gap
+        else
+            EXPECT_GT(p.current().length, 8.5);  // round the end, the whole disc off
+        // and not found blocked by the same points a cycle later
+        p.addSensed(TPose2D(2, 4, 0),
+                    longDetour ? wallWithGap(0.1, 14) : wallWithGap(2.5, 5.5), 2.0);
+        EXPECT_FALSE(p.update(TPose2D(2, 4, 0), {10, 4}, 2.0));
+    }
+}
+
+TEST(CGlobalPlanner, ABeamFromTheCentreDoesNotForgetAPostBesideTheRobot) {
+    // The planner draws each beam from the robot's centre, but a laser
+    // sits off it (e.g. 0.2 m ahead): beside the robot the centre's line
+    // passes through a post the laser's beam did not. Near the robot (the
+    // disc + 0.2 m) nothing is forgotten; further out beams still clear.
+    const auto blank = makeMap(12, 8, {});
+    planning::CGlobalPlanner p;
+    p.options.margin = 0;
+    p.options.map = "built";
+    p.setMap(blank, mapping::TObstacleRule{}, 0.33);
+    const TPose2D pose(2, 4, 0);
+    // a post 0.41 m from the centre, ahead-left, and one 1.65 m out
+    p.addSensed(pose, {{0.1, 0.4}, {0.4, 1.6}}, 0.0);
+    auto near = [&](double x, double y) {
+        for (const auto& q : p.sensedNear(pose, 2.0))
+            if (std::hypot(q.x - x, q.y - y) < 0.08)
+                return true;
+        return false;
+    };
+    ASSERT_TRUE(near(0.1, 0.4));
+    ASSERT_TRUE(near(0.4, 1.6));
+    // a wall point further along the same line from the centre: its line
+    // passes through both posts' cells
+    p.addSensed(pose, {{0.6, 2.4}}, 1.0);
+    EXPECT_TRUE(near(0.1, 0.4));   // kept: beside the robot
+    EXPECT_FALSE(near(0.4, 1.6));  // seen through: gone
+}

@@ -203,9 +203,11 @@ class CGlobalPlanner {
      * where that is beyond disc + clearance_soft (no cost). */
     void sensedClearance(const TLevel& L, std::vector<float>& out) const;
     /** [m] added to every sensed clearance while planning: 0, or one cell
-     * when no way keeps the whole disc off the sensed points (a laser's
-     * range noise puts a surface's points up to a cell in front of it, so
-     * a gap the disc fits by centimetres senses a cell narrower). */
+     * when no way keeps the whole disc off the sensed points, or (map =
+     * built) when such a way is over 1.5 times (+ 1 m) longer than the way
+     * within a cell of them (a laser's range noise puts a surface's points
+     * up to a cell in front of it, so a gap the disc fits by centimetres
+     * senses a cell narrower). */
     mutable double m_sensedSlack = 0;
     double m_planSlack = 0;  ///< the slack the current plan was made with
     mutable std::vector<float> m_sensedEdge;
