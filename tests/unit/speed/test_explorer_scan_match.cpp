@@ -21,20 +21,32 @@ using mrpt::math::TPose2D;
 using mrpt::poses::CPose2D;
 
 namespace {
+/** Marks [x0, x1) x [y0, y1) [m] occupied. */
+void fillBox(mrpt::maps::COccupancyGridMap2D& g, double x0, double y0, double x1,
+             double y1) {
+    for (double y = y0; y < y1; y += 0.025)
+        for (double x = x0; x < x1; x += 0.025)
+            g.setPos(x, y, 0.0f);
+}
+
+/** A w x h m map of free 5 cm cells inside 10 cm outer walls. */
+mrpt::maps::COccupancyGridMap2D walledMap(double w, double h) {
+    mrpt::maps::COccupancyGridMap2D g(0, float(w), 0, float(h), 0.05f);
+    g.fill(1.0f);
+    fillBox(g, 0, 0, w, 0.1);
+    fillBox(g, 0, h - 0.1, w, h);
+    fillBox(g, 0, 0, 0.1, h);
+    fillBox(g, w - 0.1, 0, w, h);
+    return g;
+}
+
 /** A 20 x 12 m floor (5 cm cells): outer walls, a 2 m corridor along y = 6
  * between two rows of rooms with doors, and a few boxes; walls 10 cm. */
 mrpt::maps::COccupancyGridMap2D floorMap() {
-    mrpt::maps::COccupancyGridMap2D g(0, 20, 0, 12, 0.05f);
-    g.fill(1.0f);
+    auto g = walledMap(20, 12);
     auto box = [&](double x0, double y0, double x1, double y1) {
-        for (double y = y0; y < y1; y += 0.025)
-            for (double x = x0; x < x1; x += 0.025)
-                g.setPos(x, y, 0.0f);
+        fillBox(g, x0, y0, x1, y1);
     };
-    box(0, 0, 20, 0.1);
-    box(0, 11.9, 20, 12);
-    box(0, 0, 0.1, 12);
-    box(19.9, 0, 20, 12);
     // the corridor's walls, a 1 m door into each room
     for (double x0 : {0.0, 5.0, 10.0, 15.0}) {
         box(x0, 4.95, x0 + 2, 5.05);
@@ -240,17 +252,10 @@ namespace {
 /** A 40 x 8 m hall (5 cm cells): outer walls, a row of 0.3 m pillars every
  * 4 m at y = 4.5 and a few boxes along the far wall. */
 mrpt::maps::COccupancyGridMap2D hallMap() {
-    mrpt::maps::COccupancyGridMap2D g(0, 40, 0, 8, 0.05f);
-    g.fill(1.0f);
+    auto g = walledMap(40, 8);
     auto box = [&](double x0, double y0, double x1, double y1) {
-        for (double y = y0; y < y1; y += 0.025)
-            for (double x = x0; x < x1; x += 0.025)
-                g.setPos(x, y, 0.0f);
+        fillBox(g, x0, y0, x1, y1);
     };
-    box(0, 0, 40, 0.1);
-    box(0, 7.9, 40, 8);
-    box(0, 0, 0.1, 8);
-    box(39.9, 0, 40, 8);
     for (double x = 2; x < 39; x += 4)
         box(x, 4.5, x + 0.3, 4.8);
     for (double x = 5; x < 39; x += 7)
