@@ -146,6 +146,45 @@ TEST(ScanMatchLocalizer, PredictsByTheOdometryBetweenScans) {
     EXPECT_NEAR(q.phi, M_PI / 2, 1e-9);
 }
 
+namespace {
+struct TDrift {
+    double position = 0;  ///< [m] the belief's largest error
+    double heading = 0;   ///< [rad]
+    double rangeBias = 0;
+    TPose2D odometryEnd;  ///< where odometry alone ends
+    CScanMatchLocalizer::TStats stats;
+};
+
+/** Drives `route` with odometry 0.2 % long and turning `turnDegPerM`, the
+ * scans' noise from `seed`. */
+TDrift driftAlong(const std::vector<TPose2D>& route,
+                  const mrpt::maps::COccupancyGridMap2D& g, const TScanMatchOptions& o,
+                  double turnDegPerM, unsigned seed) {
+    std::mt19937 rng(seed);
+    CScanMatchLocalizer loc(o);
+    CPose2D odo(route.front());
+    TDrift r;
+    for (size_t k = 0; k < route.size(); k++) {
+        if (k > 0) {
+            CPose2D inc = CPose2D(route[k]) - CPose2D(route[k - 1]);
+            const double d = inc.norm();
+            inc.x(inc.x() * 1.002);
+            inc.y(inc.y() * 1.002);
+            inc.phi_incr(turnDegPerM * M_PI / 180 * d);
+            odo = odo + inc;
+        }
+        const auto s = scanAt(g, route[k], rng);
+        const TPose2D b = loc.update(odo.asTPose(), &s);
+        r.position = std::max(r.position, std::hypot(b.x - route[k].x, b.y - route[k].y));
+        r.heading = std::max(r.heading, headingError(b, route[k]));
+    }
+    r.rangeBias = loc.rangeBias();
+    r.odometryEnd = odo.asTPose();
+    r.stats = loc.stats();
+    return r;
+}
+}  // namespace
+
 TEST(ScanMatchLocalizer, AClosedLoopStaysWhereOdometryDrifts) {
     // A tour of the floor (a turn on the spot, along the corridor, into a
     // room and back, and back along the corridor), with odometry whose
@@ -157,7 +196,6 @@ TEST(ScanMatchLocalizer, AClosedLoopStaysWhereOdometryDrifts) {
     // way back west the belief slides along the corridor, where only the
     // door jambs' 10 cm faces fix that direction.)
     const auto g = floorMap();
-    std::mt19937 rng(11);
     std::vector<TPose2D> route;
     for (int k = 0; k <= 14; k++)
         route.emplace_back(1.5, 6.0, k * 0.45);
@@ -175,30 +213,13 @@ TEST(ScanMatchLocalizer, AClosedLoopStaysWhereOdometryDrifts) {
         route.emplace_back(17.5, 6.0, -M_PI / 2 - k * M_PI / 12);
     for (double x = 17.5; x > 2.0; x -= 0.3)
         route.emplace_back(x, 6.0, M_PI);
-    CScanMatchLocalizer loc;
-    CPose2D odo(route.front());
-    double worstBelief = 0, worstHeading = 0;
-    for (size_t k = 0; k < route.size(); k++) {
-        if (k > 0) {
-            CPose2D inc = CPose2D(route[k]) - CPose2D(route[k - 1]);
-            const double d = inc.norm();
-            inc.x(inc.x() * 1.002);
-            inc.y(inc.y() * 1.002);
-            inc.phi_incr(0.2 * M_PI / 180 * d);
-            odo = odo + inc;
-        }
-        const auto s = scanAt(g, route[k], rng);
-        const TPose2D b = loc.update(odo.asTPose(), &s);
-        worstBelief =
-            std::max(worstBelief, std::hypot(b.x - route[k].x, b.y - route[k].y));
-        worstHeading = std::max(worstHeading, headingError(b, route[k]));
-    }
+    const TDrift r = driftAlong(route, g, {}, 0.2, 11);
     const TPose2D& end = route.back();
-    EXPECT_GT(std::hypot(odo.x() - end.x, odo.y() - end.y), 1.0);
-    EXPECT_LT(worstBelief, 0.17);
-    EXPECT_LT(worstHeading, 1.0 * M_PI / 180);
-    EXPECT_GT(loc.stats().accepted, route.size() * 9 / 10);
-    EXPECT_GT(loc.stats().keyframes, 10u);
+    EXPECT_GT(std::hypot(r.odometryEnd.x - end.x, r.odometryEnd.y - end.y), 1.0);
+    EXPECT_LT(r.position, 0.17);
+    EXPECT_LT(r.heading, 1.0 * M_PI / 180);
+    EXPECT_GT(r.stats.accepted, route.size() * 9 / 10);
+    EXPECT_GT(r.stats.keyframes, 10u);
 }
 
 TEST(ScanMatchLocalizer, BadOptionsAreRefusedWithTheKey) {
@@ -263,36 +284,6 @@ mrpt::maps::COccupancyGridMap2D hallMap() {
     return g;
 }
 
-struct TDrift {
-    double position = 0;  ///< [m] the belief's largest error
-    double heading = 0;   ///< [rad]
-    double rangeBias = 0;
-};
-
-/** Drives `route` with odometry 0.2 % long and turning 0.05 deg per metre. */
-TDrift driftAlong(const std::vector<TPose2D>& route,
-                  const mrpt::maps::COccupancyGridMap2D& g, const TScanMatchOptions& o) {
-    std::mt19937 rng(5);
-    CScanMatchLocalizer loc(o);
-    CPose2D odo(route.front());
-    TDrift r;
-    for (size_t k = 0; k < route.size(); k++) {
-        if (k > 0) {
-            CPose2D inc = CPose2D(route[k]) - CPose2D(route[k - 1]);
-            const double d = inc.norm();
-            inc.x(inc.x() * 1.002);
-            inc.y(inc.y() * 1.002);
-            inc.phi_incr(0.05 * M_PI / 180 * d);
-            odo = odo + inc;
-        }
-        const auto s = scanAt(g, route[k], rng);
-        const TPose2D b = loc.update(odo.asTPose(), &s);
-        r.position = std::max(r.position, std::hypot(b.x - route[k].x, b.y - route[k].y));
-        r.heading = std::max(r.heading, headingError(b, route[k]));
-    }
-    r.rangeBias = loc.rangeBias();
-    return r;
-}
 }  // namespace
 
 TEST(ScanMatchLocalizer, ARangeOffsetDoesNotTurnTheMap) {
@@ -308,7 +299,7 @@ TEST(ScanMatchLocalizer, ARangeOffsetDoesNotTurnTheMap) {
     for (double x = 1.5; x < 38.5; x += 0.3)
         route.emplace_back(x, 2.0 + 0.3 * std::sin(x / 3), 0.1 * std::cos(x / 3));
     TScanMatchOptions o;
-    const TDrift now = driftAlong(route, g, o);
+    const TDrift now = driftAlong(route, g, o, 0.05, 5);
     EXPECT_LT(now.position, 0.2);
     EXPECT_LT(now.heading, 0.75 * M_PI / 180);
     // the offset found is about half a cell
@@ -316,7 +307,7 @@ TEST(ScanMatchLocalizer, ARangeOffsetDoesNotTurnTheMap) {
     EXPECT_LT(now.rangeBias, 0.04);
     // the matcher as it was
     o.estimate_range_bias = false;
-    const TDrift before = driftAlong(route, g, o);
+    const TDrift before = driftAlong(route, g, o, 0.05, 5);
     EXPECT_GT(before.position, 0.22);
     EXPECT_GT(before.heading, 1.0 * M_PI / 180);
 }

@@ -1,5 +1,4 @@
 #pragma once
-#include <risknav/common/TOdometryOptions.h>
 #include <risknav/planning/CGlobalPlanner.h>
 #include <risknav/risk/CObstacleField.h>
 #include <risknav/risk/TPropagationOptions.h>
