@@ -5,6 +5,8 @@
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/poses/CPose2D.h>
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
 
@@ -14,41 +16,6 @@ using mrpt::poses::CPose2D;
 
 namespace risknav::speed {
 namespace {
-/** Solves H d = -g for a symmetric positive definite n x n H (n <= 4),
- * Gaussian elimination with partial pivoting; false if singular. */
-template <int N>
-bool solveNormalEquations(double (&H)[N][N], const double (&g)[N], double (&d)[N]) {
-    double A[N][N + 1];
-    for (int u = 0; u < N; u++) {
-        for (int v = 0; v < N; v++)
-            A[u][v] = H[u][v];
-        A[u][N] = -g[u];
-    }
-    for (int col = 0; col < N; col++) {
-        int piv = col;
-        for (int u = col + 1; u < N; u++)
-            if (std::abs(A[u][col]) > std::abs(A[piv][col]))
-                piv = u;
-        if (!(std::abs(A[piv][col]) > 1e-18))
-            return false;
-        if (piv != col)
-            for (int v = 0; v <= N; v++)
-                std::swap(A[col][v], A[piv][v]);
-        for (int u = col + 1; u < N; u++) {
-            const double f = A[u][col] / A[col][col];
-            for (int v = col; v <= N; v++)
-                A[u][v] -= f * A[col][v];
-        }
-    }
-    for (int u = N - 1; u >= 0; u--) {
-        double acc = A[u][N];
-        for (int v = u + 1; v < N; v++)
-            acc -= A[u][v] * d[v];
-        d[u] = acc / A[u][u];
-    }
-    return true;
-}
-
 /** The unit directions of the beams that ended at robot-frame points, from
  * the sensor's position (robot frame). */
 std::vector<mrpt::math::TPoint2D> beamDirections(
@@ -276,7 +243,8 @@ CScanMatchLocalizer::TAlignment CScanMatchLocalizer::alignImpl(
     size_t matched = 0;
     for (int it = 0; it < m_o.max_iterations; it++) {
         const double c = std::cos(x.phi), s = std::sin(x.phi);
-        double H[4][4] = {{0}}, g[4] = {0};
+        Eigen::Matrix4d H = Eigen::Matrix4d::Zero();
+        Eigen::Vector4d g = Eigen::Vector4d::Zero();
         matched = 0;
         for (size_t i = 0; i < pts.size(); i++) {
             const auto& p = pts[i];
@@ -314,7 +282,7 @@ CScanMatchLocalizer::TAlignment CScanMatchLocalizer::alignImpl(
             for (int u = 0; u < n; u++) {
                 g[u] += w * J[u] * r;
                 for (int v = 0; v < n; v++)
-                    H[u][v] += w * J[u] * J[v];
+                    H(u, v) += w * J[u] * J[v];
             }
         }
         if (matched < 3)
@@ -325,24 +293,15 @@ CScanMatchLocalizer::TAlignment CScanMatchLocalizer::alignImpl(
                               mrpt::math::wrapToPi(x.phi - prior.phi), bias};
         const double pw[4] = {priorXY * k2, priorXY * k2, priorPhi * k2, priorBias * k2};
         for (int u = 0; u < n; u++) {
-            H[u][u] += pw[u];
+            H(u, u) += pw[u];
             g[u] += pw[u] * ep[u];
         }
-        double d[4] = {0, 0, 0, 0};
-        bool ok = false;
-        if (withBias) {
-            ok = solveNormalEquations<4>(H, g, d);
-        } else {
-            double H3[3][3], g3[3], d3[3];
-            for (int u = 0; u < 3; u++) {
-                g3[u] = g[u];
-                for (int v = 0; v < 3; v++)
-                    H3[u][v] = H[u][v];
-            }
-            ok = solveNormalEquations<3>(H3, g3, d3);
-            for (int u = 0; u < 3; u++)
-                d[u] = d3[u];
-        }
+        // H is symmetric positive definite (the priors keep it so)
+        Eigen::Vector4d d = Eigen::Vector4d::Zero();
+        using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>;
+        const Eigen::LDLT<Small> ldlt(Small(H.topLeftCorner(n, n)));
+        d.head(n) = ldlt.solve(-g.head(n));
+        const bool ok = ldlt.info() == Eigen::Success && d.allFinite();
         if (!ok)
             break;
         x.x += d[0];
