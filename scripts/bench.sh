@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Performance figures quoted in README.md: Google Benchmark of the simulator
+# Performance figures quoted in docs/PERFORMANCE.md: Google Benchmark of the simulator
 # and of the risk evaluator
 # engine, then whole-process wall time and peak memory of risknav-simulate for
 # 1, 3 and 10 laps of the corridor world (peak memory must not grow: the
@@ -96,7 +96,7 @@ rm -rf "$tmp"
 
 # Viewpoint planner (M4): the full sweep (9 safety margins, k = 10 paths each,
 # viewpoints planned on all) on bench_viewpoint's generated 20 x 14 m world;
-# issue's target <= 500 ms on 2 cores. Medians of 5 runs.
+# target <= 500 ms on 2 cores. Medians of 5 runs.
 json=$(mktemp)
 build/bin/risknav_bench_viewpoint --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
     --benchmark_format=json --benchmark_out="$json" --benchmark_out_format=json >/dev/null
@@ -113,7 +113,7 @@ print("  %d of %d (S, path) plans feasible, at %d of 9 S; optimal plan: %s; visi
 PY
 rm -f "$json"
 
-# One navigation step (issue 12): CRiskAwareReactiveNav with all three
+# One navigation step: CRiskAwareReactiveNav with all three
 # limiters vs a bare CReactiveNavigationSystem on the same office world and
 # config, side by side in one run; and each limiter's limit() call alone.
 build/bin/risknav_bench_nav --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \

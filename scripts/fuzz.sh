@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs the libFuzzer targets of tests/fuzz (issue 9) for a bounded time each:
+# Runs the libFuzzer targets of tests/fuzz for a bounded time each:
 #   scripts/fuzz.sh [SECONDS] [TARGET...]     (default 60 s, all ten targets)
 # Installs clang if missing, builds into build-fuzz (clang, ASan+UBSan,
 # -DRISKNAV_BUILD_FUZZERS=ON; the normal build/ is not touched), seeds the

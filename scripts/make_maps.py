@@ -118,7 +118,7 @@ def narrow_doors():
     afraid detector's collision circle, with two crossings: rooms above and
     below the corridor at x 5.5-9.5 (doors x 7.0-7.9) and at x 13.5-17.5
     (doors x 15.0-15.9), people crossing from one room to the other. For the
-    multi-world validation of the afraid learner (issue 8)."""
+    multi-world validation of the afraid learner."""
     b = Bitmap(24, 6)
     b.free(0.5, 2.4, 23.5, 3.6)                  # corridor
     for x0 in (5.5, 13.5):

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Multi-world validation of the afraid learner (issue 8).
+"""Multi-world validation of the afraid learner (M3).
 
 For each world and seed: simulate slow laps with people stepping out of doors
 (risknav-simulate), learn the afraid map from the rawlog (risknav-afraid-learn,

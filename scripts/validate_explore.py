@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""Multi-world, multi-seed validation of risknav-explore (issue 10, M1).
+"""Multi-world, multi-seed validation of risknav-explore (M1).
 
 Runs the adaptive mode on:
 - the office (datasets/office/explore.ini), people off;
 - the office with the corridor walker of datasets/office/world.ini added;
 - the T junction (datasets/validation/explore_t_junction.ini) and four
-  worlds an independent tester drew (a U corridor, a hall with pillars, rooms
+  worlds drawn by someone who had not seen the code (a U corridor, a hall with pillars, rooms
   with a dead-end room, the same with a destination behind it), none of which
   the controller was tuned on;
 each over seeds 1..N, and prints per world: runs with every destination

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Closed-loop figures of risknav-navigate for the README (issue 12).
+"""Closed-loop figures of risknav-navigate for the docs.
 
 Runs the app on the committed datasets over several seeds and prints
 markdown tables: the office (stopping limiter), M1 (adaptive limiter vs the

@@ -44,7 +44,7 @@ BENCHMARK(BM_KrrPredict_2000x2000)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();
 
 // The rawlog reader on the corridor dataset (2.3 MB, 3959 frames): opening it
-// = the size pass + the probe's full MRPT pass in a child (issue 9), then the
+// = the size pass + the probe's full MRPT pass in a child (hostile input), then the
 // whole read; the difference is what hostile-input safety costs.
 const std::string kCorridor =
     std::string(RISKNAV_SOURCE_DIR) + "/datasets/corridor-doors/corridor.rawlog";

@@ -303,7 +303,7 @@ struct TNavBench {
 
     // Timed: a cycle of the adaptive limiter still in flight (n >= 2 runs
     // one on across steps) ends before the untimed twin step; left to end
-    // there, its work went untimed (stop 38: cycle_decimation = 2 then
+    // there, its work went untimed (cycle_decimation = 2 then
     // measured 1.0x with the whole process's CPU per step at the bare step's).
     void finishWorker() {
         if (!risk)

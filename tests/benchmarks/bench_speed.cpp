@@ -1,4 +1,4 @@
-// One control cycle of the adaptive speed controller (issue 10, M1): two
+// One control cycle of the adaptive speed controller (M1): two
 // sensor updates on the robot-centred grids, fusion, the planning field, the
 // memory's update and cost on (50 m at 0.25 m, the default) and the decision
 // with four A* plans, as risknav-explore runs it. The scans and the map come from the

@@ -619,7 +619,7 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<TBad>& i) { return i.param.name; });
 
 TEST(AfraidLearnE2E, GroundTruthIsReadStrictly) {
-    // a tester's: a NaN line and a file of another run (every time 1e6 s
+    // a NaN line and a file of another run (every time 1e6 s
     // later) were dropped in silence (mcl_error_samples 182 of 183, and 0)
     const std::string w = freshDir("w");
     ASSERT_EQ(run("rawlog-edit --cut --to-index 100 -i '" +

@@ -1,4 +1,4 @@
-// risknav-explore end to end (issue 10, M1): the office of datasets/ and
+// risknav-explore end to end (M1): the office of datasets/ and
 // bad input.
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -153,7 +153,7 @@ TEST(ExploreE2E, BadInputIsExitTwoWithTheKey) {
         {"--set MapRange2.p_obs_given_obstacle=0.5001 --set "
          "MapRange2.p_obs_given_free=0.5",
          "[MapRange2] p_obs_given_obstacle = '0.5001': more than 1000 observations"},
-        // a tester's: a start inside a box (a collision in every mode, exit 0),
+        // a start inside a box (a collision in every mode, exit 0),
         // a box off the map
         {"--set Clutter1.x=2.5 --set Clutter1.y=3.2", "is inside [Clutter1]"},
         {"--set Clutter1.x=-5000 --set Clutter1.y=-5000",
@@ -208,8 +208,7 @@ TEST(ExploreE2E, AnUnreachableDestinationIsReportedAndTheRobotStops) {
 TEST(ExploreE2E, ALocalMapOfNoWholeNumberOfCellsDrawsItsSnapshots) {
     // 10 m at 3 cm is 333.3 cells: from this start MRPT's grid for the
     // snapshot images got a cell more a side than the map, and drawing the
-    // grown obstacles threw after the whole run (exit 1, no snapshots; found
-    // by an independent tester)
+    // grown obstacles threw after the whole run (exit 1, no snapshots)
     const std::string out = freshDir("res003");
     const auto r = run(binPath(kApp) + " -q -o '" + out +
                        "' --set Explore.modes=adaptive --set Explore.time_limit=3 " +

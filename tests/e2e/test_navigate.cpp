@@ -324,7 +324,7 @@ INSTANTIATE_TEST_SUITE_P(
              "[CReactiveNavigationSystem]\nPTG0_num_paths = 100000000\n"
              "[CRiskAwareReactiveNav]",
              "[CReactiveNavigationSystem] PTG0_num_paths = '100000000'"},
-        // the tester's crashes (segfaults, a bare assert) and truncated integers
+        // values MRPT crashed on (segfaults, a bare assert) and truncated integers
         TBad{"start_heading_huge", "start +=.*", "start = 3 3 1e308",
              "[Navigate] start = '3 3 1e308': the heading must be in [-3600, 3600] deg"},
         TBad{
@@ -568,7 +568,6 @@ INSTANTIATE_TEST_SUITE_P(
              "[CHolonomicND] factorWeights = '0 0 0 0': the weights must add up to more "
              "than 0"},
         // turning slowly: 350 paths at 0.1 deg/s built 76-82 s, at 0.001 108 s
-        // (stop 37's tester)
         TBad{"mrpt_ptg_build_turning_slowly", "\\[CRiskAwareReactiveNav\\]",
              "[CReactiveNavigationSystem]\nPTG0_num_paths = 400\nPTG0_refDistance = 50\n"
              "PTG0_w_max_dps = 0.1\n[CRiskAwareReactiveNav]",
@@ -715,8 +714,8 @@ TEST(NavigateE2E, ABadValueInTheEngineFileIsBlamedOnThatFile) {
 TEST(NavigateE2E, MrptsOwnSpellingsOfEngineValuesAreAccepted) {
     // '# comments' after numbers (MRPT's own files have them), 121.0 for an
     // integer (MRPT reads 121), a score
-    // formula that is a number, the method with its namespace: stop 36's
-    // checks refused these
+    // formula that is a number, the method with its namespace: stricter
+    // checks once refused these
     const std::string w = freshDir("w");
     std::string cfg = officeConfig();
     cfg = std::regex_replace(cfg, std::regex("PTG_COUNT = 2"),

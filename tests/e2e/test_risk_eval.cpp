@@ -67,7 +67,7 @@ TEST_P(RiskEvalModels, ReproducesTheOrderOfTable1) {
 INSTANTIATE_TEST_SUITE_P(RiskEval, RiskEvalModels,
                          ::testing::Values("per_step", "systematic"));
 
-// Issue 8: with the paper's initial heading sigma (0.1 rad) the wheel terms
+// With the paper's initial heading sigma (0.1 rad) the wheel terms
 // are ~4 % of the lateral variance, so the order of Table 1 holds even with L
 // or J_V wrong. Here the initial heading is exact (init_sigma_theta_deg = 0)
 // and the wheel errors make all of the drift; the app's covariance along
@@ -263,7 +263,7 @@ TEST(RiskEvalE2E, GvgFindsBothWaysAndTheOutputsAreComplete) {
           "cov_A+SP2.csv", "config_effective.ini"})
         EXPECT_TRUE(fs::is_regular_file(d + "/" + f)) << f;
     // Covariance tables for the plain row and the best row of each route
-    // only (issue 8: files per run bounded); the table has every row.
+    // only (files per run bounded); the table has every row.
     std::vector<std::string> covs;
     for (const auto& f : listDir(d))
         if (f.rfind("cov_", 0) == 0)
@@ -525,7 +525,7 @@ INSTANTIATE_TEST_SUITE_P(
              "must be one of: systematic, per_step"},
         TBad{"zero_speed", "", "", "--set Odometry.speed=0",
              "[Odometry] speed = '0': must be in (0, 5] m/s"},
-        // Issue 8: extreme but accepted values. The work a run needs is
+        // Extreme but accepted values. The work a run needs is
         // bounded before any is done; sigmas are bounded so that no
         // covariance can overflow into D_max = inf, U = 0.
         TBad{"tiny_speed", "", "", "--set Odometry.speed=1e-5",
@@ -549,7 +549,7 @@ INSTANTIATE_TEST_SUITE_P(
              "--set RiskEval.gvg_routes=50",
              "[RiskEval] gvg_routes = '50': 62 [RouteN] sections + gvg_routes 50 + "
              "grid_routes 3 = 115 candidate routes; at most 100"},
-        // a tester's: the straight line in silence, two routes driven by one
+        // the straight line in silence, two routes driven by one
         // name, a route from the start to itself
         TBad{"route_without_waypoints", "", "",
              "--set Route1.waypoints=", "[Route1] waypoints = '': required: x y pairs"},

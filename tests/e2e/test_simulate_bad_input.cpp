@@ -119,7 +119,7 @@ INSTANTIATE_TEST_SUITE_P(
               "whole multiple of sim_dt"},
         TCase{"laser_decimation", "", "", "--set Laser.frame_decimation=2",
               "[Laser] frame_decimation must be 1"},
-        // the run's work bounded before it starts (a tester's run wrote 1.6 GB in
+        // the run's work bounded before it starts (unbounded, a run wrote 1.6 GB in
         // 3 minutes on its way to 1e6 s with the robot stopped by clutter)
         TCase{"run_too_long", "", "",
               "--set Simulation.sim_dt=0.01 --set Simulation.duration_max=1e6",
@@ -128,7 +128,7 @@ INSTANTIATE_TEST_SUITE_P(
         TCase{"output_too_big", "", "",
               "--set Simulation.duration_max=1e6 --set Laser.beams=1081",
               "frames of 1081 ranges, at most 5e+08 ranges in all"},
-        // a tester's: people and clutter where the map has walls, a route of no
+        // people and clutter where the map has walls, a route of no
         // length, a person at 1e308 m/s
         TCase{"walker_in_a_wall", "", "", "--set 'CorridorWalker1.path=0.7 0.1 29.3 0.1'",
               "[CorridorWalker1] path = '0.7 0.1 29.3 0.1': segment 1 runs through an "

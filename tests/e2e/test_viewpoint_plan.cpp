@@ -458,7 +458,7 @@ TEST(ViewpointPlanE2E, WorkTheInputCannotJustifyIsRefused) {
 
 TEST(ViewpointPlanE2E, WorkOfTheSettingsTogetherIsBoundedToo) {
     // Each within its own range, together they ran 369 s on the 8 x 6 m
-    // pillars world (a tester's): paths x samples, and paths x corner nodes^2.
+    // pillars world: paths x samples, and paths x corner nodes^2.
     const TEarlierOutput earlier = {{"summary.json", "{}\n"}};
     for (const auto& [sets, expect] : std::vector<std::pair<std::string, std::string>>{
              {"--set ViewpointPlan.k_paths=100 --set ViewpointPlan.sample_step=0.001",

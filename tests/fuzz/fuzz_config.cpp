@@ -70,7 +70,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                         common::kMaxOutputFileName)
                     std::abort();  // two routes' files would collide, or not fit
         });
-        // risknav-explore's own sections (issue 10)
+        // risknav-explore's own sections (M1)
         load<speed::TExploreOptions>(c, "Explore");
         load<speed::TSpeedControlOptions>(c, "SpeedControl");
         for (const char* s : {"MapLaser", "MapRange2"})

@@ -58,8 +58,8 @@ void TPropagationOptions::validate() const {
     checkKey(s, "tau", tau, TRange::closed(0.001, 1, "s"));
     checkKey(s, "speed", speed, {0, 5, true, false, "m/s"});
     checkKey(s, "turn_rate_deg", turn_rate_deg, {0, 720, true, false, "deg/s"});
-    // Bounded so that no covariance can overflow (issue 8: sigmas near 1e154
-    // made D_max = inf and U = 0): 1 km, 10 m/s, a half turn (per second).
+    // Bounded so that no covariance can overflow (sigmas near 1e154
+    // would make D_max = inf and U = 0): 1 km, 10 m/s, a half turn (per second).
     checkKey(s, "init_sigma_x", init_sigma_x, TRange::closed(0, 1000, "m"));
     checkKey(s, "init_sigma_y", init_sigma_y, TRange::closed(0, 1000, "m"));
     checkKey(s, "init_sigma_theta_deg", init_sigma_theta_deg,

@@ -44,8 +44,8 @@ void TSensingPointOptions::validate() const {
     checkKey(section, "x", x, TRange::any("m (required)"));
     checkKey(section, "y", y, TRange::any("m (required)"));
     checkKey(section, "radius", radius, TRange::closed(0.01, 10, "m"));
-    // Bounded as [Odometry] init_sigma_*: no covariance can overflow (issue 8:
-    // a sensing point with sigma 1e308 "helped").
+    // Bounded as [Odometry] init_sigma_*: no covariance can overflow (a
+    // sensing point with sigma 1e308 would otherwise "help").
     checkKey(section, "sigma_x", sigma_x, TRange::closed(0, 1000, "m"));
     checkKey(section, "sigma_y", sigma_y, TRange::closed(0, 1000, "m"));
     checkKey(section, "sigma_theta_deg", sigma_theta_deg, TRange::closed(0, 180, "deg"));

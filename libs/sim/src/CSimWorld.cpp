@@ -191,8 +191,8 @@ std::optional<TPoint2D> CSimWorld::firstSampleWhere(
 void CSimWorld::checkAgentsAgainstMap(const mrpt::config::CConfigFileBase& c) const {
     auto where = [](const TPoint2D& p) { return pointText(p.x, p.y); };
     // People walk where the map is free: a lane inside or through a wall (a
-    // tester's: a walker at y = 0.1 in the outer wall, a pedestrian path
-    // across the corridor's walls) was taken in silence.
+    // walker at y = 0.1 in the outer wall, a pedestrian path across the
+    // corridor's walls) is refused rather than taken in silence.
     auto checkPath = [&](const std::string& sec, const std::vector<TPoint2D>& p) {
         const std::string text = readString(c, sec, "path", "");
         for (const auto& q : p)

@@ -65,8 +65,8 @@ void CViewpointPlanner::loadFromConfigFile(const CIniConfig& c) {
             c, "ViewpointPlan", "sample_step", numberText(options.sample_step),
             "the world's diagonal (" + numberText(diagonal) +
                 " m) would take more than 500000 samples per path; use a larger step");
-    // The three together (each alone within its bound above): a tester's 360
-    // corner segments, 100 paths and 1 mm samples on an 8 x 6 m world ran 369 s.
+    // The three together (each alone within its bound above): 360 corner
+    // segments, 100 paths and 1 mm samples on an 8 x 6 m world ran 369 s.
     // Sample evaluations (paths x samples along each, at most the diagonal's
     // worth a path as a rough measure) and Yen's searches on the corner graph
     // (paths x nodes^2) over the sweep, each bounded.

@@ -74,8 +74,8 @@ TEST(ConfigRead, StrictNumbersWithFullErrorMessages) {
 }
 
 TEST(ConfigRead, OnlyDecimalNumbersThatDoNotUnderflow) {
-    // strtod alone takes hex and silently rounds 1e-400 to 0 (the tester's
-    // findings on risknav-explore)
+    // strtod alone takes hex and silently rounds 1e-400 to 0 (both seen in
+    // risknav-explore's configs)
     const std::string p = iniFile(
         "[A]\nhex = 0x10\nhexf = 0x1.8p1\ntiny = 1e-400\nsub = 1e-310\ninf = inf\n"
         "nan = nan\nok = -1.5e-3\nbig = 1e400\n");
@@ -350,7 +350,7 @@ TEST(ConfigRead, CopyConfigKeysCopiesAllButTheSkipped) {
 
 TEST(ConfigRead, AValueErrorFromValidateQuotesTheValueAsTyped) {
     // validate() sees the parsed number; the message quotes the file's text
-    // when it is that one number (a tester's finding: '1e+09' for 1e9)
+    // when it is that one number ('1e9', not '1e+09')
     struct TOpts {
         double v = 0;
         std::vector<double> list;

@@ -111,7 +111,7 @@ TEST(GridIO, BadFilesAreBadInput) {
 }
 
 TEST(GridIO, AnImageOfMoreThan25MPixelsIsRefusedBeforeDecoding) {
-    // a header that says 20000 x 20000 (a tester's 439 KB PNG of that size
+    // a header that says 20000 x 20000 (a 439 KB PNG of that size
     // took 4.4 GB): refused from the header, whatever follows
     const std::string d = freshDir("big");
     std::string png = "\x89PNG\r\n\x1a\n";

@@ -78,7 +78,7 @@ TEST(CCsvWriter, HeaderQuotingAndNumbers) {
 }
 
 TEST(CCsvWriter, NoValueIsAnEmptyCellNeverInfOrNan) {
-    // (a tester found "inf" in explore's cycles.csv and risk-eval's table)
+    // ("inf" once reached explore's cycles.csv and risk-eval's table)
     const double inf = std::numeric_limits<double>::infinity();
     EXPECT_EQ(CCsvWriter::num(inf), "");
     EXPECT_EQ(CCsvWriter::num(-inf), "");
@@ -260,8 +260,8 @@ TEST(COutputDir, ASecondRunReplacesTheWholeSetOfTheFirst) {
     EXPECT_TRUE(std::filesystem::exists(d + "/.x"));
     EXPECT_TRUE(std::filesystem::exists(outside));
     EXPECT_TRUE(std::filesystem::exists(d + "/zones.csv"));  // not in that manifest
-    // nor through a symlinked folder, a subfolder or a symlink to a file (an
-    // independent tester's forged manifest deleted a file elsewhere)
+    // nor through a symlinked folder, a subfolder or a symlink to a file (a
+    // forged manifest could otherwise delete a file elsewhere)
     const std::string victims = freshDir("victims");
     writeFile(victims + "/precious.txt", "precious");
     writeFile(victims + "/linked.txt", "linked");

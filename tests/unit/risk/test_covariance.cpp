@@ -178,7 +178,7 @@ Eigen::Matrix2d propagatedBy(const std::vector<TMotionStep>& steps,
 }
 }  // namespace
 
-// Issue 8: linear propagation is far off outside its regime. The table of
+// Linear propagation is far off outside its regime. The table of
 // Monte Carlo / propagated ratios on the paper's Fig. 2 path (10 m, a 90 deg
 // turn, 10 m; 0.3 m/s, 0.5 rad/s, tau 0.05 s) with the paper's robot and
 // sigmas (1 mm wheel radii and tread, initial 1 mm, 1 mm, 0.1 rad), for both

@@ -250,7 +250,7 @@ double sampledDmax(const CObstacleField& f, double r, double px, double py,
 }
 }  // namespace
 
-// Issue 8: the robot radius must not be rounded down to whole cells. D_max
+// The robot radius must not be rounded down to whole cells. D_max
 // against a dense sampling of the disc-grown obstacles' boundary, on random
 // grids, poses, covariances and radii that are not multiples of the
 // resolution: never above it (the safe side, to rounding), and below it by

@@ -158,7 +158,7 @@ TEST(RiskOptions, ErrorModelNoneMeansExactWheels) {
     EXPECT_NEAR(makeRiskOptions(odo, {}, 0.05).odometry.sigmaT, 0.001, 1e-15);
 }
 
-// Issue 8: sigmas near 1e154 overflowed the covariance to inf, D_max read inf
+// Sigmas near 1e154 overflowed the covariance to inf, D_max read inf
 // and U = 0: a hopeless route scored perfectly safe. The config bounds the
 // sigmas now (validate()); whatever still overflows is reported, never read
 // as safety: the evaluation stops with `failure`, U and u_max are +inf; D_max

@@ -108,7 +108,7 @@ struct TNavRunSetup {
     std::string label;  ///< progress label
 };
 
-/** risknav-navigate's closed loop (issue 12): MRPT's reactive engine with
+/** risknav-navigate's closed loop: MRPT's reactive engine with
  * risknav's limiters (CRiskAwareReactiveNav) drives the steppable world
  * (CSimWorld, people included) through MRPT's robot interface on MRPT's
  * simulated clock. Each cycle of nav_period: the world is sensed, the

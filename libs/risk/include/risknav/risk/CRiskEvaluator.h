@@ -35,9 +35,9 @@ namespace risknav::risk {
  * config/risknav-risk-eval.ini. */
 class CRiskEvaluator {
   public:
-    /** @name The work of one run, bounded (issue 8: a tiny speed grew memory as
-     * 1/speed; 20 sensing points with max_sensing_subset = 6 ran 146 s and wrote
-     * 60,467 files). validate() checks what the config alone decides
+    /** @name The work of one run, bounded (unbounded, a tiny speed grows memory
+     * as 1/speed; 20 sensing points with max_sensing_subset = 6 ran 146 s and
+     * wrote 60,467 files). validate() checks what the config alone decides
      * (candidates, rows); evaluate() checks the propagation steps of the rows'
      * paths before it propagates any. Exceeding one: CBadInputError (exit 2)
      * naming the key to change.
