@@ -198,7 +198,7 @@ void CNavigationRun::loadFromConfigFile(CIniConfig& c, std::optional<uint64_t> s
                                  typedValueMessage(c, e));
         }
     }
-    // The outputs, bounded before the run starts (a tester's 1e5 s run that
+    // The outputs, bounded before the run starts (a 1e5 s run that
     // never arrived was on its way to ~28 GB of navlog, ~56 KB a cycle): at
     // most 36,000 navlog cycles (2 h at 0.2 s, ~2 GB) and a rawlog of at most
     // 5e8 ranges (~2 GB, as risknav-simulate); one frame a cycle

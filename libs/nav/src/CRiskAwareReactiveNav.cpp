@@ -570,7 +570,7 @@ void checkEngineText(const mrpt::config::CConfigFileBase& c,
 // The time MRPT 2.5.8 takes to build a collision-grid PTG (once; then it is
 // read from ptg_cache_dir), in builds of its default one (121 paths, 0.05 m
 // cells, refDistance 10 m, v_max / w_max = 1 m/s / 60 deg/s: ~1.7-2.9 s
-// here). Fitted to 22 one-PTG builds measured on this machine (stop 37,
+// here). Fitted to 22 one-PTG builds measured on this machine (the
 // C, CCS and alpha PTGs; the model within -13..+20 % of each): paths
 // (n / 121)^1.5 (1,000 paths 32 s), cells (0.05 / res)^2, and the reach
 // r = refDistance / 10 m with the turning radius q = (v_max / w_max) /
@@ -1183,11 +1183,7 @@ bool CRiskAwareReactiveNav::followPlan(const mrpt::math::TPose2D& pose, double a
     const auto pts = sensedAround(pose, now);
     // the plan from the robot's nearest point on
     const auto& plan = m_planner->current().points;
-    size_t k0 = 0;
-    double best = 1e300;
-    for (size_t k = 0; k < plan.size(); k++)
-        if (const double d = std::hypot(plan[k].x - pose.x, plan[k].y - pose.y); d < best)
-            best = d, k0 = k;
+    const size_t k0 = std::min(m_planner->nearestIndex(pose), plan.size());
     const std::vector<mrpt::math::TPoint2D> ahead(plan.begin() + long(k0), plan.end());
     const double wMax = o.turn_rate_deg * M_PI / 180;
     const auto cmd =

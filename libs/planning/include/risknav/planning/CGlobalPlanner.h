@@ -159,6 +159,10 @@ class CGlobalPlanner {
     std::optional<mrpt::math::TPoint2D> guidePoint(const mrpt::math::TPose2D& pose) const;
     /** [m] what is left of the plan from `pose` (+inf without one). */
     double remainingLength(const mrpt::math::TPose2D& pose) const;
+    /** The plan's point nearest `pose`, searched from the progress made on
+     * over the next few metres (not the whole plan: one that turns round a
+     * thin wall passes near itself). 0 without a plan. */
+    size_t nearestIndex(const mrpt::math::TPose2D& pose) const;
 
     const std::vector<TReplanEvent>& replans() const { return m_events; }
     /** Before a new run: no target, plan, replans, choices or sensed
@@ -216,6 +220,5 @@ class CGlobalPlanner {
     bool blockedAhead(const mrpt::math::TPose2D& pose, double now) const;
     double m_now = 0;
     size_t m_progress = 0;  ///< the plan's point the robot was nearest last
-    size_t nearestIndex(const mrpt::math::TPose2D& pose) const;
 };
 }  // namespace risknav::planning
