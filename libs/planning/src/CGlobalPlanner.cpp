@@ -20,6 +20,9 @@ namespace {
  * (+ 1 m). */
 constexpr double kDetourRatio = 1.5;
 constexpr float kInf = std::numeric_limits<float>::infinity();
+/** [s] a cell sensed as an obstacle is not forgotten by a beam through it
+ * sooner than this after. */
+constexpr float kForgetGrace = 2.0f;
 std::string metres(double v) {
     char b[32];
     std::snprintf(b, sizeof(b), "%.3f m", v);
@@ -132,6 +135,7 @@ void CGlobalPlanner::resetFollowing() {
     // a new run starts its own clock: the last run's sensed cells would
     // otherwise count as seen a moment ago
     std::fill(m_seenAt.begin(), m_seenAt.end(), kNeverSeen);
+    m_timeBase.reset();
     m_seenCells.clear();
     m_target.reset();
     m_lastPose.reset();
@@ -417,6 +421,9 @@ void CGlobalPlanner::addSensed(const TPose2D& pose, const std::vector<TPoint2D>&
         return;
     const double res = m_fine.cost.resolution;
     const double c = std::cos(pose.phi), s = std::sin(pose.phi);
+    if (!m_timeBase)
+        m_timeBase = now;
+    const float t = sinceBase(now);
     // what the map explains: within a cell and a half of its obstacles
     const float explained = float(1.5 * res);
     const bool anyRemembered = !m_seenCells.empty();
@@ -439,8 +446,14 @@ void CGlobalPlanner::addSensed(const TPose2D& pose, const std::vector<TPoint2D>&
                 const double f = k * res / len;
                 const int bx = m_field.x2idx(pose.x + f * (x - pose.x)),
                           by = m_field.y2idx(pose.y + f * (y - pose.y));
+                // not a cell sensed a moment ago: beams of two scans that
+                // graze a post's corner cell mark and forget it in turn,
+                // and two ways through one gap, each blocked in turn, had
+                // the robot turning between them for minutes
                 if (m_fine.cost.inside(bx, by))
-                    m_seenAt[m_fine.cost.index(bx, by)] = kNeverSeen;
+                    if (float& at = m_seenAt[m_fine.cost.index(bx, by)];
+                        !(t - at < kForgetGrace))
+                        at = kNeverSeen;
             }
         }
         if (!m_fine.cost.inside(cx, cy))
@@ -450,7 +463,7 @@ void CGlobalPlanner::addSensed(const TPose2D& pose, const std::vector<TPoint2D>&
             continue;
         if (!liveSeen(i, now))
             m_seenCells.push_back(int32_t(i));
-        m_seenAt[i] = float(now);
+        m_seenAt[i] = t;
     }
     m_seenCells.erase(
         std::remove_if(m_seenCells.begin(), m_seenCells.end(),

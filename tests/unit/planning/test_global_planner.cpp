@@ -236,9 +236,9 @@ TEST(CGlobalPlanner, ABlockedCorridorIsReplannedThroughTheOther) {
     for (const auto& q : p.current().points)
         maxY = std::max(maxY, q.y);
     EXPECT_GT(maxY, 4.4);  // the upper corridor now
-    // once a scan sees through where the box was (it moved away: the beams
-    // end on the far room's wall and on the corridor's walls), the memory
-    // forgets it, and the map's way is free again
+    // once a later scan sees through where the box was (it moved away: the
+    // beams end on the far room's wall and on the corridor's walls), the
+    // memory forgets it, and the map's way is free again
     std::vector<TPoint2D> through;
     for (double y = 1.05; y <= 2.36; y += 0.025)
         through.emplace_back(13.95 - 2.0, y - 1.7);
@@ -246,7 +246,7 @@ TEST(CGlobalPlanner, ABlockedCorridorIsReplannedThroughTheOther) {
         through.emplace_back(x - 2.0, 1.0 - 1.7);
         through.emplace_back(x - 2.0, 2.4 - 1.7);
     }
-    p.addSensed(TPose2D(2, 1.7, 0), through, 2.0);
+    p.addSensed(TPose2D(2, 1.7, 0), through, 3.5);
     auto fresh = p.plan({2, 1.7}, goal, true);
     ASSERT_TRUE(fresh.found);
     maxY = 0;
@@ -448,6 +448,55 @@ TEST(CGlobalPlanner, ABuiltMapTakesAGapWithinACellOverALongDetour) {
     }
 }
 
+TEST(CGlobalPlanner, ABeamDoesNotForgetACellSensedAMomentAgo) {
+    // Two scans' beams that graze a post's corner cell mark it and clear it
+    // in turn: two ways through one gap were each blocked in turn, and the
+    // robot turned between them for minutes. A beam clears a cell only
+    // 2 s after it was last sensed.
+    const auto blank = makeMap(12, 8, {});
+    planning::CGlobalPlanner p;
+    p.options.margin = 0;
+    p.options.map = "built";
+    p.setMap(blank, mapping::TObstacleRule{}, 0.33);
+    const TPose2D pose(2, 4, 0);
+    const double t0 = 1.7e9;  // clock time, as a robot's
+    p.addSensed(pose, {{0.4, 1.6}}, t0);
+    auto seen = [&] {
+        for (const auto& q : p.sensedNear(pose, 2.0))
+            if (std::hypot(q.x - 0.4, q.y - 1.6) < 0.08)
+                return true;
+        return false;
+    };
+    p.addSensed(pose, {{0.6, 2.4}}, t0 + 1.0);  // its beam passes the post's cell
+    EXPECT_TRUE(seen());
+    p.addSensed(pose, {{0.4, 1.6}}, t0 + 1.2);  // seen again
+    p.addSensed(pose, {{0.6, 2.4}}, t0 + 3.0);
+    EXPECT_TRUE(seen());
+    p.addSensed(pose, {{0.6, 2.4}}, t0 + 3.3);  // 2.1 s after it was last seen
+    EXPECT_FALSE(seen());
+}
+
+TEST(CGlobalPlanner, ASensedObstacleIsRememberedOnAClockOfTodaysTime) {
+    // obstacle_memory counts seconds of a clock that reads ~1.7e9 s: kept
+    // as a float that resolves only 128 s, a cell sensed 1 s ago could
+    // count as 40 s old, or one 90 s old as new
+    const auto blank = makeMap(12, 8, {});
+    planning::CGlobalPlanner p;
+    p.options.margin = 0;
+    p.options.obstacle_memory = 30;
+    p.setMap(blank, mapping::TObstacleRule{}, 0.33);
+    const TPose2D pose(2, 4, 0);
+    for (const double t0 : {1.6e9 + 40, 1.7e9 + 100, 1.7e9 + 127}) {
+        p.resetFollowing();
+        p.addSensed(pose, {{1.5, 0.0}}, t0);
+        EXPECT_EQ(p.sensedNear(pose, 2.0).size(), 1u) << t0;
+        p.addSensed(pose, {}, t0 + 29);
+        EXPECT_EQ(p.sensedNear(pose, 2.0).size(), 1u) << t0;
+        p.addSensed(pose, {}, t0 + 31);
+        EXPECT_EQ(p.sensedNear(pose, 2.0).size(), 0u) << t0;
+    }
+}
+
 TEST(CGlobalPlanner, ABeamFromTheCentreDoesNotForgetAPostBesideTheRobot) {
     // The planner draws each beam from the robot's centre, but a laser
     // sits off it (e.g. 0.2 m ahead): beside the robot the centre's line
@@ -471,7 +520,7 @@ TEST(CGlobalPlanner, ABeamFromTheCentreDoesNotForgetAPostBesideTheRobot) {
     ASSERT_TRUE(near(0.4, 1.6));
     // a wall point further along the same line from the centre: its line
     // passes through both posts' cells
-    p.addSensed(pose, {{0.6, 2.4}}, 1.0);
+    p.addSensed(pose, {{0.6, 2.4}}, 3.0);
     EXPECT_TRUE(near(0.1, 0.4));   // kept: beside the robot
     EXPECT_FALSE(near(0.4, 1.6));  // seen through: gone
 }

@@ -187,8 +187,12 @@ class CGlobalPlanner {
     std::vector<TRouteChoice> m_choices;
     mapping::CDistanceField m_field;
     double m_disc = 0;
-    mutable TCostGrid m_work;     // the map and the sensed obstacles
-    std::vector<float> m_seenAt;  // [s] when a cell was sensed as an obstacle
+    mutable TCostGrid m_work;  // the map and the sensed obstacles
+    /** [s] when a cell was last sensed as an obstacle, since m_timeBase (a
+     * float of clock time, ~1.7e9 s, resolves only 128 s). */
+    std::vector<float> m_seenAt;
+    std::optional<double> m_timeBase;  ///< the clock at the run's first sensing
+    float sinceBase(double now) const { return float(now - m_timeBase.value_or(now)); }
     std::vector<int32_t> m_seenCells;
     std::optional<mrpt::math::TPoint2D> m_target;
     std::optional<mrpt::math::TPose2D> m_lastPose;
@@ -198,7 +202,8 @@ class CGlobalPlanner {
     float costOf(double clearanceEdge) const;
     bool liveSeen(size_t i, double now) const {
         return m_seenAt[i] != kNeverSeen &&
-               (m_keepSeen || now - double(m_seenAt[i]) <= options.obstacle_memory);
+               (m_keepSeen ||
+                double(sinceBase(now)) - double(m_seenAt[i]) <= options.obstacle_memory);
     }
     static constexpr float kNeverSeen = -std::numeric_limits<float>::infinity();
     bool m_keepSeen = false;  ///< map = built: sensed obstacles are the map
