@@ -35,7 +35,10 @@ Each pair is then run:
             navigate config's [Robot] radius): "reached" = a route found
             (status ok: the best row is not excluded, its U finite)
 with --set World.map_file, the start, the goal and duration_max (time_limit
-for explore) = 60 s + 4 x straight distance / [Robot] max_v, and --seed SEED.
+for explore) = 60 s + 4 x the way's length / [Robot] max_v, and --seed SEED.
+The way's length is the shortest 8-connected way (A*) over the cells where
+the disc fits, on the true map: the budget a robot that knew the map would
+need four times over, whatever it knows.
 --planner P adds --set Navigate.global_planner=P (without it nothing is
 passed); --localization mcl adds --set Navigate.localization=mcl: MRPT's
 MCL on the laser and the map, its particles drawn around the start as
@@ -64,6 +67,7 @@ import collections
 import concurrent.futures
 import configparser
 import gzip
+import heapq
 import json
 import math
 import os
@@ -568,6 +572,41 @@ def segment_blocked(grid, a, b):
     return False
 
 
+def way_length(grid, blocked, s, g):
+    """Length [m] of the shortest 8-connected way from cell s to cell g over
+    the cells not blocked (a diagonal step only where both cells beside it
+    are open: no corner cutting); A* with the octile distance. None when g
+    is not reachable."""
+    nx, n, res = grid.nx, grid.nx * grid.ny, grid.res
+    gx, gy = g % nx, g // nx
+    r2 = math.sqrt(2.0)
+
+    def h(i):
+        dx, dy = abs(i % nx - gx), abs(i // nx - gy)
+        return (max(dx, dy) + (r2 - 1.0) * min(dx, dy))
+
+    dist = {s: 0.0}
+    heap = [(h(s), 0.0, s)]
+    while heap:
+        _, d, i = heapq.heappop(heap)
+        if i == g:
+            return d * res
+        if d > dist.get(i, math.inf):
+            continue
+        cx = i % nx
+        for ddx, ddy in ((1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (1, -1), (-1, 1), (-1, -1)):
+            x, j = cx + ddx, i + ddx + ddy * nx
+            if x < 0 or x >= nx or j < 0 or j >= n or blocked[j]:
+                continue
+            if ddx and ddy and (blocked[i + ddx] or blocked[i + ddy * nx]):
+                continue
+            nd = d + (r2 if ddx and ddy else 1.0)
+            if nd < dist.get(j, math.inf):
+                dist[j] = nd
+                heapq.heappush(heap, (nd + h(j), nd, j))
+    return None
+
+
 def analyse(grid, radius):
     t0 = time.time()
     ends_block = too_close(grid, CLEAR_ENDS)
@@ -581,7 +620,7 @@ def analyse(grid, radius):
     cands.sort()
     free = grid.nx * grid.ny - sum(grid.nonfree)
     return {
-        "label": label, "by_comp": by_comp, "cands": cands,
+        "label": label, "by_comp": by_comp, "cands": cands, "disc_block": disc_block,
         "free_cells": free, "components": len(sizes),
         "largest_component_cells": max(sizes) if sizes else 0,
         "seconds": time.time() - t0,
@@ -609,9 +648,11 @@ def draw_pairs(grid, an, rng, n):
             if behind_needed and not behind:
                 continue
             heading = rng.uniform(-180.0, 180.0)
+            way = way_length(grid, an["disc_block"], s, g)
             pairs.append({"pair": k, "start": [round(a[0], 4), round(a[1], 4), round(heading, 1)],
                           "goal": [round(b[0], 4), round(b[1], 4)],
-                          "distance_m": round(dist, 3), "behind": behind,
+                          "distance_m": round(dist, 3), "way_m": round(way or dist, 3),
+                          "behind": behind,
                           "component": label[s]})
             break
         else:
@@ -658,7 +699,9 @@ def run_pair(job):
     out = job["out"]
     mode = a.mode
     v = job["max_v"]
-    limit = round(60 + 4 * p["distance_m"] / v, 1)
+    # the budget grows with the way the robot must drive, not the straight
+    # line: a goal behind a wall may be ten times as far
+    limit = round(60 + 4 * max(p["distance_m"], p.get("way_m", 0.0)) / v, 1)
     sx, sy, sh = p["start"]
     gx, gy = p["goal"]
     sets = [f"World.map_file={job['map_path']}"]
@@ -684,7 +727,8 @@ def run_pair(job):
         cmd += ["--set", s]
     cmd.append(job["config"])
     rec = {"map": m, "seed": seed, "pair": p["pair"], "start": p["start"], "goal": p["goal"],
-           "distance_m": p["distance_m"], "behind": p["behind"], "time_limit_s": limit,
+           "distance_m": p["distance_m"], "way_m": p.get("way_m"), "behind": p["behind"],
+           "time_limit_s": limit,
            "out": out, "command": cmd}
     t0 = time.time()
     try:
@@ -1029,11 +1073,13 @@ def report(results, maps):
     failed = [r for r in results["runs"] if r.get("reason")]
     if failed:
         print("\nEvery failure (start x y heading_deg -> goal x y; straight distance; "
-              "behind = the segment crosses a non-free cell):\n")
+              "way = the shortest way for the disc on the true map; behind = the segment "
+              "crosses a non-free cell):\n")
         for r in failed:
             s, g = r["start"], r["goal"]
             print(f"- {r['map']} seed {r['seed']} pair {r['pair']}: ({s[0]}, {s[1]}, {s[2]}) -> "
-                  f"({g[0]}, {g[1]}), {r['distance_m']} m{', behind' if r['behind'] else ''}: "
+                  f"({g[0]}, {g[1]}), {r['distance_m']} m, way {r.get('way_m')} m"
+                  f"{', behind' if r['behind'] else ''}: "
                   f"{'' if r['reason'].startswith('exit') else 'exit ' + str(r['exit_code']) + ', '}"
                   f"{r['reason']}; final distance "
                   f"{r['final_distance_m']} m, belief error {r['belief_error_m']} m, "
