@@ -26,6 +26,23 @@ std::string trim(const std::string& s) {
     return s.substr(b, e - b + 1);
 }
 
+std::string lowerCase(std::string s) {
+    for (auto& ch : s)
+        ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    return s;
+}
+
+std::string shortClassName(const std::string& name) {
+    const auto p = name.rfind("::");
+    return p == std::string::npos ? name : name.substr(p + 2);
+}
+
+mrpt::config::CConfigFileMemory reparsedConfig(const mrpt::config::CConfigFileMemory& m) {
+    std::string text;
+    m.getContent(text);
+    return mrpt::config::CConfigFileMemory(text);
+}
+
 namespace {
 
 std::string fmt(double v) {
@@ -205,9 +222,7 @@ bool readBool(const CConfigFileBase& c, const std::string& s, const std::string&
     std::string raw;
     if (!present(c, s, k, raw))
         return def;
-    std::string l = raw;
-    std::transform(l.begin(), l.end(), l.begin(),
-                   [](unsigned char ch) { return std::tolower(ch); });
+    const std::string l = lowerCase(raw);
     if (l == "true" || l == "1" || l == "yes" || l == "on")
         return true;
     if (l == "false" || l == "0" || l == "no" || l == "off")

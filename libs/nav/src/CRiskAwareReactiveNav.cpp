@@ -60,20 +60,6 @@ class CNullRobot : public mrpt::nav::CRobot2NavInterface {
     }
 };
 
-std::string lowerCase(std::string s) {
-    for (auto& ch : s)
-        ch = char(std::tolower(static_cast<unsigned char>(ch)));
-    return s;
-}
-
-// MRPT's savers pad key names with spaces (a memory config then does not
-// find them): their text read back, keys trimmed.
-mrpt::config::CConfigFileMemory reparsed(const mrpt::config::CConfigFileMemory& m) {
-    std::string text;
-    m.getContent(text);
-    return mrpt::config::CConfigFileMemory(text);
-}
-
 // A config that records the keys read from it (which of the keys MRPT's
 // saveConfigFile() writes its loadConfigFile() reads back).
 class CReadRecordingConfig : public mrpt::config::CConfigFileMemory {
@@ -95,12 +81,6 @@ class CReadRecordingConfig : public mrpt::config::CConfigFileMemory {
   private:
     mutable std::set<std::string> m_read;
 };
-
-// The class name without its namespace: the limiter's config section.
-std::string shortName(const std::string& n) {
-    const auto p = n.rfind("::");
-    return p == std::string::npos ? n : n.substr(p + 2);
-}
 
 }  // namespace
 
@@ -150,12 +130,12 @@ void CRiskAwareReactiveNav::TOptions::validate() const {
     // name is a typo, not a second limiter
     for (size_t i = 0; i < speed_limiters.size(); i++)
         for (size_t j = 0; j < i; j++)
-            if (shortName(speed_limiters[i]) == shortName(speed_limiters[j])) {
+            if (shortClassName(speed_limiters[i]) == shortClassName(speed_limiters[j])) {
                 std::string list;
                 for (const auto& n : speed_limiters)
                     list += (list.empty() ? "" : " ") + n;
                 checkRule(false, kSection, "speed_limiters", list,
-                          shortName(speed_limiters[i]) + " is listed twice");
+                          shortClassName(speed_limiters[i]) + " is listed twice");
             }
     checkKey(kSection, "turn_in_place_deg", turn_in_place_deg,
              TRange::closed(0, 180, "deg"));
@@ -777,18 +757,18 @@ void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& 
             throw CBadInputError(configWhere(c) + "[" + kSection +
                                  "] speed_limiters: " + e.what());
         }
-        if (!c.sectionExists(shortName(name)))
+        if (!c.sectionExists(shortClassName(name)))
             throw CBadInputError(configWhere(c) + "[" + kSection +
                                  "] speed_limiters names " + name +
-                                 " but the config has no [" + shortName(name) +
+                                 " but the config has no [" + shortClassName(name) +
                                  "] section (its options; an empty section takes the "
                                  "defaults)");
-        l->loadConfig(c, shortName(name));
+        l->loadConfig(c, shortClassName(name));
         // candidate speeds the robot cannot reach would be silently capped
         if (const auto* a = dynamic_cast<const CAdaptiveSpeedLimiter*>(l.get());
             a && a->options.speed.speeds.front() > robot.max_v + 1e-9)
-            throwBadKey(c, shortName(name), "speeds",
-                        c.read_string(shortName(name), "speeds", ""),
+            throwBadKey(c, shortClassName(name), "speeds",
+                        c.read_string(shortClassName(name), "speeds", ""),
                         "the fastest must be at most [Robot] max_v = " +
                             numberText(robot.max_v) + " m/s");
         made.push_back(l);
@@ -816,7 +796,7 @@ void CRiskAwareReactiveNav::saveConfigFile(mrpt::config::CConfigFileBase& c) con
         all.write(nav, prefix + "Type", std::string(ptg->GetRuntimeClass()->className));
         mrpt::config::CConfigFileMemory own;
         ptg->saveToConfigFile(own, "PTG");
-        const mrpt::config::CConfigFileMemory parsed = reparsed(own);
+        const mrpt::config::CConfigFileMemory parsed = reparsedConfig(own);
         std::vector<std::string> keys;
         parsed.getAllKeys("PTG", keys);
         for (const auto& k : keys)
@@ -830,7 +810,7 @@ void CRiskAwareReactiveNav::saveConfigFile(mrpt::config::CConfigFileBase& c) con
             m_WS_filter)) {
         mrpt::config::CConfigFileMemory own;
         f->options.saveToConfigFile(own, "CPointCloudFilterByDistance");
-        copyConfigKeys(reparsed(own), all);
+        copyConfigKeys(reparsedConfig(own), all);
     }
     // MRPT reads the shape into floats: 9 digits give the same floats back
     auto joined = [](const std::vector<double>& v) {
@@ -865,7 +845,7 @@ void CRiskAwareReactiveNav::saveConfigFile(mrpt::config::CConfigFileBase& c) con
     riskOptions.saveToConfigFile(c, kSection);
     robot.saveToConfigFile(c, "Robot");
     for (size_t i = 0; i < m_limiters.size(); i++)
-        m_limiters[i]->saveConfig(c, shortName(riskOptions.speed_limiters[i]));
+        m_limiters[i]->saveConfig(c, shortClassName(riskOptions.speed_limiters[i]));
 }
 
 TSpeedLimitInput CRiskAwareReactiveNav::limiterInput(
@@ -930,7 +910,7 @@ double CRiskAwareReactiveNav::generate_vel_cmd(
         const TSpeedLimit l = m_limiters[i]->limit(in);
         if (l.maxSpeed < m_last.limit) {
             m_last.limit = l.maxSpeed;
-            m_last.limiter = shortName(riskOptions.speed_limiters[i]);
+            m_last.limiter = shortClassName(riskOptions.speed_limiters[i]);
             m_last.reason = l.reason;
         }
     }

@@ -28,22 +28,6 @@ using namespace risknav::common;
 
 namespace risknav::nav {
 namespace {
-// (lowerCase(), reparsed() and shortName() have twins in
-// CRiskAwareReactiveNav.cpp, which uses them for other ends)
-std::string lowerCase(std::string s) {
-    for (auto& ch : s)
-        ch = char(std::tolower(static_cast<unsigned char>(ch)));
-    return s;
-}
-
-// MRPT's savers pad key names with spaces (a memory config then does not
-// find them): their text read back, keys trimmed.
-mrpt::config::CConfigFileMemory reparsed(const mrpt::config::CConfigFileMemory& m) {
-    std::string text;
-    m.getContent(text);
-    return mrpt::config::CConfigFileMemory(text);
-}
-
 // An engine value out of its range: exit 2 naming the key, with the text as
 // written (MRPT wraps num_paths to 16 bits).
 void checkEngineValue(const mrpt::config::CConfigFileBase& layered,
@@ -243,12 +227,6 @@ void checkEngineFormulas(const mrpt::config::CConfigFileBase& layered) {
                  layered.read_string(sc, "scalar_score_formula", ""), scores);
 }
 
-// The class name without its namespace ("mrpt::nav::CHolonomicND": CHolonomicND).
-std::string shortName(const std::string& n) {
-    const auto p = n.rfind("::");
-    return p == std::string::npos ? n : n.substr(p + 2);
-}
-
 // `name` is a class MRPT's factory can make, derived from `base`.
 bool creatableClass(const std::string& name, const mrpt::rtti::TRuntimeClassId* base) {
     const auto* cls = mrpt::rtti::findRegisteredClass(name);
@@ -292,7 +270,7 @@ void checkHolonomicText(const mrpt::config::CConfigFileBase& layered) {
     if (!layered.keyExists(abs, "holonomic_method"))
         return;  // MRPT's loader names the missing key itself
     const std::string method = trim(layered.read_string(abs, "holonomic_method", ""));
-    const std::string bare = shortName(method);
+    const std::string bare = shortClassName(method);
     if (!(bare == "CHolonomicFullEval" || bare == "CHolonomicND" ||
           bare == "CHolonomicVFF") ||
         !(bare == method || method == "mrpt::nav::" + bare))
@@ -520,8 +498,9 @@ void checkEngineText(const mrpt::config::CConfigFileBase& layered) {
         // CPTG_DiffDrive_alpha's exp(-(alpha / cte)^2): NaN crashed MRPT, 0
         // failed its asserts every cycle (only its own keys: read for
         // another PTG, they would no longer be unknown keys)
-        const bool alpha = shortName(trim(layered.read_string(sec, k + "Type", ""))) ==
-                           "CPTG_DiffDrive_alpha";
+        const bool alpha =
+            shortClassName(trim(layered.read_string(sec, k + "Type", ""))) ==
+            "CPTG_DiffDrive_alpha";
         for (const char* cte : {"cte_a0v_deg", "cte_a0w_deg"})
             if (alpha && layered.keyExists(sec, k + cte))
                 check(sec, k + cte, layered.read_double(sec, k + cte, 1),
@@ -574,7 +553,7 @@ void checkEngineValues(const mrpt::config::CConfigFileBase& layered,
     // in MRPT's documentation (TOO_CLOSE_OBSTACLE = 1.5 held the robot still
     // for the whole run, RISK_EVALUATION_DISTANCE = -1 too: exit 0); only the
     // method in use (an unused section may hold anything, as MRPT's files do)
-    const std::string method = shortName(trim(ap.holonomic_method));
+    const std::string method = shortClassName(trim(ap.holonomic_method));
     std::vector<const char*> unitKeys;
     if (method == "CHolonomicFullEval")
         unitKeys = {"TOO_CLOSE_OBSTACLE", "TARGET_SLOW_APPROACHING_DISTANCE",
@@ -673,7 +652,7 @@ void checkEngineTypes(const mrpt::config::CConfigFileBase& layered,
             nav.getPTG(i)->saveToConfigFile(prefixed, "CReactiveNavigationSystem");
         }
     }
-    const mrpt::config::CConfigFileMemory saved = reparsed(raw);
+    const mrpt::config::CConfigFileMemory saved = reparsedConfig(raw);
     std::vector<std::string> sections;
     saved.getAllSections(sections);
     auto isNumber = [](const std::string& t) {

@@ -49,6 +49,14 @@ bool parseNumber(const std::string& txt, double& out);
 
 /** The text without leading and trailing spaces, tabs, CR and LF. */
 std::string trim(const std::string& s);
+/** The text in lower case (ASCII; MRPT's config keys ignore case). */
+std::string lowerCase(std::string s);
+/** A class name without its namespace ("mrpt::nav::CHolonomicND":
+ * "CHolonomicND"). */
+std::string shortClassName(const std::string& name);
+/** `m`'s text read back: MRPT's savers pad key names with spaces, and a
+ * memory config then does not find them; read back, the keys are trimmed. */
+mrpt::config::CConfigFileMemory reparsedConfig(const mrpt::config::CConfigFileMemory& m);
 /** Why `path` cannot be read as a file: "" when it is a regular file (or a
  * link to one), else "not found", "is a folder, not a file" or "is not a
  * regular file (a device, FIFO or socket)" (/dev/zero, a FIFO: reading one
