@@ -3,6 +3,7 @@
 #include <risknav/common/stopping.h>
 #include <risknav/nav/CAdaptiveSpeedLimiter.h>
 #include <risknav/nav/CLayeredConfig.h>
+#include <risknav/nav/CNullRobot.h>
 #include <risknav/nav/CRiskAwareReactiveNav.h>
 #include <risknav/nav/engine_config_check.h>
 #include <risknav/nav/escape_heading.h>
@@ -36,29 +37,6 @@ constexpr int kMaxUnstickTurns = 3;  // per target (see navigationStep())
 /** [m] Points this far outside MRPT's robot shape count as at its edge
  * (pointsNearShape()): a laser's noise moves them in and out of it. */
 constexpr double kShapeEdge = 0.03;
-
-// A robot that does nothing: MRPT's navigator only loads a config here, but
-// its destructor stops the robot it is given (not the one being driven).
-class CNullRobot : public mrpt::nav::CRobot2NavInterface {
-  public:
-    bool getCurrentPoseAndSpeeds(mrpt::math::TPose2D&, mrpt::math::TTwist2D&,
-                                 mrpt::system::TTimeStamp&, mrpt::math::TPose2D&,
-                                 std::string&) override {
-        return false;
-    }
-    bool changeSpeeds(const mrpt::kinematics::CVehicleVelCmd&) override { return false; }
-    bool stop(bool) override { return true; }
-    mrpt::kinematics::CVehicleVelCmd::Ptr getEmergencyStopCmd() override {
-        return getStopCmd();
-    }
-    mrpt::kinematics::CVehicleVelCmd::Ptr getStopCmd() override {
-        return std::make_shared<mrpt::kinematics::CVehicleVelCmd_DiffDriven>();
-    }
-    bool senseObstacles(mrpt::maps::CSimplePointsMap&,
-                        mrpt::system::TTimeStamp&) override {
-        return false;
-    }
-};
 
 // A config that records the keys read from it (which of the keys MRPT's
 // saveConfigFile() writes its loadConfigFile() reads back).

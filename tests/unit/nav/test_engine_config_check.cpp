@@ -4,10 +4,10 @@
 // tests/e2e/test_navigate.cpp expects of the app.
 #include <risknav/common/CBadInputError.h>
 #include <risknav/nav/CLayeredConfig.h>
+#include <risknav/nav/CNullRobot.h>
 #include <risknav/nav/engine_config_check.h>
 
 #include <mrpt/config/CConfigFileMemory.h>
-#include <mrpt/kinematics/CVehicleVelCmd_DiffDriven.h>
 #include <mrpt/nav/reactive/CReactiveNavigationSystem.h>
 #include <mrpt/system/filesystem.h>
 
@@ -21,28 +21,6 @@
 using namespace risknav;
 
 namespace {
-// MRPT's engine only loads a config here: a robot that does nothing.
-class CNullRobot : public mrpt::nav::CRobot2NavInterface {
-  public:
-    bool getCurrentPoseAndSpeeds(mrpt::math::TPose2D&, mrpt::math::TTwist2D&,
-                                 mrpt::system::TTimeStamp&, mrpt::math::TPose2D&,
-                                 std::string&) override {
-        return false;
-    }
-    bool changeSpeeds(const mrpt::kinematics::CVehicleVelCmd&) override { return false; }
-    bool stop(bool) override { return true; }
-    mrpt::kinematics::CVehicleVelCmd::Ptr getEmergencyStopCmd() override {
-        return getStopCmd();
-    }
-    mrpt::kinematics::CVehicleVelCmd::Ptr getStopCmd() override {
-        return std::make_shared<mrpt::kinematics::CVehicleVelCmd_DiffDriven>();
-    }
-    bool senseObstacles(mrpt::maps::CSimplePointsMap&,
-                        mrpt::system::TTimeStamp&) override {
-        return false;
-    }
-};
-
 // MRPT's shipped reactive2d_config.ini: a config MRPT's engine runs with.
 const mrpt::config::CConfigFileMemory& mrptEngineFile() {
     static const mrpt::config::CConfigFileMemory file([] {
@@ -70,7 +48,7 @@ std::string messageOf(const std::function<void()>& f) {
 std::string loadMessage(const std::string& keys) {
     const mrpt::config::CConfigFileMemory top(keys);
     const nav::CLayeredConfig layered(top, mrptEngineFile());
-    CNullRobot robot;
+    nav::CNullRobot robot;
     mrpt::nav::CReactiveNavigationSystem engine(robot, false, false);
     engine.setMinLoggingLevel(mrpt::system::LVL_ERROR);
     return messageOf([&] {

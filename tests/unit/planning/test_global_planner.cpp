@@ -84,9 +84,10 @@ mrpt::maps::COccupancyGridMap2D makeMap(double w, double h,
 }
 
 planning::CGlobalPlanner plannerOn(const mrpt::maps::COccupancyGridMap2D& g,
-                                   double disc = 0.35) {
+                                   double disc = 0.35, const char* map = "known") {
     planning::CGlobalPlanner p;
     p.options.margin = 0;  // the disc as given
+    p.options.map = map;
     mapping::TObstacleRule rule;
     p.setMap(g, rule, disc);
     return p;
@@ -454,10 +455,7 @@ TEST(CGlobalPlanner, ABeamDoesNotForgetACellSensedAMomentAgo) {
     // robot turned between them for minutes. A beam clears a cell only
     // 2 s after it was last sensed.
     const auto blank = makeMap(12, 8, {});
-    planning::CGlobalPlanner p;
-    p.options.margin = 0;
-    p.options.map = "built";
-    p.setMap(blank, mapping::TObstacleRule{}, 0.33);
+    auto p = plannerOn(blank, 0.33, "built");
     const TPose2D pose(2, 4, 0);
     const double t0 = 1.7e9;  // clock time, as a robot's
     p.addSensed(pose, {{0.4, 1.6}}, t0);
@@ -481,10 +479,8 @@ TEST(CGlobalPlanner, ASensedObstacleIsRememberedOnAClockOfTodaysTime) {
     // as a float that resolves only 128 s, a cell sensed 1 s ago could
     // count as 40 s old, or one 90 s old as new
     const auto blank = makeMap(12, 8, {});
-    planning::CGlobalPlanner p;
-    p.options.margin = 0;
+    auto p = plannerOn(blank, 0.33);
     p.options.obstacle_memory = 30;
-    p.setMap(blank, mapping::TObstacleRule{}, 0.33);
     const TPose2D pose(2, 4, 0);
     for (const double t0 : {1.6e9 + 40, 1.7e9 + 100, 1.7e9 + 127}) {
         p.resetFollowing();
@@ -503,10 +499,7 @@ TEST(CGlobalPlanner, ABeamFromTheCentreDoesNotForgetAPostBesideTheRobot) {
     // passes through a post the laser's beam did not. Near the robot (the
     // disc + 0.2 m) nothing is forgotten; further out beams still clear.
     const auto blank = makeMap(12, 8, {});
-    planning::CGlobalPlanner p;
-    p.options.margin = 0;
-    p.options.map = "built";
-    p.setMap(blank, mapping::TObstacleRule{}, 0.33);
+    auto p = plannerOn(blank, 0.33, "built");
     const TPose2D pose(2, 4, 0);
     // a post 0.41 m from the centre, ahead-left, and one 1.65 m out
     p.addSensed(pose, {{0.1, 0.4}, {0.4, 1.6}}, 0.0);
