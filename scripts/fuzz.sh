@@ -144,7 +144,7 @@ for t in "${TARGETS[@]}"; do
             # the first frame in risknav's own code.
             frames=$( (grep -hE '^ +#[0-9]+ ' "$a.log" || true) | sed -E 's/^ +#[0-9]+ 0x[0-9a-f]+ (in )?//; s/ \(BuildId.*//')
             at=$( (grep -vE '__sanitizer|__asan|__ubsan|fuzzer::|operator new|libstdc\+\+|^\(' <<<"$frames" || true) | head -1 | cut -c1-160)
-            own=$( (grep -E '/work/main/(libs|tests)/' <<<"$frames" || true) | grep -v LLVMFuzzerTestOneInput | head -1 | cut -c1-160)
+            own=$( (grep -F -e "$PWD/libs/" -e "$PWD/tests/" <<<"$frames" || true) | grep -v LLVMFuzzerTestOneInput | head -1 | cut -c1-160)
             { echo "    $(basename "$a"):"; sed 's/^/      /' <<<"$why"
               [ -z "$at" ] || echo "      at $at"; [ -z "$own" ] || [ "$own" = "$at" ] || echo "      from $own"; } >>"$SUMMARY"
         done
