@@ -14,6 +14,7 @@
 #include <mrpt/math/CPolygon.h>
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/nav/reactive/TWaypoint.h>
+#include <mrpt/poses/CPose2D.h>
 
 #include <cstdint>
 #include <limits>
@@ -24,6 +25,8 @@
 #include <vector>
 
 namespace risknav::nav {
+class CRiskAwareReactiveNav;
+
 /** One navigation cycle, as cycles.csv shows it. */
 struct TNavCycle {
     int cycle = 0;
@@ -161,11 +164,40 @@ class CNavigationRun {
     std::unique_ptr<risk::CRiskRouteChooser> m_chooser;   // global_planner = risk
     risk::TPropagationOptions m_propagation;              // [Odometry], for the chooser
     void loadRoute(common::CIniConfig& c);
+    // loadFromConfigFile()'s parts (CNavigationRun_config.cpp)
+    void setUpGlobalPlanner(const common::CIniConfig& c);
+    void checkOutputBounds(const common::CIniConfig& c) const;
+    void checkWithProbeNavigator(common::CIniConfig& c,
+                                 const std::vector<std::string>& otherSections);
+    void checkLaserHeight(const common::CIniConfig& c,
+                          const CRiskAwareReactiveNav& probe) const;
+    void checkLimiterInputs(const common::CIniConfig& c,
+                            const CRiskAwareReactiveNav& probe) const;
+    void checkSectionsKnown(common::CIniConfig& c, const CRiskAwareReactiveNav& probe,
+                            const std::vector<std::string>& otherSections) const;
     void checkAgainstMap(const common::CIniConfig& c) const;
     /** MRPT's engine as configured (limiters aside) on MRPT's own simulated
      * robot in open space, a target 3 m ahead: the error it fails with on
      * each of its first cycles, "" when it moves. Tells a config MRPT takes
      * unchecked from a start its PTGs find no motion from. */
+    // run()'s parts (CNavigationRun.cpp), on one run's state
+    struct TRun;
+    void applyRunSetup(const TNavRunSetup& setup);
+    void startNavigator(TRun& s);
+    void aimWaypoints(TRun& s) const;
+    void openRunOutputs(TRun& s);
+    bool runCycle(TRun& s, int cycle);
+    mrpt::math::TPose2D senseAndLocalize(TRun& s, double t);
+    const TNavCycle& stepNavigator(TRun& s, int cycle, double t,
+                                   const mrpt::math::TPose2D& truth);
+    void takeNavEvents(TRun& s, const mrpt::math::TPose2D& truth, double poseError);
+    void checkEngineFailures(TRun& s, int cycle, double t,
+                             const mrpt::math::TPose2D& truth) const;
+    bool runEnds(TRun& s, int cycle, double t, const mrpt::math::TPose2D& truth) const;
+    void stepWorld(TRun& s);
+    void finishRun(TRun& s);
+    const TWaypointTag* tagOf(int waypoint) const;
+    mrpt::poses::CPose2D odoFixFor(const mrpt::math::TPose2D& pose) const;
     std::string engineFailsInOpenSpace(const std::string& cacheDir,
                                        double clockNow) const;
     /** The robot shape MRPT gets: [Robot] radius grown by shape_margin. */
