@@ -2,6 +2,8 @@
 #include <risknav/common/CSpeedLimiter.h>
 #include <risknav/common/CValidatedOptions.h>
 #include <risknav/common/TRobotOptions.h>
+#include <risknav/nav/CPlanFollower.h>
+#include <risknav/nav/CTurnSupervisor.h>
 #include <risknav/nav/plan_follow.h>
 #include <risknav/planning/CGlobalPlanner.h>
 
@@ -118,9 +120,11 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     TOptions riskOptions;         ///< [CRiskAwareReactiveNav]
     common::TRobotOptions robot;  ///< [Robot]: radius, decel, t_delay for the limiters
 
-    /** MRPT's step, or a turn in place toward a target behind the robot
-     * (turn_in_place_deg) until it is within a third of that angle, or
-     * toward the target of a robot stuck for unstick_time. */
+    /** MRPT's step; or, with a target not yet reached, the global
+     * planner's cycle, then the navigator's own driving (CPlanFollower:
+     * plan_follow_after, final_approach_speed) or a turn in place
+     * (CTurnSupervisor: turn_in_place_deg, start_turn_deg, unstick_time)
+     * instead of it. */
     void navigationStep() override;
 
     /** MRPT's loadConfigFile() plus [CRiskAwareReactiveNav], [Robot] and each
@@ -198,18 +202,19 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
 
   protected:
     /** What the limiters see this cycle: the robot, the believed pose, the
-     * sensed points, the target, the clock, the raw scans when the robot is a
-     * risknav world, and MRPT's chosen trajectory (`movement`, may be null)
-     * sampled every ~5 cm over d_stop(desired) + radius + 1 m. */
+     * sensed points, the target, the clock, the raw scans when the robot
+     * gives them (common::CRangeSensingRobot), and MRPT's chosen trajectory (`movement`,
+     * may be null) sampled every ~5 cm over d_stop(desired) + radius + 1 m. */
     common::TSpeedLimitInput limiterInput(
         const mrpt::nav::TCandidateMovementPTG* movement, double desired) const;
     /** MRPT's command, then the smallest limit of the limiters applied to it. */
     double generate_vel_cmd(const mrpt::nav::TCandidateMovementPTG& in_movement,
                             mrpt::kinematics::CVehicleVelCmd::Ptr& new_vel_cmd) override;
     /** MRPT's step, aimed at the guide point (guide_lookahead) when a
-     * limiter gives one; the waypoint is put back after it. On a risknav
-     * world (CSimRobotInterface) the limiters observe() the step's scans
-     * before it starts (observeNow()). */
+     * limiter gives one; the waypoint is put back after it. On a robot that
+     * senses ahead (common::CRangeSensingRobot, e.g. risknav's simulated
+     * one) the limiters observe() the step's scans before it starts
+     * (observeNow()). */
     void performNavigationStep() override;
     /** MRPT's mapping of the sensed obstacles into a PTG's TP-space; its
      * first call in a step (MRPT has sensed, and evaluates its motions from
@@ -230,8 +235,10 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
      * step (NAV_ERROR with the message), or is dropped (`quiet`). */
     void finishObserved(bool quiet);
     /** The limiters' observe() of this step, once. `beforeSensing`: only on
-     * a risknav world, whose scans it senses ahead of MRPT (the same scans
-     * MRPT then gets; the input has no MRPT point map yet). */
+     * a robot that senses ahead (common::CRangeSensingRobot), whose scans it
+     * senses ahead of MRPT (the same scans MRPT then gets; the input has no
+     * MRPT point map yet); another robot: nothing, the limiters observe once
+     * MRPT has sensed (STEP3_WSpaceToTPSpace()). */
     void observeNow(bool beforeSensing);
     /** currentTarget() from a copy of MRPT's waypoint status. */
     std::optional<TCurrentTarget> currentTarget(
@@ -242,39 +249,16 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     /** While the step aims at a guide point: the waypoint MRPT's target
      * stands for (what the limiters are told). */
     std::optional<mrpt::math::TPoint2D> m_realTarget;
-    /** Guide points paused (a robot stuck while guided): where, and the
-     * target then. */
-    std::optional<std::pair<mrpt::math::TPoint2D, mrpt::math::TPoint2D>> m_guidePausedAt;
     const mrpt::config::CConfigFileBase* m_engine = nullptr;
     std::shared_ptr<planning::CGlobalPlanner> m_planner;
     std::optional<planning::TGlobalPlan> m_planFailure;
     double m_planBest = 0;  ///< [m] the least way left along the plan so far
-    /** [m] the least way left along the plans to this target, and when the
-     * robot last got 0.1 m further (plan_follow_after; a replan does not
-     * count as headway). */
-    double m_headBest = 0;
-    double m_headwayAt = 0;
-    /** While the robot follows the plan itself: since when, the pose of
-     * the last cycle and the distance driven since. */
-    struct TFollowing {
-        double since = 0;
-        mrpt::math::TPose2D last;
-        double driven = 0;
-    };
-    std::optional<TFollowing> m_following;
-    /** Where followPlan() / finalApproach() found every motion blocked:
-     * not tried again until the robot has moved 0.1 m from there or has a
-     * new target (else they and the unstick turns undo each other). */
-    std::optional<mrpt::math::TPoint2D> m_followBlockedAt, m_finalBlockedAt;
-    std::optional<mrpt::math::TPoint2D> m_blockedTarget;
-    bool blockedHere(std::optional<mrpt::math::TPoint2D>& at,
-                     const mrpt::math::TPose2D& pose, const mrpt::math::TPoint2D& target);
-    /** plan_follow_after: follows the plan this cycle (true: commanded). */
-    bool followPlan(const mrpt::math::TPose2D& pose, double allowed, bool lastTarget);
-    /** final_approach_speed: drives to the route's end this cycle (true:
-     * commanded). */
-    bool finalApproach(const mrpt::math::TPose2D& pose,
-                       const mrpt::math::TPoint2D& target, double allowed);
+    /** The navigator's own driving: plan following, final approach. */
+    CPlanFollower m_follower;
+    /** Turns in place instead of MRPT's step. */
+    CTurnSupervisor m_turns;
+    /** riskOptions into m_follower's and m_turns' options. */
+    void syncOptions();
     /** Sends the navigator's own command (not MRPT's) and records it as
      * the cycle's limit, `limiter` and `reason`. */
     void sendOwnCommand(const TFollowCommand& cmd, const char* limiter,
@@ -282,9 +266,6 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
     /** [m] MRPT's robot shape as a disc of its farthest vertex (or its
      * circular radius). */
     double shapeRadius() const;
-    /** [m] the nearest the robot's own following lets a sensed point come
-     * to its centre, whatever the start: [Robot] radius + 2 cm. */
-    double bodyFloor() const;
     /** Fresh obstacle points from the robot (robot frame), also given to
      * the global planner; MRPT does not sense while the navigator drives. */
     std::vector<mrpt::math::TPoint2D> senseNow(const mrpt::math::TPose2D& pose,
@@ -298,28 +279,8 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
      * way (the navigation was stopped). */
     bool updatePlanner(const mrpt::math::TPose2D& pose,
                        const mrpt::math::TPoint2D& target);
-    bool m_startTurning = false;
     /** A waypoint request MRPT's step has not taken yet (MRPT is IDLE). */
     bool m_requestPending = false;
-    bool m_turning = false;
-    bool m_unsticking = false;
-    /** Where and when the robot last moved 5 cm or turned 5 deg (unstick_time). */
-    std::optional<mrpt::math::TPose2D> m_stillPose;
-    double m_stillSince = 0;
-    /** The last unstick turn: its target, the robot's distance to it, and
-     * the turns to that target since the robot last got 0.5 m nearer. */
-    struct TUnstick {
-        mrpt::math::TPoint2D target;
-        double distance = 0;
-        int turns = 0;
-    };
-    std::optional<TUnstick> m_unstuck;
-    std::string m_unstickReason;
-    /** [rad, world] the heading an escape turn turns to (escapeHeading()). */
-    std::optional<double> m_escapeHeading;
-    /** MRPT's last sensed obstacle points (robot frame) inside or at the
-     * edge of its robot shape. */
-    std::vector<mrpt::math::TPoint2D> pointsNearShape() const;
     /** Each PTG's cte_a0w_deg as read (CPTG_DiffDrive_alpha; else ""). */
     std::vector<std::string> m_a0wText;
 };

@@ -1,4 +1,5 @@
 #pragma once
+#include <risknav/common/CRangeSensingRobot.h>
 #include <risknav/sim/CSimWorld.h>
 
 #include <mrpt/nav/reactive/CRobot2NavInterfaceForSimulator.h>
@@ -15,10 +16,13 @@ namespace risknav::sim {
  *  - getCurrentPoseAndSpeeds() reports the true pose (or a localization
  *    estimate, setLocalization()) and the world's drifting wheel odometry;
  *  - senseObstacles() returns the world's laser scan of this instant
- *    (people and clutter included) as robot-frame points.
+ *    (people and clutter included) as robot-frame points;
+ *  - as a common::CRangeSensingRobot, it senses ahead of a navigator's
+ *    engine (senseAhead()) and gives the raw scans (lastScan(), lastScan2()).
  * The caller advances the world (world.step()) and MRPT's clock between
  * navigation steps. */
-class CSimRobotInterface : public mrpt::nav::CRobot2NavInterfaceForSimulator_DiffDriven {
+class CSimRobotInterface : public mrpt::nav::CRobot2NavInterfaceForSimulator_DiffDriven,
+                           public common::CRangeSensingRobot {
   public:
     explicit CSimRobotInterface(CSimWorld& world);
 
@@ -64,9 +68,20 @@ class CSimRobotInterface : public mrpt::nav::CRobot2NavInterfaceForSimulator_Dif
      * not handed out yet, else sensed now (senseNow()). Lets a navigator
      * start work on the scans before MRPT's step senses, without sensing
      * twice. */
-    const CSimWorld::TScans& senseAhead() { return m_fresh ? m_last : senseNow(); }
+    void senseAhead() override {
+        if (!m_fresh)
+            senseNow();
+    }
     /** The scans of the latest senseNow() / senseObstacles() call. */
     const CSimWorld::TScans& lastScans() const { return m_last; }
+    /** lastScans()' laser scan. */
+    const mrpt::obs::CObservation2DRangeScan* lastScan() const override {
+        return m_last.laser.get();
+    }
+    /** lastScans()' RANGE2 scan (null without that sensor). */
+    const mrpt::obs::CObservation2DRangeScan* lastScan2() const override {
+        return m_last.range2.get();
+    }
 
   private:
     CSimWorld& m_world;
