@@ -34,8 +34,8 @@ Each pair is then run:
             defaults (3 GVG routes, 3 grid ways of distinct classes, the
             navigate config's [Robot] radius): "reached" = a route found
             (status ok: the best row is not excluded, its U finite)
-with --set World.map_file, the start, the goal and duration_max (time_limit
-for explore) = 60 s + 4 x the way's length / [Robot] max_v, and --seed SEED.
+with --set World.map_file, the start, the goal and duration_max
+= 60 s + 4 x the way's length / [Robot] max_v, and --seed SEED.
 The way's length is the shortest 8-connected way (A*) over the cells where
 the disc fits, on the true map: the budget a robot that knew the map would
 need four times over, whatever it knows.
@@ -712,7 +712,7 @@ def run_pair(job):
     elif mode == "explore":
         app = APPS["explore"]
         sets += [f"Explore.start={sx} {sy} {sh}", f"Explore.destinations={gx} {gy}",
-                 "Explore.modes=adaptive", f"Explore.time_limit={limit}"]
+                 "Explore.modes=adaptive", f"Explore.duration_max={limit}"]
     else:
         app = APPS["navigate"]
         sets += [f"Navigate.start={sx} {sy} {sh}", f"Navigate.goals={gx} {gy}",

@@ -196,10 +196,8 @@ void setUp(CViewpointPlanner& p, int threads) {
     p.options.safety_margins = {0.02, 0.03, 0.04, 0.05, 0.06, 0.07, 0.08, 0.09, 0.10};
     p.options.k_paths = 10;
     p.options.dead_reckoning = 0.1;
-    p.options.start_x = kStart.x;
-    p.options.start_y = kStart.y;
-    p.options.goal_x = kGoal.x;
-    p.options.goal_y = kGoal.y;
+    p.options.start = kStart;
+    p.options.goal = kGoal;
     p.options.threads = threads;
     p.setWorld(world());  // validateWorld(): throws on a bad generated world
 }

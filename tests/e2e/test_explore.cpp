@@ -186,7 +186,7 @@ TEST(ExploreE2E, AnUnreachableDestinationIsReportedAndTheRobotStops) {
     const std::string out = freshDir("out");
     const auto r =
         run(binPath(kApp) + " -q -o '" + out + "' --set Explore.modes=adaptive " +
-            "--set Explore.destinations='3 7  4.5 8.9' --set Explore.time_limit=120 '" +
+            "--set Explore.destinations='3 7  4.5 8.9' --set Explore.duration_max=120 '" +
             w + "/explore.ini'");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto s = readJson(out + "/summary.json");
@@ -211,7 +211,7 @@ TEST(ExploreE2E, ALocalMapOfNoWholeNumberOfCellsDrawsItsSnapshots) {
     // grown obstacles threw after the whole run (exit 1, no snapshots)
     const std::string out = freshDir("res003");
     const auto r = run(binPath(kApp) + " -q -o '" + out +
-                       "' --set Explore.modes=adaptive --set Explore.time_limit=3 " +
+                       "' --set Explore.modes=adaptive --set Explore.duration_max=3 " +
                        "--set Explore.local_map_resolution=0.03 " +
                        "--set Explore.start='3.01 3 90' '" +
                        sourcePath("datasets/office/explore.ini") + "'");
@@ -226,7 +226,7 @@ TEST(ExploreE2E, EveryKeyInTheDocumentedConfigIsKnown) {
     // config/risknav-explore.ini lists every key; the app rejects unknown keys
     const std::string d = freshDir("cfg");
     const auto r = run(binPath(kApp) + " -q -o '" + d +
-                       "' --set Explore.modes=adaptive --set Explore.time_limit=20 '" +
+                       "' --set Explore.modes=adaptive --set Explore.duration_max=20 '" +
                        sourcePath("config/risknav-explore.ini") + "'");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto s = readJson(d + "/summary.json");
@@ -258,9 +258,9 @@ TEST(ExploreE2E, TheTJunctionBeyondTheLocalMapNeedsTheMemory) {
     // to the third destination.
     const std::string cfg = sourcePath("datasets/validation/explore_t_junction.ini");
     const std::string with = freshDir("tj");
-    auto r =
-        run(binPath(kApp) + " -q -o '" + with +
-            "' --set Explore.modes=adaptive --set Explore.time_limit=150 '" + cfg + "'");
+    auto r = run(binPath(kApp) + " -q -o '" + with +
+                 "' --set Explore.modes=adaptive --set Explore.duration_max=150 '" + cfg +
+                 "'");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     auto s = readJson(with + "/summary.json");
     // the robot arrives at all four as it believes; in truth its odometry
@@ -276,7 +276,7 @@ TEST(ExploreE2E, TheTJunctionBeyondTheLocalMapNeedsTheMemory) {
     EXPECT_EQ(s["modes"][0]["collisions"], 0);
     const std::string without = freshDir("tj0");
     r = run(binPath(kApp) + " -q -o '" + without +
-            "' --set Explore.modes=adaptive --set Explore.time_limit=150 "
+            "' --set Explore.modes=adaptive --set Explore.duration_max=150 "
             "--set Explore.memory_size=0 '" +
             cfg + "'");
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -302,7 +302,7 @@ TEST(ExploreE2E, ABeliefThatArrivedWhereTheTruthIsNotIsALocalizationError) {
     cv::imwrite(w + "/room.png", img);
     writeFile(w + "/explore.ini",
               "[Explore]\nstart = 2 6 0\ndestinations = 8 6\nmodes = adaptive\n"
-              "time_limit = 60\nseed = 3\n"
+              "duration_max = 60\nseed = 3\n"
               "[World]\nmap_file = room.png\nmap_resolution = 0.05\n"
               "[Robot]\nradius = 0.25\nmax_v = 1.1\n"
               "[Odometry]\nerror_model = systematic\n");
@@ -358,7 +358,7 @@ TEST(ExploreE2E, ADestinationNotApproachedForTheTimeoutIsGivenUp) {
     // goes on to the next
     const std::string out = freshDir("alarm");
     const auto r = run(binPath(kApp) + " -q -o '" + out +
-                       "' --set Explore.modes=adaptive --set Explore.time_limit=40 "
+                       "' --set Explore.modes=adaptive --set Explore.duration_max=40 "
                        "--set Explore.not_approaching_timeout=4 '" +
                        sourcePath("datasets/office/explore.ini") + "'");
     ASSERT_EQ(r.exitCode, 0) << r.err;

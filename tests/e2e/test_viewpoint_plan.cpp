@@ -243,8 +243,8 @@ TEST(ViewpointPlanE2E, NoLandmarkVisibleIsReportedNotAnError) {
     const std::string w = freshDir("w");
     writeFile(w + "/world.txt", "bounds 0 0 6 3\nobstacle 2 0 3 0 3 1 2 1\n");
     writeFile(w + "/p.ini",
-              "[ViewpointPlan]\nworld_file = world.txt\nstart_x = 0.5\nstart_y = 1.5\n"
-              "goal_x = 5.5\ngoal_y = 1.5\n[Robot]\nradius = 0.3\n");
+              "[ViewpointPlan]\nworld_file = world.txt\nstart = 0.5 1.5\n"
+              "goal = 5.5 1.5\n[Robot]\nradius = 0.3\n");
     const std::string out = freshDir("out");
     const json s = planRun(w + "/p.ini", out);
     EXPECT_EQ(s["status"], "no feasible plan");
@@ -264,7 +264,7 @@ TEST(ViewpointPlanE2E, StartNearAnObstacleIsInfeasibleForLargeMarginsOnly) {
     fs::copy_file(sourcePath("datasets/landmarks-two-routes/world.txt"),
                   w + "/world.txt");
     std::string ini = readFile(twoRoutes("r1"));
-    ini = std::regex_replace(ini, std::regex("start_y = 0.6"), "start_y = 0.35");
+    ini = std::regex_replace(ini, std::regex("start = 0.45 0.6"), "start = 0.45 0.35");
     writeFile(w + "/p.ini", ini);
     const json s = planRun(w + "/p.ini", freshDir("out"));
     int blocked = 0;
@@ -290,10 +290,9 @@ TEST(ViewpointPlanE2E, CollinearLandmarksOnAWallGiveNoNaN) {
         "bounds 0 0 8 2\nlandmark A 2 2 -90\nlandmark B 2.2 2 -90\nlandmark C 2.4 2 -90\n"
         "landmark D 4 2 -90\nlandmark E 4.2 2 -90\nlandmark F 6 2 -90\n"
         "landmark G 6.2 2 -90\nlandmark H 6.4 2 -90\n");
-    writeFile(
-        w + "/p.ini",
-        "[ViewpointPlan]\nworld_file = world.txt\nstart_x = 0.5\nstart_y = 0.8\n"
-        "goal_x = 7.5\ngoal_y = 0.8\nsafety_margins = 0.05 0.1\n[Robot]\nradius = 0.3\n");
+    writeFile(w + "/p.ini",
+              "[ViewpointPlan]\nworld_file = world.txt\nstart = 0.5 0.8\n"
+              "goal = 7.5 0.8\nsafety_margins = 0.05 0.1\n[Robot]\nradius = 0.3\n");
     const std::string out = freshDir("out");
     const json s = planRun(w + "/p.ini", out);
     for (const char* f : {"sweep.csv", "strategies.csv"})
@@ -325,8 +324,8 @@ TEST(ViewpointPlanE2E, GridMapIsTracedIntoPolygons) {
         "landmark S2 3.8 0.1 90\nlandmark N1 1.2 2.9 -90\nlandmark N2 3.8 2.9 -90\n");
     writeFile(w + "/p.ini",
               "[ViewpointPlan]\nworld_file = landmarks.txt\nmap_file = room.png\n"
-              "map_resolution = 0.05\nstart_x = 0.7\nstart_y = 0.7\ngoal_x = 4.3\n"
-              "goal_y = 2.3\nsafety_margins = 0.05 0.1\n[Robot]\nradius = 0.3\n");
+              "map_resolution = 0.05\nstart = 0.7 0.7\ngoal = 4.3 2.3\n"
+              "\nsafety_margins = 0.05 0.1\n[Robot]\nradius = 0.3\n");
     const std::string out = freshDir("out");
     const json s = planRun(w + "/p.ini", out);
     EXPECT_EQ(s["world"]["obstacles"], 2);
@@ -380,13 +379,12 @@ TEST_P(ViewpointPlanBadInput, ExitTwoOneLineOutputUntouched) {
 INSTANTIATE_TEST_SUITE_P(
     ViewpointPlan, ViewpointPlanBadInput,
     ::testing::Values(
-        TBad{"start_inside_obstacle", "", "start_x = 0.45\nstart_y = 0.6",
-             "start_x = 2.0\nstart_y = 1.2", "",
-             "[ViewpointPlan] start_x = '2.0': the start (2, 1.2) lies inside an "
+        TBad{"start_inside_obstacle", "", "start = 0.45 0.6", "start = 2.0 1.2", "",
+             "[ViewpointPlan] start = '2.0 1.2': the start (2, 1.2) lies inside an "
              "obstacle"},
-        TBad{"goal_too_near", "", "goal_y = 0.6", "goal_y = 0.2", "",
+        TBad{"goal_too_near", "", "goal = 3.95 0.6", "goal = 3.95 0.2", "",
              "the goal (3.95, 0.2) is nearer an obstacle than the robot radius 0.3 m"},
-        TBad{"start_outside", "", "start_x = 0.45", "start_x = -3", "",
+        TBad{"start_outside", "", "start = 0.45", "start = -3", "",
              "lies inside an obstacle or outside the bounds"},
         TBad{"landmark_inside_obstacle", "landmark X 2.0 1.2 90\n", "", "", "",
              "world.txt:25: landmark 'X' lies inside an obstacle or faces into its wall"},
@@ -414,9 +412,14 @@ INSTANTIATE_TEST_SUITE_P(
              "[ViewpointPlan] dead_reckoning"},
         TBad{"focal_zero", "", "\\[Camera\\]", "[Camera]\nfocal_px = 0", "",
              "[Camera] focal_px = '0'"},
-        TBad{"goal_equals_start", "", "goal_x = 3.95\ngoal_y = 0.6",
-             "goal_x = 0.45\ngoal_y = 0.6", "", "the goal must differ from the start"},
-        TBad{"missing_start", "", "start_x = 0.45\n", "", "", "start_x"},
+        TBad{"goal_equals_start", "", "goal = 3.95 0.6", "goal = 0.45 0.6", "",
+             "the goal must differ from the start"},
+        TBad{"missing_start", "", "start = 0.45 0.6\n", "", "",
+             "[ViewpointPlan] start: required, as x y [m]"},
+        TBad{"start_one_number", "", "start = 0.45 0.6", "start = 0.45", "",
+             "[ViewpointPlan] start: required, as x y [m]"},
+        TBad{"old_start_x", "", "start = 0.45 0.6", "start_x = 0.45\nstart_y = 0.6", "",
+             "[ViewpointPlan] start_x is now [ViewpointPlan] start = x y"},
         TBad{"landmark_id_with_plus", "landmark A+B 1.0 3.4 -90\n", "", "", "",
              "world.txt:25: landmark: ID 'A+B' must be 1 to 64 of"},
         TBad{"landmark_id_twice", "landmark W0 1.0 3.4 -90\n", "", "", "",
@@ -444,9 +447,8 @@ TEST(ViewpointPlanE2E, WorkTheInputCannotJustifyIsRefused) {
     for (const auto& [world, key] :
          {std::pair<std::string, std::string>{"tri.txt", "corner_segments"},
           {"huge.txt", "sample_step"}}) {
-        writeFile(w + "/p.ini",
-                  "[ViewpointPlan]\nworld_file = " + world +
-                      "\nstart_x = 1\nstart_y = 1\ngoal_x = 99\ngoal_y = 99\n");
+        writeFile(w + "/p.ini", "[ViewpointPlan]\nworld_file = " + world +
+                                    "\nstart = 1 1\ngoal = 99 99\n");
         const std::string out = freshDir("out");
         const TEarlierOutput earlier = {{"summary.json", "{}\n"}};
         writeEarlierOutput(out, earlier);
@@ -491,8 +493,8 @@ TEST(ViewpointPlanE2E, BinaryOrHugeWorldFilesAreRefused) {
     const std::string w = freshDir("w");
     writeFile(w + "/world.txt", std::string("bounds 0 0 1 1\n\0\x01\x02", 19));
     writeFile(w + "/p.ini",
-              "[ViewpointPlan]\nworld_file = world.txt\nstart_x = 0.5\nstart_y = 0.5\n"
-              "goal_x = 0.6\ngoal_y = 0.5\n");
+              "[ViewpointPlan]\nworld_file = world.txt\nstart = 0.5 0.5\n"
+              "goal = 0.6 0.5\n");
     const std::string out = freshDir("out");
     const auto r =
         run(binPath("risknav-viewpoint-plan") + " -q -o '" + out + "' '" + w + "/p.ini'");

@@ -2,6 +2,7 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/CIniConfig.h>
 #include <risknav/common/config_read.h>
+#include <risknav/common/renamed_keys.h>
 
 #include <mrpt/config/config_parser.h>
 
@@ -42,6 +43,12 @@ CIniConfig::CIniConfig(const std::string& path) try : mrpt
         m_folder(fs::absolute(fs::path(path)).parent_path().string()) {
         discardSavingChanges();
         checkLines(path);
+        for (const auto& sec : sections()) {
+            std::vector<std::string> keys;
+            getAllKeys(sec, keys);
+            for (const auto& k : keys)
+                throwIfRenamed(sec, k);
+        }
     }
 catch (const CBadInputError&) {
     throw;
@@ -182,6 +189,19 @@ void CIniConfig::applyOverride(const std::string& assignment) {
     write(lhs.substr(0, dot), lhs.substr(dot + 1), assignment.substr(eq + 1));
     discardSavingChanges();  // write() marks the file modified again
     m_overridden.emplace(lower(lhs.substr(0, dot)), lower(lhs.substr(dot + 1)));
+    throwIfRenamed(lhs.substr(0, dot), lhs.substr(dot + 1));
+}
+
+void CIniConfig::throwIfRenamed(const std::string& section,
+                                const std::string& key) const {
+    const std::string where =
+        m_path + (isOverridden(section, key) ? " (--set)" : "") + ": ";
+    if (const auto now = renamedSection(section))
+        throw CBadInputError(where + "section [" + clippedText(section) + "] is now [" +
+                             *now + "]");
+    if (const auto now = renamedKey(section, key))
+        throw CBadInputError(where + "[" + clippedText(section) + "] " +
+                             clippedText(key) + " is now " + *now);
 }
 
 bool CIniConfig::isOverridden(const std::string& section, const std::string& key) const {

@@ -21,16 +21,6 @@ bool numbered(const std::string& s, const std::string& prefix) {
                        [](unsigned char ch) { return std::isdigit(ch); });
 }
 
-// x y [m]: a format (count) error is a parse error.
-TPoint2D readPoint(const mrpt::config::CConfigFileBase& c, const std::string& s,
-                   const std::string& k) {
-    const auto v = readNumbers(c, s, k, {}, {});
-    if (v.size() != 2)
-        throw CBadInputError(configWhere(c, s, k) + "[" + s + "] " + k +
-                             ": required, as x y [m]");
-    return {v[0], v[1]};
-}
-
 std::string fmtPoint(const TPoint2D& p) {
     return pointText(p.x, p.y);
 }
@@ -72,8 +62,8 @@ void CRiskEvaluator::TOptions::loadFromConfigFile(const mrpt::config::CConfigFil
     section = s;
     map.loadFromConfigFile(c, s);
     obstacles.loadFromConfigFile(c, s);
-    start = readPoint(c, s, "start");
-    goal = readPoint(c, s, "goal");
+    start = requirePoint(c, s, "start");
+    goal = requirePoint(c, s, "goal");
     u_threshold = readDouble(c, s, "u_threshold", u_threshold);
     max_sensing_subset = readInt(c, s, "max_sensing_subset", max_sensing_subset);
     gvg_routes = readInt(c, s, "gvg_routes", gvg_routes);

@@ -73,14 +73,15 @@ void CWorldSimulator::TSimulationOptions::validate() const {
 
 void CWorldSimulator::loadFromConfigFile(const CIniConfig& c,
                                          std::optional<uint64_t> seedOverride) {
-    static const std::set<std::string> known = {
-        "Simulation", "World",        "Robot", "Odometry",
-        "Route",      "StoppingRule", "Laser", "RangeSensor2"};
+    static const std::set<std::string> known = {"Simulation", "World",
+                                                "Robot",      "Odometry",
+                                                "Route",      "CStoppingDistanceLimiter",
+                                                "Laser",      "RangeSensor2"};
     for (const auto& s : c.sections())
         if (!known.count(s) && !CAgentsSim::ownsSection(s))
             c.throwUnknownSection(s,
                                   "Simulation, World, Robot, Odometry, Route, "
-                                  "StoppingRule, Laser, RangeSensor2, "
+                                  "CStoppingDistanceLimiter, Laser, RangeSensor2, "
                                   "DoorPedestrianN, CorridorWalkerN, ClutterN");
     if (!c.sectionExists("World"))
         throw CBadInputError(c.path() + ": missing section [World] (map_file)");
@@ -90,7 +91,7 @@ void CWorldSimulator::loadFromConfigFile(const CIniConfig& c,
     if (seedOverride)
         simulation.seed = *seedOverride;
     loadOptions(route.options, c, "Route");
-    loadOptions(stopRule.options, c, "StoppingRule");
+    loadOptions(stopRule.options, c, "CStoppingDistanceLimiter");
     world.loadFromConfigFile(c);
     c.throwOnUnreadKeys();
     // The run's work and output, bounded before it starts: a robot that never
@@ -120,7 +121,7 @@ void CWorldSimulator::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
     simulation.saveToConfigFile(c, "Simulation");
     world.saveToConfigFile(c);
     route.options.saveToConfigFile(c, "Route");
-    stopRule.options.saveToConfigFile(c, "StoppingRule");
+    stopRule.options.saveToConfigFile(c, "CStoppingDistanceLimiter");
 }
 
 void CWorldSimulator::checkAgainstMap(const CIniConfig& c) const {

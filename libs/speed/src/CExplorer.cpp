@@ -30,15 +30,23 @@ bool TModeResult::allReached() const {
 }
 
 void CExplorer::loadFromConfigFile(const CIniConfig& c, std::optional<uint64_t> seed) {
-    static const std::set<std::string> known = {
-        "Explore", "SpeedControl", "MapLaser", "MapRange2",    "StoppingRule", "World",
-        "Robot",   "Odometry",     "Laser",    "RangeSensor2", "ScanMatching"};
+    static const std::set<std::string> known = {"Explore",
+                                                "SpeedControl",
+                                                "MapLaser",
+                                                "MapRange2",
+                                                "CStoppingDistanceLimiter",
+                                                "World",
+                                                "Robot",
+                                                "Odometry",
+                                                "Laser",
+                                                "RangeSensor2",
+                                                "ScanMatching"};
     for (const auto& s : c.sections())
         if (!known.count(s) && !sim::CAgentsSim::ownsSection(s))
             c.throwUnknownSection(
                 s,
                 "Explore, SpeedControl, MapLaser, MapRange2, "
-                "StoppingRule, ScanMatching, World, Robot, Odometry, Laser, "
+                "CStoppingDistanceLimiter, ScanMatching, World, Robot, Odometry, Laser, "
                 "RangeSensor2, CorridorWalkerN, DoorPedestrianN, ClutterN");
     for (const char* s : {"Explore", "World"})
         if (!c.sectionExists(s))
@@ -51,7 +59,7 @@ void CExplorer::loadFromConfigFile(const CIniConfig& c, std::optional<uint64_t> 
     laserModel.p_obs_given_free = 0.3;
     loadOptions(laserModel, c, "MapLaser");
     loadOptions(range2Model, c, "MapRange2");
-    loadOptions(stopRule.options, c, "StoppingRule");
+    loadOptions(stopRule.options, c, "CStoppingDistanceLimiter");
     loadOptions(scanMatch, c, "ScanMatching");
     world.loadFromConfigFile(c);
     c.throwOnUnreadKeys();
@@ -103,7 +111,7 @@ void CExplorer::saveToConfigFile(mrpt::config::CConfigFileBase& c) const {
     speed.saveToConfigFile(c, "SpeedControl");
     laserModel.saveToConfigFile(c, "MapLaser");
     range2Model.saveToConfigFile(c, "MapRange2");
-    stopRule.options.saveToConfigFile(c, "StoppingRule");
+    stopRule.options.saveToConfigFile(c, "CStoppingDistanceLimiter");
     scanMatch.saveToConfigFile(c, "ScanMatching");
     world.saveToConfigFile(c);
 }
@@ -318,7 +326,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
     double noiseTolerance = std::max(0.01, 2 * world.laser.options.noise_std);
     if (world.range2.options.enabled)
         noiseTolerance = std::max(noiseTolerance, 2 * world.range2.options.noise_std);
-    for (int cycle = 0; world.time() < explore.time_limit && dest < goalsEgo.size();
+    for (int cycle = 0; world.time() < explore.duration_max && dest < goalsEgo.size();
          cycle++) {
         const auto scans = world.sense();
         const auto t0 = std::chrono::steady_clock::now();

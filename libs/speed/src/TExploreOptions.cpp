@@ -35,7 +35,7 @@ void TExploreOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
     memory_size = readDouble(c, s, "memory_size", memory_size);
     memory_resolution = readDouble(c, s, "memory_resolution", memory_resolution);
     sim_dt = readDouble(c, s, "sim_dt", sim_dt);
-    time_limit = readDouble(c, s, "time_limit", time_limit);
+    duration_max = readDouble(c, s, "duration_max", duration_max);
     goal_tolerance = readDouble(c, s, "goal_tolerance", goal_tolerance);
     arrival_radius = readDouble(c, s, "arrival_radius", arrival_radius);
     unreachable_after = readDouble(c, s, "unreachable_after", unreachable_after);
@@ -57,7 +57,7 @@ void TExploreOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
     writeKey(c, s, "memory_resolution", memory_resolution);
     writeKey(c, s, "local_map_resolution", local_map_resolution);
     writeKey(c, s, "sim_dt", sim_dt);
-    writeKey(c, s, "time_limit", time_limit);
+    writeKey(c, s, "duration_max", duration_max);
     writeKey(c, s, "goal_tolerance", goal_tolerance);
     writeKey(c, s, "arrival_radius", arrival_radius);
     writeKey(c, s, "unreachable_after", unreachable_after);
@@ -100,7 +100,7 @@ void TExploreOptions::validate() const {
               numberText(memory_resolution),
               "must be at most local_map_size / 4 = " + numberText(local_map_size / 4));
     checkKey(section, "sim_dt", sim_dt, TRange{0, 1, true, false, "s"});
-    checkKey(section, "time_limit", time_limit, TRange{0, 36000, true, false, "s"});
+    checkKey(section, "duration_max", duration_max, TRange{0, 36000, true, false, "s"});
     checkKey(section, "goal_tolerance", goal_tolerance, TRange{0, 10, true, false, "m"});
     checkKey(section, "arrival_radius", arrival_radius, TRange{0, 10, true, false, "m"});
     checkRule(arrival_radius <= goal_tolerance, section, "arrival_radius",

@@ -51,8 +51,7 @@ json modeSummary(const TModeResult& r, const TSpeedControlOptions& o) {
     j["distance_m"] = r.distance;
     j["cycles"] = r.cycles.size();
     j["collisions"] = r.collisions + r.collisionsStatic;
-    j["collisions_people_clutter"] = r.collisions;
-    j["collisions_map"] = r.collisionsStatic;
+    j["collisions_static"] = r.collisionsStatic;
     j["near_misses"] = r.nearMisses;
     j["min_clearance_m"] = std::isfinite(r.minClearance) ? json(r.minClearance) : json();
     j["margin_broken_cycles"] = r.marginBrokenCycles;
@@ -301,7 +300,7 @@ void runExploreApp(const TAppContext& ctx) {
     for (const int m : modes) {
         CProgress progress(
             m < 0 ? "adaptive" : "fixed " + numberText(ex.speed.speeds[size_t(m)]),
-            size_t(ex.explore.time_limit), "s", ctx.args.quiet);
+            size_t(ex.explore.duration_max), "s", ctx.args.quiet);
         runs.push_back(ex.runMode(m, [&](double t) { progress.update(size_t(t)); }));
         progress.finish();
     }

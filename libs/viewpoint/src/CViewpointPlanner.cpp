@@ -94,16 +94,15 @@ void CViewpointPlanner::loadFromConfigFile(const CIniConfig& c) {
     }
     // The robot itself must fit at start and goal: a user error, not a result.
     for (const bool isStart : {true, false}) {
-        const TPoint2D p = isStart ? TPoint2D{options.start_x, options.start_y}
-                                   : TPoint2D{options.goal_x, options.goal_y};
-        const char* key = isStart ? "start_x" : "goal_x";
+        const TPoint2D p = isStart ? options.start : options.goal;
+        const char* key = isStart ? "start" : "goal";
         if (m_world.insideObstacle(p))
-            throwBadKey(c, "ViewpointPlan", key, numberText(p.x),
+            throwBadKey(c, "ViewpointPlan", key, numberText(p.x) + " " + numberText(p.y),
                         std::string(isStart ? "the start" : "the goal") + " (" +
                             numberText(p.x) + ", " + numberText(p.y) +
                             ") lies inside an obstacle or outside the bounds");
         if (allowedError(p.x, p.y) < 0)
-            throwBadKey(c, "ViewpointPlan", key, numberText(p.x),
+            throwBadKey(c, "ViewpointPlan", key, numberText(p.x) + " " + numberText(p.y),
                         std::string(isStart ? "the start" : "the goal") + " (" +
                             numberText(p.x) + ", " + numberText(p.y) +
                             ") is nearer an obstacle than the robot radius " +
@@ -248,8 +247,7 @@ TPlanRow CViewpointPlanner::planPath(const std::vector<TPoint2D>& path, double S
 
 void CViewpointPlanner::plan() {
     m_sweep.assign(options.safety_margins.size(), {});
-    const TPoint2D start{options.start_x, options.start_y},
-        goal{options.goal_x, options.goal_y};
+    const TPoint2D start = options.start, goal = options.goal;
     std::atomic<size_t> next{0};
     std::mutex failMutex;
     std::exception_ptr failure;  // the first worker's exception, rethrown after the join

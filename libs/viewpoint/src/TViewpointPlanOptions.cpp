@@ -14,11 +14,8 @@ void TViewpointPlanOptions::loadFromConfigFile(const mrpt::config::CConfigFileBa
         map.loadFromConfigFile(c, s);
     rule.loadFromConfigFile(c, s);
     contour_tolerance = readDouble(c, s, "contour_tolerance", contour_tolerance);
-    const TRange coordinate = TRange::closed(-1e5, 1e5, "m");
-    start_x = requireDouble(c, s, "start_x", coordinate);
-    start_y = requireDouble(c, s, "start_y", coordinate);
-    goal_x = requireDouble(c, s, "goal_x", coordinate);
-    goal_y = requireDouble(c, s, "goal_y", coordinate);
+    start = requirePoint(c, s, "start");
+    goal = requirePoint(c, s, "goal");
     safety_margins = readNumbers(c, s, "safety_margins", safety_margins, {}, 1);
     k_paths = readInt(c, s, "k_paths", k_paths);
     corner_segments = readInt(c, s, "corner_segments", corner_segments);
@@ -42,10 +39,8 @@ void TViewpointPlanOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
         rule.saveToConfigFile(c, s);
         writeKey(c, s, "contour_tolerance", contour_tolerance);
     }
-    writeKey(c, s, "start_x", start_x);
-    writeKey(c, s, "start_y", start_y);
-    writeKey(c, s, "goal_x", goal_x);
-    writeKey(c, s, "goal_y", goal_y);
+    writeKey(c, s, "start", std::vector<double>{start.x, start.y});
+    writeKey(c, s, "goal", std::vector<double>{goal.x, goal.y});
     writeKey(c, s, "safety_margins", safety_margins);
     writeKey(c, s, "k_paths", k_paths);
     writeKey(c, s, "corner_segments", corner_segments);
@@ -67,13 +62,15 @@ void TViewpointPlanOptions::validate() const {
         rule.validate();
     }
     checkKey(section, "contour_tolerance", contour_tolerance, TRange::closed(0, 1, "m"));
-    const TRange where = TRange::closed(-1e5, 1e5, "m (required)");
-    checkKey(section, "start_x", start_x, where);
-    checkKey(section, "start_y", start_y, where);
-    checkKey(section, "goal_x", goal_x, where);
-    checkKey(section, "goal_y", goal_y, where);
-    checkRule(std::hypot(goal_x - start_x, goal_y - start_y) > 1e-6, section, "goal_x",
-              numberText(goal_x), "the goal must differ from the start");
+    for (const auto& [key, p] :
+         {std::make_pair("start", start), std::make_pair("goal", goal)})
+        checkRule(std::isfinite(p.x) && std::isfinite(p.y) && std::abs(p.x) <= 1e5 &&
+                      std::abs(p.y) <= 1e5,
+                  section, key, numberText(p.x) + " " + numberText(p.y),
+                  "required, as x y in [-1e5 .. 1e5] m");
+    checkRule(std::hypot(goal.x - start.x, goal.y - start.y) > 1e-6, section, "goal",
+              numberText(goal.x) + " " + numberText(goal.y),
+              "the goal must differ from the start");
     checkRule(!safety_margins.empty() && safety_margins.size() <= 100, section,
               "safety_margins", std::to_string(safety_margins.size()) + " values",
               "1 to 100 values");

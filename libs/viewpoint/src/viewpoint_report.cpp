@@ -171,8 +171,7 @@ void drawPlan(const CViewpointPlanner& p, const std::string& path) {
                      label, {120, 0, 0}, 0.4);
         }
     }
-    const TPoint2D start{p.options.start_x, p.options.start_y},
-        goal{p.options.goal_x, p.options.goal_y};
+    const TPoint2D start = p.options.start, goal = p.options.goal;
     img.marker(start, CMapImage::TMarker::Square, {0, 150, 0}, 14, 2);
     img.text({start.x + 0.1, start.y + 0.1}, "start", {0, 110, 0});
     img.marker(goal, CMapImage::TMarker::Star, {0, 0, 0}, 16, 2);

@@ -273,6 +273,23 @@ TEST(CIniConfig, AnUnknownSectionSaysWhetherOnlyTheCommandLineGaveIt) {
               c.path() + ": unknown section [Routes] (known: Route)");
 }
 
+TEST(CIniConfig, AnOldNameIsRefusedWithItsNewName) {
+    // the same thing has one name in every app; the old one is never read
+    const std::string a = iniFile("[Explore]\nTime_Limit = 20\n");
+    EXPECT_EQ(errorOf([&] { CIniConfig c(a); }),
+              a + ": [Explore] Time_Limit is now [Explore] duration_max");
+    const std::string b = iniFile("[stoppingrule]\nmargin = 0.1\n");
+    EXPECT_EQ(errorOf([&] { CIniConfig c(b); }),
+              b + ": section [stoppingrule] is now [CStoppingDistanceLimiter]");
+    const std::string v = iniFile("[ViewpointPlan]\nstart = 1 2\n");
+    CIniConfig c(v);
+    EXPECT_EQ(errorOf([&] { c.applyOverride("ViewpointPlan.goal_y=3"); }),
+              v + " (--set): [ViewpointPlan] goal_y is now [ViewpointPlan] goal = x y");
+    // the same key in a section where it was never renamed is fine
+    EXPECT_EQ(errorOf([&] { CIniConfig d(iniFile("[Simulation]\ntime_limit = 3\n")); }),
+              "(no error)");
+}
+
 TEST(ConfigRead, LongSectionAndKeyNamesAreClippedInMessages) {
     const std::string longKey(5000, 'k');
     CIniConfig c(iniFile("[Route]\n" + longKey + " = abc\n"));

@@ -299,9 +299,8 @@ TEST(Greedy, StraightCorridorWithEvenlySpacedLandmarks) {
     }
     CViewpointPlanner p;
     p.robot.radius = 0.3;
-    p.options.start_x = 1;
-    p.options.start_y = p.options.goal_y = 0.5;
-    p.options.goal_x = 13;
+    p.options.start = {1, 0.5};
+    p.options.goal = {13, 0.5};
     p.options.dead_reckoning = 0.1;
     p.setWorld(w);
     const TPlanRow row = p.planPath({{1, 0.5}, {13, 0.5}}, 0.05);
@@ -325,7 +324,7 @@ TEST(Greedy, StraightCorridorWithEvenlySpacedLandmarks) {
         if (l.y > 0.5)
             l.y = 0.8;
     CViewpointPlanner q = p;
-    q.options.start_y = q.options.goal_y = 0.4;
+    q.options.start.y = q.options.goal.y = 0.4;
     q.setWorld(narrow);
     const TPlanRow rn = q.planPath({{1, 0.4}, {13, 0.4}}, 0.05);
     EXPECT_TRUE(!rn.feasible || rn.viewpoints.size() > row.viewpoints.size());

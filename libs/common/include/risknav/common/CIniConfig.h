@@ -66,6 +66,9 @@ class CIniConfig : public mrpt::config::CConfigFile {
      * reads: after its preprocessor (@define, ${}, $eval{}, line
      * continuation), split at CR, LF and CR+LF as its SimpleIni splits it. */
     static void checkLines(const std::string& path);
+    /** Throws CBadInputError naming the new name when the section or key
+     * has one (common/renamed_keys.h). */
+    void throwIfRenamed(const std::string& section, const std::string& key) const;
     std::string m_path, m_folder;
     mutable std::set<std::pair<std::string, std::string>> m_read;
     /** hasKey(): each section's keys (lower case) by section, listed once: MRPT's

@@ -10,7 +10,7 @@ namespace risknav::sim {
  * radius + lateral_margin) closer than d_stop(v) + margin ahead of its front,
  * with d_stop(v) = t_delay v + v^2 / (2 decel) (Choi et al. (002) eqs. 1-3,
  * PAPER_NOTES M3 erratum). Its limit is 0 (stop) or the desired speed. The
- * simulator's safety stop; a CSpeedLimiter plugin. Section [StoppingRule] in
+ * simulator's safety stop; a CSpeedLimiter plugin. Section [CStoppingDistanceLimiter] in
  * risknav-simulate. */
 class CStoppingDistanceLimiter : public common::CSpeedLimiter {
     DEFINE_MRPT_OBJECT(CStoppingDistanceLimiter, risknav::sim)
@@ -24,9 +24,9 @@ class CStoppingDistanceLimiter : public common::CSpeedLimiter {
          * "both" (the nearer of the two: a robot that lags its planned turn
          * sweeps between them). */
         std::string corridor = "both";
-        /** The section read (its errors name it): [StoppingRule] of
-         * risknav-simulate, [CStoppingDistanceLimiter] in MRPT's engine. */
-        std::string section = "StoppingRule";
+        /** The section read (its errors name it): [CStoppingDistanceLimiter] in
+         * every app (and in MRPT's engine INI). */
+        std::string section = "CStoppingDistanceLimiter";
 
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                 const std::string& s) override;

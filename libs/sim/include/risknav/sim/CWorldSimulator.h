@@ -20,10 +20,9 @@ namespace risknav::sim {
  * frame period the world's scans and the odometry increment go to an MRPT
  * rawlog; a CSafetyMonitor counts collisions and near misses.
  *
- * Config sections: [Simulation] [Route] [StoppingRule] and the world's ([World]
- * [Robot] [Odometry] [Laser] [RangeSensor2] [DoorPedestrianN]
- * [CorridorWalkerN] [ClutterN]); every key is documented in
- * config/risknav-simulate.ini. */
+ * Config sections: [Simulation] [Route] [CStoppingDistanceLimiter] and the world's
+ * ([World] [Robot] [Odometry] [Laser] [RangeSensor2] [DoorPedestrianN] [CorridorWalkerN]
+ * [ClutterN]); every key is documented in config/risknav-simulate.ini. */
 class CWorldSimulator {
   public:
     struct TSimulationOptions : public common::CValidatedOptions {

@@ -166,8 +166,8 @@ class CExplorer {
     TScanMatchOptions scanMatch;
 
     /** Loads [Explore], [SpeedControl], [MapLaser], [MapRange2],
-     * [StoppingRule], [ScanMatching] and the world's sections; refuses unknown sections
-     * and keys, destinations outside the map or inside an obstacle. */
+     * [CStoppingDistanceLimiter], [ScanMatching] and the world's sections; refuses
+     * unknown sections and keys, destinations outside the map or inside an obstacle. */
     void loadFromConfigFile(const common::CIniConfig& c, std::optional<uint64_t> seed);
     void saveToConfigFile(mrpt::config::CConfigFileBase& c) const;
 

@@ -28,7 +28,7 @@ struct TExploreOptions : public common::CValidatedOptions {
     double memory_size = 50.0;
     double memory_resolution = 0.25;  ///< [m]
     double sim_dt = 0.05;             ///< [s] physics step inside a cycle
-    double time_limit = 300;          ///< [s] simulated, per mode
+    double duration_max = 300;        ///< [s] simulated, per mode
     /** [m] a destination counts as reached when the robot's TRUE pose (the
      * simulator's ground truth) is within this where it believed it had
      * arrived (judgeArrival()). */

@@ -1,4 +1,5 @@
 #pragma once
+#include <mrpt/math/TPoint2D.h>
 #include <risknav/common/CValidatedOptions.h>
 #include <risknav/common/grid_io.h>
 #include <risknav/mapping/TObstacleRule.h>
@@ -21,10 +22,10 @@ struct TViewpointPlanOptions : public common::CValidatedOptions {
     mapping::TObstacleRule rule;
     double contour_tolerance = 0.05;  ///< [m] polygon simplification of traced contours
 
-    double start_x = std::numeric_limits<double>::quiet_NaN();  ///< [m] required
-    double start_y = std::numeric_limits<double>::quiet_NaN();  ///< [m] required
-    double goal_x = std::numeric_limits<double>::quiet_NaN();   ///< [m] required
-    double goal_y = std::numeric_limits<double>::quiet_NaN();   ///< [m] required
+    /** [m] x y, required (as risknav-risk-eval's start and goal) */
+    mrpt::math::TPoint2D start{std::numeric_limits<double>::quiet_NaN(),
+                               std::numeric_limits<double>::quiet_NaN()};
+    mrpt::math::TPoint2D goal = start;  ///< [m] x y, required
 
     /** Safety margins S of the sweep [m] (004 Tables II/III: 10 ... 90 mm). */
     std::vector<double> safety_margins{0.01, 0.02, 0.03, 0.04, 0.05,
