@@ -87,22 +87,12 @@ void ellipsesImage(const CRiskEvaluator& ev, const CRiskEvaluator::TRow& row,
     img.setTitle(title);
     img.save(path);
 }
-}  // namespace
 
-json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
+/** risk_table.csv, and its rows for summary.json. */
+json writeRiskTable(const CRiskEvaluator& ev, COutputDir& out) {
     const auto& routes = ev.routes();
     const auto& rows = ev.rows();
     const long best = ev.best();
-    json j;
-    j["status"] = routes.empty() ? "no route" : (best < 0 ? "all excluded" : "ok");
-    // why the grid has no way for the robot disc (null: it has one, or
-    // grid_routes = 0)
-    if (ev.noWayFailure().empty())
-        j["no_way"] = nullptr;
-    else
-        j["no_way"] = {{"failure", ev.noWayFailure()}, {"reason", ev.noWayReason()}};
-
-    // Table.
     CCsvWriter csv(out.stage("risk_table.csv"),
                    {"route", "source", "sensing", "length_m", "U", "u_max", "s_u_max_m",
                     "excluded", "reason", "sensed"});
@@ -128,16 +118,12 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
                          {"best", long(i) == best}});
     }
     csv.close();
-    j["table"] = table;
-    if (best >= 0) {
-        const auto& b = rows[size_t(best)];
-        j["best"] = {{"route", routes[b.route].name},
-                     {"sensing", ev.sensingName(b)},
-                     {"U", b.result.U},
-                     {"u_max", b.result.uMax},
-                     {"length_m", b.result.length}};
-    } else
-        j["best"] = nullptr;
+    return table;
+}
+
+/** The routes and sensing points, for summary.json. */
+void addRoutesJson(const CRiskEvaluator& ev, json& j) {
+    const auto& routes = ev.routes();
     json jr = json::array();
     for (const auto& r : routes) {
         json w = json::array();
@@ -153,9 +139,13 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
     for (const auto& p : ev.sensingPoints)
         sp.push_back({{"name", p.name}, {"x", p.x}, {"y", p.y}, {"radius", p.radius}});
     j["sensing_points"] = sp;
+}
 
-    // Covariance tables: the plain row and the best row of each route (the
-    // rows that kept their samples, CRiskEvaluator::TRow::result).
+// Covariance tables: the plain row and the best row of each route (the
+// rows that kept their samples, CRiskEvaluator::TRow::result).
+void writeCovTables(const CRiskEvaluator& ev, COutputDir& out) {
+    const auto& routes = ev.routes();
+    const auto& rows = ev.rows();
     for (const auto& r : rows)
         if (r.feasible && !r.result.samples.empty()) {
             std::vector<std::string> visited;
@@ -164,64 +154,72 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
             writeCovCsv(r.result, out.stage(CRiskEvaluator::covFileName(
                                       routes[r.route].name, visited)));
         }
+}
 
-    // paths.png: every candidate, labelled; the best thick.
-    {
-        CMapImage img(ev.grid());
-        if (ev.gvg()) {
-            img.paintCells(ev.gvg()->skeleton(), {235, 200, 90});
-            img.legendLine("GVG", {235, 200, 90}, 2);
-        }
-        for (size_t r = 0; r < routes.size(); r++) {
-            const bool isBest = best >= 0 && rows[size_t(best)].route == r;
-            const TRgb c = seriesColour(r);
-            img.polyline(routes[r].waypoints, c, isBest ? 5 : 2,
-                         routes[r].source != "config" && !isBest);
-            // Labels at different fractions of the routes' lengths, so they do
-            // not sit on each other.
-            const auto& w = routes[r].waypoints;
-            double want = (0.3 + 0.12 * double(r % 4)) * polylineLength(w), acc = 0;
-            TPoint2D mid = w.front();
-            for (size_t i = 1; i < w.size(); i++) {
-                const double L = std::hypot(w[i].x - w[i - 1].x, w[i].y - w[i - 1].y);
-                if (acc + L >= want && L > 0) {
-                    const double f = (want - acc) / L;
-                    mid = {w[i - 1].x + f * (w[i].x - w[i - 1].x),
-                           w[i - 1].y + f * (w[i].y - w[i - 1].y)};
-                    break;
-                }
-                acc += L;
-            }
-            char label[96];
-            const auto& plain = ev.plainRow(r);
-            std::snprintf(label, sizeof(label), "%s: U=%.2f", routes[r].name.c_str(),
-                          plain.result.U);
-            img.text({mid.x + 0.15, mid.y + 0.15}, label, c, 0.5);
-            img.legendLine(routes[r].name +
-                               (routes[r].source == "gvg"    ? " (GVG)"
-                                : routes[r].source == "grid" ? " (grid)"
-                                                             : "") +
-                               (isBest ? " - best" : ""),
-                           c, isBest ? 5 : 2);
-        }
-        if (best >= 0 && !rows[size_t(best)].sensing.empty())
-            img.polyline(rows[size_t(best)].path, {0, 0, 0}, 1, true);
-        drawCommon(img, ev);
-        char title[256];
-        if (best >= 0)
-            std::snprintf(
-                title, sizeof(title),
-                "risknav-risk-eval: %zu routes | best %s with sensing %s, U = %.2f",
-                routes.size(), routes[rows[size_t(best)].route].name.c_str(),
-                ev.sensingName(rows[size_t(best)]).c_str(), rows[size_t(best)].result.U);
-        else
-            std::snprintf(title, sizeof(title), "risknav-risk-eval: %s",
-                          routes.empty() ? "no route" : "all routes excluded");
-        img.setTitle(title);
-        img.save(out.stage("paths.png"));
+// paths.png: every candidate, labelled; the best thick.
+void writePathsImage(const CRiskEvaluator& ev, COutputDir& out) {
+    const auto& routes = ev.routes();
+    const auto& rows = ev.rows();
+    const long best = ev.best();
+    CMapImage img(ev.grid());
+    if (ev.gvg()) {
+        img.paintCells(ev.gvg()->skeleton(), {235, 200, 90});
+        img.legendLine("GVG", {235, 200, 90}, 2);
     }
+    for (size_t r = 0; r < routes.size(); r++) {
+        const bool isBest = best >= 0 && rows[size_t(best)].route == r;
+        const TRgb c = seriesColour(r);
+        img.polyline(routes[r].waypoints, c, isBest ? 5 : 2,
+                     routes[r].source != "config" && !isBest);
+        // Labels at different fractions of the routes' lengths, so they do
+        // not sit on each other.
+        const auto& w = routes[r].waypoints;
+        double want = (0.3 + 0.12 * double(r % 4)) * polylineLength(w), acc = 0;
+        TPoint2D mid = w.front();
+        for (size_t i = 1; i < w.size(); i++) {
+            const double L = std::hypot(w[i].x - w[i - 1].x, w[i].y - w[i - 1].y);
+            if (acc + L >= want && L > 0) {
+                const double f = (want - acc) / L;
+                mid = {w[i - 1].x + f * (w[i].x - w[i - 1].x),
+                       w[i - 1].y + f * (w[i].y - w[i - 1].y)};
+                break;
+            }
+            acc += L;
+        }
+        char label[96];
+        const auto& plain = ev.plainRow(r);
+        std::snprintf(label, sizeof(label), "%s: U=%.2f", routes[r].name.c_str(),
+                      plain.result.U);
+        img.text({mid.x + 0.15, mid.y + 0.15}, label, c, 0.5);
+        img.legendLine(routes[r].name +
+                           (routes[r].source == "gvg"    ? " (GVG)"
+                            : routes[r].source == "grid" ? " (grid)"
+                                                         : "") +
+                           (isBest ? " - best" : ""),
+                       c, isBest ? 5 : 2);
+    }
+    if (best >= 0 && !rows[size_t(best)].sensing.empty())
+        img.polyline(rows[size_t(best)].path, {0, 0, 0}, 1, true);
+    drawCommon(img, ev);
+    char title[256];
+    if (best >= 0)
+        std::snprintf(title, sizeof(title),
+                      "risknav-risk-eval: %zu routes | best %s with sensing %s, U = %.2f",
+                      routes.size(), routes[rows[size_t(best)].route].name.c_str(),
+                      ev.sensingName(rows[size_t(best)]).c_str(),
+                      rows[size_t(best)].result.U);
+    else
+        std::snprintf(title, sizeof(title), "risknav-risk-eval: %s",
+                      routes.empty() ? "no route" : "all routes excluded");
+    img.setTitle(title);
+    img.save(out.stage("paths.png"));
+}
 
-    // Ellipses per route (no sensing) and for the best row.
+// Ellipses per route (no sensing) and for the best row.
+void writeEllipsesImages(const CRiskEvaluator& ev, COutputDir& out) {
+    const auto& routes = ev.routes();
+    const auto& rows = ev.rows();
+    const long best = ev.best();
     for (size_t r = 0; r < routes.size(); r++) {
         const auto& plain = ev.plainRow(r);
         if (!plain.feasible)
@@ -243,44 +241,50 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
                       b.result.uMax);
         ellipsesImage(ev, b, title, out.stage("ellipses_best.png"));
     }
+}
 
-    // u along the arc length.
-    {
-        CPlotImage plot;
-        plot.setLogY(true);
-        plot.setXLabel("arc length s [m]");
-        plot.setYLabel("u = 1 / D_max^2");
-        for (size_t r = 0; r < routes.size(); r++) {
-            const auto& plain = ev.plainRow(r);
-            if (!plain.feasible)
-                continue;
-            std::vector<double> s, u;
-            for (const auto& k : plain.result.samples) {
-                s.push_back(k.s);
-                u.push_back(k.u);
-            }
-            plot.addSeries(
-                routes[r].name + " (U=" + CCsvWriter::num(plain.result.U, 4) + ")", s, u,
-                seriesColour(r), 2);
+// u along the arc length.
+void writeRiskProfileImage(const CRiskEvaluator& ev, COutputDir& out) {
+    const auto& routes = ev.routes();
+    const auto& rows = ev.rows();
+    const long best = ev.best();
+    CPlotImage plot;
+    plot.setLogY(true);
+    plot.setXLabel("arc length s [m]");
+    plot.setYLabel("u = 1 / D_max^2");
+    for (size_t r = 0; r < routes.size(); r++) {
+        const auto& plain = ev.plainRow(r);
+        if (!plain.feasible)
+            continue;
+        std::vector<double> s, u;
+        for (const auto& k : plain.result.samples) {
+            s.push_back(k.s);
+            u.push_back(k.u);
         }
-        if (best >= 0 && !rows[size_t(best)].sensing.empty()) {
-            const auto& b = rows[size_t(best)];
-            std::vector<double> s, u;
-            for (const auto& k : b.result.samples) {
-                s.push_back(k.s);
-                u.push_back(k.u);
-                if (k.sensedHere)
-                    plot.addVLine(k.s, "sensing", {200, 0, 200});
-            }
-            plot.addSeries("best: " + routes[b.route].name + " + " + ev.sensingName(b) +
-                               " (U=" + CCsvWriter::num(b.result.U, 4) + ")",
-                           s, u, {0, 0, 0}, 1, true);
-        }
-        plot.setTitle(
-            "risk density along each route (log scale); U = integral of u ds, eq. (30)");
-        plot.save(out.stage("risk_profile.png"));
+        plot.addSeries(routes[r].name + " (U=" + CCsvWriter::num(plain.result.U, 4) + ")",
+                       s, u, seriesColour(r), 2);
     }
+    if (best >= 0 && !rows[size_t(best)].sensing.empty()) {
+        const auto& b = rows[size_t(best)];
+        std::vector<double> s, u;
+        for (const auto& k : b.result.samples) {
+            s.push_back(k.s);
+            u.push_back(k.u);
+            if (k.sensedHere)
+                plot.addVLine(k.s, "sensing", {200, 0, 200});
+        }
+        plot.addSeries("best: " + routes[b.route].name + " + " + ev.sensingName(b) +
+                           " (U=" + CCsvWriter::num(b.result.U, 4) + ")",
+                       s, u, {0, 0, 0}, 1, true);
+    }
+    plot.setTitle(
+        "risk density along each route (log scale); U = integral of u ds, eq. (30)");
+    plot.save(out.stage("risk_profile.png"));
+}
 
+/** The models, parameters, work done and map, for summary.json. */
+void addParametersJson(const CRiskEvaluator& ev, json& j) {
+    const auto& rows = ev.rows();
     const TRiskOptions o = ev.riskOptions();
     const auto& rule = ev.options.obstacles;
     j["error_model"] = ev.odometry.error_model;
@@ -321,6 +325,38 @@ json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
                 {"resolution", ev.grid().getResolution()},
                 {"obstacle_cells_grown", ev.field().obstacleCount()}};
     j["gvg_cells"] = ev.gvg() ? ev.gvg()->skeletonCells() : 0;
+}
+}  // namespace
+
+json writeRiskReport(const CRiskEvaluator& ev, COutputDir& out) {
+    const auto& routes = ev.routes();
+    const auto& rows = ev.rows();
+    const long best = ev.best();
+    json j;
+    j["status"] = routes.empty() ? "no route" : (best < 0 ? "all excluded" : "ok");
+    // why the grid has no way for the robot disc (null: it has one, or
+    // grid_routes = 0)
+    if (ev.noWayFailure().empty())
+        j["no_way"] = nullptr;
+    else
+        j["no_way"] = {{"failure", ev.noWayFailure()}, {"reason", ev.noWayReason()}};
+
+    j["table"] = writeRiskTable(ev, out);
+    if (best >= 0) {
+        const auto& b = rows[size_t(best)];
+        j["best"] = {{"route", routes[b.route].name},
+                     {"sensing", ev.sensingName(b)},
+                     {"U", b.result.U},
+                     {"u_max", b.result.uMax},
+                     {"length_m", b.result.length}};
+    } else
+        j["best"] = nullptr;
+    addRoutesJson(ev, j);
+    writeCovTables(ev, out);
+    writePathsImage(ev, out);
+    writeEllipsesImages(ev, out);
+    writeRiskProfileImage(ev, out);
+    addParametersJson(ev, j);
     return j;
 }
 
