@@ -296,21 +296,24 @@ void CAfraidLearner::run(bool quiet) {
     m_new.frames = m_frames;
 }
 
-void CAfraidLearner::replay(const std::string& path,
-                            const std::vector<TGroundTruthPose>* gt, bool quiet) {
-    auto laserOf = [&](const mrpt::obs::CSensoryFrame& sf) {
-        for (const auto& o : sf) {
-            auto s = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(o);
-            if (s && (options.scan_label.empty() || s->sensorLabel == options.scan_label))
-                return s;
-        }
-        return mrpt::obs::CObservation2DRangeScan::Ptr();
-    };
-    // Count the frames first (cheap: no filtering) for the progress line, and
-    // see whether the log holds the laser at all, before any work (exit 2,
-    // earlier outputs untouched): MRPT's range-bearing demo logs
-    // (kf-slam_demo, RO-SLAM_demo) were called "truncated at entry 500" for
-    // their last action, not what they are.
+namespace {
+// The 2D laser scan of a frame (the one labelled scanLabel, if given).
+mrpt::obs::CObservation2DRangeScan::Ptr laserOf(const mrpt::obs::CSensoryFrame& sf,
+                                                const std::string& scanLabel) {
+    for (const auto& o : sf) {
+        auto s = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(o);
+        if (s && (scanLabel.empty() || s->sensorLabel == scanLabel))
+            return s;
+    }
+    return mrpt::obs::CObservation2DRangeScan::Ptr();
+}
+
+// Count the frames first (cheap: no filtering) for the progress line, and
+// see whether the log holds the laser at all, before any work (exit 2,
+// earlier outputs untouched): MRPT's range-bearing demo logs
+// (kf-slam_demo, RO-SLAM_demo) were called "truncated at entry 500" for
+// their last action, not what they are.
+size_t countFramesWithScan(const std::string& path, const std::string& scanLabel) {
     size_t total = 0;
     bool anyScan = false;
     std::string countError;
@@ -318,7 +321,7 @@ void CAfraidLearner::replay(const std::string& path,
         localization::CRawlogReader counter(path);
         while (const auto f = counter.next()) {
             total++;
-            anyScan = anyScan || (f->sf && laserOf(*f->sf));
+            anyScan = anyScan || (f->sf && laserOf(*f->sf, scanLabel));
         }
     } catch (const std::exception& e) {
         countError = e.what();
@@ -326,9 +329,7 @@ void CAfraidLearner::replay(const std::string& path,
     if (!anyScan && (total > 0 || countError.empty())) {
         const std::string what =
             "no 2D laser scan (CObservation2DRangeScan" +
-            (options.scan_label.empty() ? std::string()
-                                        : " labelled '" + options.scan_label + "'") +
-            ")";
+            (scanLabel.empty() ? std::string() : " labelled '" + scanLabel + "'") + ")";
         if (countError.empty())
             throw CBadInputError(path + ": " + what + " in the file (" +
                                  std::to_string(total) +
@@ -343,6 +344,13 @@ void CAfraidLearner::replay(const std::string& path,
                                  " frames, where reading stops: " + why);
         }
     }
+    return total;
+}
+}  // namespace
+
+void CAfraidLearner::replay(const std::string& path,
+                            const std::vector<TGroundTruthPose>* gt, bool quiet) {
+    const size_t total = countFramesWithScan(path, options.scan_label);
     localization::CRawlogReader reader(path);
     CProgress progress("replay " + fs::path(path).filename().string(), total, "frames",
                        quiet);
@@ -373,7 +381,7 @@ void CAfraidLearner::replay(const std::string& path,
         progress.update(++done);
         if (!frame->actions || !frame->sf)
             continue;
-        const auto scan = laserOf(*frame->sf);
+        const auto scan = laserOf(*frame->sf, options.scan_label);
         if (!scan)
             continue;
         m_sawScan = true;
