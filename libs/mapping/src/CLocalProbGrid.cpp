@@ -54,6 +54,193 @@ std::pair<int, int> CLocalProbGrid::recenter(double x, double y) {
     return {di, dj};
 }
 
+namespace {
+/** Which ray of a scan holds a cell: the ray whose angular sector holds the
+ * cell's bearing from the sensor (the sector model's formula,
+ * b = sign * wrapToPi(atan2 - yaw), ray = round(...)), with two speed-ups
+ * that give the same rays (see fastRawRay() and walkRay()). */
+struct TRayFinder {
+    size_t nRays = 0;
+    bool fullCircle = false;
+    double sign = 1;  ///< MRPT's ray order: right to left, or mirrored
+    double syaw = 0, aperture = 0, step = 0;
+    double yawWrapped = 0, slack = 0;
+    bool walk = false;  ///< walkRay() may be used
+    long kLo = 0, kHi = -1;
+    const double* boundX = nullptr;  ///< the sectors' edge directions, from kLo
+    const double* boundY = nullptr;
+    double crossTol = 0;
+    static constexpr long kNoGuess = std::numeric_limits<long>::min();
+
+    // a ray index, wrapped for a full circle; -1: no such ray
+    long validRay(long ray) const {
+        const long n = long(nRays);
+        if (fullCircle) {
+            // one turn either way without a division (most are), else modulo
+            if (ray < 0 && ray >= -n)
+                ray += n;
+            else if (ray >= n && ray < 2 * n)
+                ray -= n;
+            else if (ray < 0 || ray >= n)
+                ray = ((ray % n) + n) % n;
+        }
+        return ray < 0 || ray >= n ? -1 : ray;
+    }
+    long rayFromIndex(double x) const { return validRay(long(std::round(x))); }
+    // the ray whose angular sector holds a bearing (-1: none)
+    long exactRayOf(double dx, double dy) const {
+        const double b = sign * mrpt::math::wrapToPi(std::atan2(dy, dx) - syaw);
+        return rayFromIndex((b + 0.5 * aperture) / step);
+    }
+    // A speed-up giving the same rays: the polynomial atan2 is within
+    // kFastAtan2MaxError of libm's, so its ray index is within `slack` of
+    // the exact one; where that could round differently (near a sector
+    // boundary, or near the +-pi wrap) the exact formula decides.
+    // The unwrapped ray index (the exact one) from the fast guess, or false
+    // where the guess could round differently.
+    bool fastRawRay(double dx, double dy, long& raw) const {
+        if (!(slack < 0.25))
+            return false;
+        double rel = fastAtan2(dy, dx) - yawWrapped;
+        rel = rel > M_PI ? rel - 2 * M_PI : (rel < -M_PI ? rel + 2 * M_PI : rel);
+        if (std::fabs(rel) > M_PI - 2 * slack * step)
+            return false;
+        const double x = (sign * rel + 0.5 * aperture) / step;
+        const double fl = std::floor(x), off = x - fl;  // 0.5: a boundary
+        if (std::fabs(off - 0.5) < slack)
+            return false;
+        // std::round(x) without its libm call: off is not near 0.5 here
+        raw = long(fl) + (off > 0.5 ? 1 : 0);
+        return true;
+    }
+    long rayOf(double dx, double dy) const {
+        long raw;
+        return fastRawRay(dx, dy, raw) ? validRay(raw) : exactRayOf(dx, dy);
+    }
+    // A second speed-up giving the same rays, along a row of cells: the ray
+    // of the cell before is the guess, checked by the signs of two cross
+    // products with the sector's boundary directions (no atan2, no
+    // division). Boundary b sits at index x = kLo + b - 0.5, at bearing
+    // syaw + sign * (x * step - aperture / 2). A cell v with
+    // sign * cross(w_b, v) > tol and sign * cross(w_b+1, v) < -tol lies
+    // strictly inside that sector (the sector is narrower than pi), at
+    // least tol / |v| rad from its edges, where std::atan2's formula cannot
+    // round it elsewhere; nearer an edge, or in a sector whose centre is
+    // within 2 sectors of the +-pi wrap, rayOf() decides.
+    long walkRay(double dx, double dy, double r, long& k) const {
+        if (k != kNoGuess) {
+            const double tol = crossTol * r;
+            for (int tries = 0; tries < 4 && k > kLo && k < kHi; tries++) {
+                const size_t b = size_t(k - kLo);
+                const double lo = sign * (boundX[b] * dy - boundY[b] * dx);
+                const double hi = sign * (boundX[b + 1] * dy - boundY[b + 1] * dx);
+                if (std::fabs(lo) <= tol || std::fabs(hi) <= tol)
+                    break;  // at an edge
+                if (lo > 0 && hi < 0) {
+                    const double centre = sign * (double(k) * step - 0.5 * aperture);
+                    if (std::fabs(centre) <= M_PI - 2 * step)
+                        return validRay(k);
+                    break;  // near the wrap
+                }
+                k += lo < 0 ? -1 : 1;
+            }
+        }
+        long raw;
+        if (fastRawRay(dx, dy, raw)) {
+            k = raw;
+            return validRay(raw);
+        }
+        k = kNoGuess;
+        return exactRayOf(dx, dy);
+    }
+};
+
+/** The ray finder of a scan whose sensor is at yaw `syaw`; the sectors'
+ * edge directions go to boundX, boundY (kept by the caller). */
+TRayFinder makeRayFinder(const mrpt::obs::CObservation2DRangeScan& scan, double syaw,
+                         std::vector<double>& boundX, std::vector<double>& boundY) {
+    TRayFinder f;
+    f.nRays = scan.getScanSize();
+    f.syaw = syaw;
+    f.aperture = scan.aperture;
+    f.step = f.nRays > 1 ? f.aperture / double(f.nRays - 1) : f.aperture;
+    f.fullCircle = f.aperture >= 2 * M_PI - 1e-9;
+    f.sign = scan.rightToLeft ? 1.0 : -1.0;
+    const double step = f.step, aperture = f.aperture, sign = f.sign;
+    f.yawWrapped = mrpt::math::wrapToPi(syaw);
+    f.slack = (2 * kFastAtan2MaxError + 1e-12) / step;
+    const bool walk = step >= 1e-3 && step <= M_PI / 4 && f.slack < 0.25;
+    f.walk = walk;
+    f.kLo = walk ? long(std::floor((0.5 * aperture - M_PI) / step)) - 3 : 0;
+    f.kHi = walk ? long(std::ceil((0.5 * aperture + M_PI) / step)) + 3 : -1;
+    boundX.clear();
+    boundY.clear();
+    for (long k = f.kLo; k <= f.kHi + 1; k++) {
+        const double b = syaw + sign * ((double(k) - 0.5) * step - 0.5 * aperture);
+        boundX.push_back(std::cos(b));
+        boundY.push_back(std::sin(b));
+    }
+    f.boundX = boundX.data();
+    f.boundY = boundY.data();
+    // [rad]; the formulas err by ~1e-15, or by the rounding of a yaw of
+    // large magnitude (an unwrapped one of 1e7 rad rounds by ~1e-9)
+    const double big = std::fabs(syaw) + 2 * M_PI;
+    f.crossTol = 1e-9 + 8 * (std::nextafter(big, 2 * big) - big);
+    return f;
+}
+
+/** The rays that can hold a tile's cells, from the bearings of its corner
+ * centres (one more each side for rounding): the farthest any of them
+ * reads (`reach`, at most maxReach) and their nearest free bound (`free`,
+ * -1: not known, or some candidate is no ray). `skip`: no ray's sector
+ * reaches the tile. */
+struct TTileRays {
+    double reach = 0, free = -1;
+    bool skip = false;
+};
+TTileRays tileRays(const TRayFinder& f, double xa, double xb, double ya, double yb,
+                   double rMin2, double maxReach, bool fastCorners,
+                   const std::vector<double>& rayOcc,
+                   const std::vector<double>& rayFree) {
+    const double sign = f.sign, syaw = f.syaw, aperture = f.aperture, step = f.step;
+    TTileRays t;
+    double& tileReach = t.reach;
+    double& tileFree = t.free;
+    tileReach = maxReach;
+    if (rMin2 > 0) {
+        // the sensor is outside the tile: its bearings span < pi
+        double bLo = 1e9, bHi = -1e9;
+        for (const double cx : {xa, xb})
+            for (const double cy : {ya, yb}) {
+                // the fast atan2 where it errs far less than the
+                // ray each side added below
+                const double a = fastCorners ? fastAtan2(cy, cx) : std::atan2(cy, cx);
+                const double b = sign * mrpt::math::wrapToPi(a - syaw);
+                bLo = std::min(bLo, b);
+                bHi = std::max(bHi, b);
+            }
+        if (bHi - bLo < M_PI) {
+            const long kLo = long(std::floor((bLo + 0.5 * aperture) / step)) - 1;
+            const long kHi = long(std::ceil((bHi + 0.5 * aperture) / step)) + 1;
+            tileReach = -1;  // then at most maxReach (<= reach)
+            tileFree = std::numeric_limits<double>::infinity();
+            for (long k = kLo; k <= kHi; k++) {
+                const long ray = f.validRay(k);
+                if (ray < 0) {
+                    tileFree = -1;
+                    continue;
+                }
+                tileReach = std::max(tileReach, std::min(maxReach, rayOcc[size_t(ray)]));
+                if (tileFree >= 0)
+                    tileFree = std::min(tileFree, double(rayFree[size_t(ray)]));
+            }
+            t.skip = tileReach < 0;  // no ray's sector reaches the tile
+        }                            // else across the bearings' wrap: all rays
+    }
+    return t;
+}
+}  // namespace
+
 void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
                                    const mrpt::obs::CObservation2DRangeScan& scan,
                                    const TSensorModel& m) {
@@ -66,12 +253,8 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
     const double sy = robot.y + s * sp.x() + c * sp.y();
     const double syaw = robot.phi + sp.yaw();
     const double aperture = scan.aperture;
-    const double step = nRays > 1 ? aperture / double(nRays - 1) : aperture;
     const double maxRange = scan.maxRange;
     const double reach = maxRange + m.delta(maxRange);
-    const bool fullCircle = aperture >= 2 * M_PI - 1e-9;
-    // MRPT's ray order: right to left, or mirrored.
-    const double sign = scan.rightToLeft ? 1.0 : -1.0;
     const int i0 = std::max(0, x2idx(sx - reach)),
               i1 = std::min(m_n - 1, x2idx(sx + reach));
     const int j0 = std::max(0, y2idx(sy - reach)),
@@ -93,105 +276,10 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
             m_rayFree[k] = m_rayOcc[k] = maxRange;
         }
     }
-    // a ray index, wrapped for a full circle; -1: no such ray
-    auto validRay = [&](long ray) -> long {
-        const long n = long(nRays);
-        if (fullCircle) {
-            // one turn either way without a division (most are), else modulo
-            if (ray < 0 && ray >= -n)
-                ray += n;
-            else if (ray >= n && ray < 2 * n)
-                ray -= n;
-            else if (ray < 0 || ray >= n)
-                ray = ((ray % n) + n) % n;
-        }
-        return ray < 0 || ray >= n ? -1 : ray;
-    };
-    // the ray whose angular sector holds a bearing (-1: none): the sector
-    // model's formula, b = sign * wrapToPi(atan2 - yaw), ray = round(...)
-    auto rayFromIndex = [&](double x) { return validRay(long(std::round(x))); };
-    auto exactRayOf = [&](double dx, double dy) -> long {
-        const double b = sign * mrpt::math::wrapToPi(std::atan2(dy, dx) - syaw);
-        return rayFromIndex((b + 0.5 * aperture) / step);
-    };
-    // A speed-up giving the same rays: the polynomial atan2 is within
-    // kFastAtan2MaxError of libm's, so its ray index is within `slack` of
-    // the exact one; where that could round differently (near a sector
-    // boundary, or near the +-pi wrap) the exact formula decides.
-    const double yawWrapped = mrpt::math::wrapToPi(syaw);
-    const double slack = (2 * kFastAtan2MaxError + 1e-12) / step;
-    // the unwrapped ray index (the exact one) from the fast guess, or false
-    // where the guess could round differently
-    auto fastRawRay = [&](double dx, double dy, long& raw) {
-        if (!(slack < 0.25))
-            return false;
-        double rel = fastAtan2(dy, dx) - yawWrapped;
-        rel = rel > M_PI ? rel - 2 * M_PI : (rel < -M_PI ? rel + 2 * M_PI : rel);
-        if (std::fabs(rel) > M_PI - 2 * slack * step)
-            return false;
-        const double x = (sign * rel + 0.5 * aperture) / step;
-        const double fl = std::floor(x), off = x - fl;  // 0.5: a boundary
-        if (std::fabs(off - 0.5) < slack)
-            return false;
-        // std::round(x) without its libm call: off is not near 0.5 here
-        raw = long(fl) + (off > 0.5 ? 1 : 0);
-        return true;
-    };
-    auto rayOf = [&](double dx, double dy) -> long {
-        long raw;
-        return fastRawRay(dx, dy, raw) ? validRay(raw) : exactRayOf(dx, dy);
-    };
-    // A second speed-up giving the same rays, along a row of cells: the ray
-    // of the cell before is the guess, checked by the signs of two cross
-    // products with the sector's boundary directions (no atan2, no
-    // division). Boundary b sits at index x = kLo + b - 0.5, at bearing
-    // syaw + sign * (x * step - aperture / 2). A cell v with
-    // sign * cross(w_b, v) > tol and sign * cross(w_b+1, v) < -tol lies
-    // strictly inside that sector (the sector is narrower than pi), at
-    // least tol / |v| rad from its edges, where std::atan2's formula cannot
-    // round it elsewhere; nearer an edge, or in a sector whose centre is
-    // within 2 sectors of the +-pi wrap, rayOf() decides.
-    const bool walk = step >= 1e-3 && step <= M_PI / 4 && slack < 0.25;
-    const long kLo = walk ? long(std::floor((0.5 * aperture - M_PI) / step)) - 3 : 0;
-    const long kHi = walk ? long(std::ceil((0.5 * aperture + M_PI) / step)) + 3 : -1;
-    m_boundX.clear();
-    m_boundY.clear();
-    for (long k = kLo; k <= kHi + 1; k++) {
-        const double b = syaw + sign * ((double(k) - 0.5) * step - 0.5 * aperture);
-        m_boundX.push_back(std::cos(b));
-        m_boundY.push_back(std::sin(b));
-    }
-    // [rad]; the formulas err by ~1e-15, or by the rounding of a yaw of
-    // large magnitude (an unwrapped one of 1e7 rad rounds by ~1e-9)
-    const double big = std::fabs(syaw) + 2 * M_PI;
-    const double crossTol = 1e-9 + 8 * (std::nextafter(big, 2 * big) - big);
-    constexpr long kNoGuess = std::numeric_limits<long>::min();
-    auto walkRay = [&](double dx, double dy, double r, long& k) -> long {
-        if (k != kNoGuess) {
-            const double tol = crossTol * r;
-            for (int tries = 0; tries < 4 && k > kLo && k < kHi; tries++) {
-                const size_t b = size_t(k - kLo);
-                const double lo = sign * (m_boundX[b] * dy - m_boundY[b] * dx);
-                const double hi = sign * (m_boundX[b + 1] * dy - m_boundY[b + 1] * dx);
-                if (std::fabs(lo) <= tol || std::fabs(hi) <= tol)
-                    break;  // at an edge
-                if (lo > 0 && hi < 0) {
-                    const double centre = sign * (double(k) * step - 0.5 * aperture);
-                    if (std::fabs(centre) <= M_PI - 2 * step)
-                        return validRay(k);
-                    break;  // near the wrap
-                }
-                k += lo < 0 ? -1 : 1;
-            }
-        }
-        long raw;
-        if (fastRawRay(dx, dy, raw)) {
-            k = raw;
-            return validRay(raw);
-        }
-        k = kNoGuess;
-        return exactRayOf(dx, dy);
-    };
+    const TRayFinder finder = makeRayFinder(scan, syaw, m_boundX, m_boundY);
+    const double step = finder.step;
+    const bool walk = finder.walk;
+    constexpr long kNoGuess = TRayFinder::kNoGuess;
     // cheap tests first (the cost is one atan2 per cell): out of reach by the
     // squared distance; behind a sensor of <= 180 deg by the sign of the
     // forward component (those cells map to no ray either way)
@@ -226,44 +314,15 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
             const double nx = xa > 0 ? xa : (xb < 0 ? xb : 0.0);
             const double ny = ya > 0 ? ya : (yb < 0 ? yb : 0.0);
             const double rMin2 = nx * nx + ny * ny;
-            double tileReach = maxReach;
+            const TTileRays tr = tileRays(finder, xa, xb, ya, yb, rMin2, maxReach,
+                                          fastCorners, m_rayOcc, m_rayFree);
+            if (tr.skip)
+                continue;
+            const double tileReach = tr.reach;
             // the nearest free bound of the tile's candidate rays (-1: not
             // known, or some candidate is no ray): a tile nearer than it is
             // read free in every cell, whichever ray the cell falls in
-            double tileFree = -1;
-            if (rMin2 > 0) {
-                // the sensor is outside the tile: its bearings span < pi
-                double bLo = 1e9, bHi = -1e9;
-                for (const double cx : {xa, xb})
-                    for (const double cy : {ya, yb}) {
-                        // the fast atan2 where it errs far less than the
-                        // ray each side added below
-                        const double a =
-                            fastCorners ? fastAtan2(cy, cx) : std::atan2(cy, cx);
-                        const double b = sign * mrpt::math::wrapToPi(a - syaw);
-                        bLo = std::min(bLo, b);
-                        bHi = std::max(bHi, b);
-                    }
-                if (bHi - bLo < M_PI) {
-                    const long kLo = long(std::floor((bLo + 0.5 * aperture) / step)) - 1;
-                    const long kHi = long(std::ceil((bHi + 0.5 * aperture) / step)) + 1;
-                    tileReach = -1;  // then at most maxReach (<= reach)
-                    tileFree = std::numeric_limits<double>::infinity();
-                    for (long k = kLo; k <= kHi; k++) {
-                        const long ray = validRay(k);
-                        if (ray < 0) {
-                            tileFree = -1;
-                            continue;
-                        }
-                        tileReach = std::max(tileReach,
-                                             std::min(maxReach, m_rayOcc[size_t(ray)]));
-                        if (tileFree >= 0)
-                            tileFree = std::min(tileFree, double(m_rayFree[size_t(ray)]));
-                    }
-                    if (tileReach < 0)
-                        continue;  // no ray's sector reaches the tile
-                }                  // else across the bearings' wrap: all rays
-            }
+            const double tileFree = tr.free;
             if (rMin2 > tileReach * tileReach)
                 continue;
             // A speed-up giving the same readings: a tile nearer than every
@@ -295,7 +354,8 @@ void CLocalProbGrid::integrateScan(const mrpt::math::TPose2D& robot,
                     const double r = std::sqrt(r2);
                     if (halfPlane && dx * cyaw + dy * sinyaw < -r * behind)
                         continue;
-                    const long ray = walk ? walkRay(dx, dy, r, guess) : rayOf(dx, dy);
+                    const long ray =
+                        walk ? finder.walkRay(dx, dy, r, guess) : finder.rayOf(dx, dy);
                     if (ray < 0)
                         continue;
                     // free when nearer than R - delta, occupied up to R + delta;
