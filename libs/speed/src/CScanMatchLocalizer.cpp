@@ -30,77 +30,55 @@ std::vector<mrpt::math::TPoint2D> beamDirections(
 }
 }  // namespace
 
-void TScanMatchOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                           const std::string& s) {
-    section = s;
-    max_iterations = readInt(c, s, "max_iterations", max_iterations);
-    match_distance = readDouble(c, s, "match_distance", match_distance);
-    min_match_distance = readDouble(c, s, "min_match_distance", min_match_distance);
-    min_goodness = readDouble(c, s, "min_goodness", min_goodness);
-    max_correction = readDouble(c, s, "max_correction", max_correction);
-    max_correction_deg = readDouble(c, s, "max_correction_deg", max_correction_deg);
-    keyframe_distance = readDouble(c, s, "keyframe_distance", keyframe_distance);
-    keyframe_angle_deg = readDouble(c, s, "keyframe_angle_deg", keyframe_angle_deg);
-    map_point_spacing = readDouble(c, s, "map_point_spacing", map_point_spacing);
-    odometry_sigma_xy = readDouble(c, s, "odometry_sigma_xy", odometry_sigma_xy);
-    odometry_sigma_deg = readDouble(c, s, "odometry_sigma_deg", odometry_sigma_deg);
-    odometry_relative = readDouble(c, s, "odometry_relative", odometry_relative);
-    point_sigma = readDouble(c, s, "point_sigma", point_sigma);
-    estimate_range_bias = readBool(c, s, "estimate_range_bias", estimate_range_bias);
-    range_bias_sigma = readDouble(c, s, "range_bias_sigma", range_bias_sigma);
-    range_bias_rate = readDouble(c, s, "range_bias_rate", range_bias_rate);
-    max_range_bias = readDouble(c, s, "max_range_bias", max_range_bias);
+void TScanMatchOptions::declare(Visitor& v) {
+    const TRange openMetres{0, 10, true, false, "m"};
+    v.integer(max_iterations, "max_iterations", TRange::closed(1, 1000),
+              "Gauss-Newton iterations per scan at most");
+    v.number(match_distance, "match_distance", openMetres,
+             "a scan point and a map point further apart never correspond (halves on "
+             "convergence down to min_match_distance)");
+    v.number(min_match_distance, "min_match_distance", openMetres,
+             "the correspondence threshold at convergence");
+    v.number(min_goodness, "min_goodness", TRange::closed(0, 1),
+             "share of the scan's points near a map line below which the match is not "
+             "trusted (odometry alone that cycle)");
+    v.number(max_correction, "max_correction", TRange::closed(0, 10, "m"),
+             "a match further than this from the odometry prediction is refused (a wrong "
+             "minimum, e.g. one rack for the next)");
+    v.number(max_correction_deg, "max_correction_deg", TRange::closed(0, 180, "deg"),
+             "the same for the heading");
+    v.number(keyframe_distance, "keyframe_distance", TRange::closed(0, 100, "m"),
+             "the scan is added to the map each time the belief has moved this far");
+    v.number(keyframe_angle_deg, "keyframe_angle_deg", TRange::closed(0, 360, "deg"),
+             "or turned this much");
+    v.number(map_point_spacing, "map_point_spacing", TRange::closed(0.005, 1, "m"),
+             "at most one map point per cell of this side (the first: the map keeps what "
+             "it saw first, so that it does not drift with the robot)");
+    v.number(odometry_sigma_xy, "odometry_sigma_xy", openMetres,
+             "the prior's position spread per scan, plus odometry_relative x the motion");
+    v.number(odometry_sigma_deg, "odometry_sigma_deg", TRange{0, 180, true, false, "deg"},
+             "the prior's heading spread per scan, plus odometry_relative x (turn + "
+             "motion / 1 m)");
+    v.number(odometry_relative, "odometry_relative", TRange::closed(0, 10),
+             "[m/m and rad/rad] the prior's growth with the odometry's motion");
+    v.number(point_sigma, "point_sigma", openMetres,
+             "a scan point's distance to the map's line (range noise and the map's own), "
+             "as weighed against the prior");
+    v.flag(estimate_range_bias, "estimate_range_bias",
+           "estimate the laser's constant range offset and take it off the scans and the "
+           "map");
+    v.number(range_bias_sigma, "range_bias_sigma", TRange{0, 1, true, false, "m"},
+             "the prior's spread of the offset's change in one match");
+    v.number(range_bias_rate, "range_bias_rate", TRange{0, 1, true, false, ""},
+             "share of one match's offset estimate taken into the running one");
+    v.number(max_range_bias, "max_range_bias", TRange::closed(0, 1, "m"),
+             "|offset| at most");
 }
 
-void TScanMatchOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                         const std::string& s) const {
-    writeKey(c, s, "max_iterations", max_iterations);
-    writeKey(c, s, "match_distance", match_distance);
-    writeKey(c, s, "min_match_distance", min_match_distance);
-    writeKey(c, s, "min_goodness", min_goodness);
-    writeKey(c, s, "max_correction", max_correction);
-    writeKey(c, s, "max_correction_deg", max_correction_deg);
-    writeKey(c, s, "keyframe_distance", keyframe_distance);
-    writeKey(c, s, "keyframe_angle_deg", keyframe_angle_deg);
-    writeKey(c, s, "map_point_spacing", map_point_spacing);
-    writeKey(c, s, "odometry_sigma_xy", odometry_sigma_xy);
-    writeKey(c, s, "odometry_sigma_deg", odometry_sigma_deg);
-    writeKey(c, s, "odometry_relative", odometry_relative);
-    writeKey(c, s, "point_sigma", point_sigma);
-    writeKey(c, s, "estimate_range_bias", estimate_range_bias);
-    writeKey(c, s, "range_bias_sigma", range_bias_sigma);
-    writeKey(c, s, "range_bias_rate", range_bias_rate);
-    writeKey(c, s, "max_range_bias", max_range_bias);
-}
-
-void TScanMatchOptions::validate() const {
-    checkKey(section, "max_iterations", double(max_iterations), TRange::closed(1, 1000));
-    checkKey(section, "match_distance", match_distance, TRange{0, 10, true, false, "m"});
-    checkKey(section, "min_match_distance", min_match_distance,
-             TRange{0, 10, true, false, "m"});
+void TScanMatchOptions::validateRules() const {
     checkRule(min_match_distance <= match_distance, section, "min_match_distance",
               numberText(min_match_distance),
               "must be at most match_distance = " + numberText(match_distance));
-    checkKey(section, "min_goodness", min_goodness, TRange::closed(0, 1));
-    checkKey(section, "max_correction", max_correction, TRange::closed(0, 10, "m"));
-    checkKey(section, "max_correction_deg", max_correction_deg,
-             TRange::closed(0, 180, "deg"));
-    checkKey(section, "keyframe_distance", keyframe_distance,
-             TRange::closed(0, 100, "m"));
-    checkKey(section, "keyframe_angle_deg", keyframe_angle_deg,
-             TRange::closed(0, 360, "deg"));
-    checkKey(section, "map_point_spacing", map_point_spacing,
-             TRange::closed(0.005, 1, "m"));
-    checkKey(section, "odometry_sigma_xy", odometry_sigma_xy,
-             TRange{0, 10, true, false, "m"});
-    checkKey(section, "odometry_sigma_deg", odometry_sigma_deg,
-             TRange{0, 180, true, false, "deg"});
-    checkKey(section, "odometry_relative", odometry_relative, TRange::closed(0, 10));
-    checkKey(section, "point_sigma", point_sigma, TRange{0, 10, true, false, "m"});
-    checkKey(section, "range_bias_sigma", range_bias_sigma,
-             TRange{0, 1, true, false, "m"});
-    checkKey(section, "range_bias_rate", range_bias_rate, TRange{0, 1, true, false, ""});
-    checkKey(section, "max_range_bias", max_range_bias, TRange::closed(0, 1, "m"));
 }
 
 CScanMatchLocalizer::CScanMatchLocalizer(const TScanMatchOptions& o) : m_o(o) {

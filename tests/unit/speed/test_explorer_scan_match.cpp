@@ -4,6 +4,9 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/speed/CScanMatchLocalizer.h>
 
+#include "test_support.h"
+
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
@@ -310,4 +313,29 @@ TEST(ScanMatchLocalizer, ARangeOffsetDoesNotTurnTheMap) {
     const TDrift before = driftAlong(route, g, o, 0.05, 5);
     EXPECT_GT(before.position, 0.22);
     EXPECT_GT(before.heading, 1.0 * M_PI / 180);
+}
+
+TEST(TScanMatchOptions, TheDocumentedConfigHoldsEveryDeclaredKeyWithItsDefault) {
+    // config/risknav-explore.ini documents [ScanMatching] key by key; the
+    // declaration is the one place the keys are named
+    mrpt::config::CConfigFileMemory doc(
+        risknav::test::readFile(risknav::test::sourcePath("config/risknav-explore.ini")));
+    const TScanMatchOptions defaults;
+    const auto keys = defaults.keys();
+    ASSERT_EQ(keys.size(), 17u);
+    for (const auto& k : keys) {
+        ASSERT_TRUE(doc.keyExists("ScanMatching", k.key)) << k.key;
+        EXPECT_FALSE(k.doc.empty()) << k.key;
+        const std::string v = doc.read_string("ScanMatching", k.key, "");
+        EXPECT_EQ(v.substr(0, v.find_first_of(" \t/")), k.defaultText) << k.key;
+    }
+    // and it loads back what it saves
+    mrpt::config::CConfigFileMemory saved;
+    defaults.saveToConfigFile(saved, "ScanMatching");
+    // (as text: MRPT keeps a padded name in memory, as for its own macros)
+    const mrpt::config::CConfigFileMemory text(saved.getContent());
+    TScanMatchOptions back;
+    back.max_iterations = 1;
+    back.loadFromConfigFile(text, "ScanMatching");
+    EXPECT_EQ(back.max_iterations, defaults.max_iterations);
 }

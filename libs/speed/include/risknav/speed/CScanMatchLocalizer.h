@@ -1,5 +1,5 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/math/TPoint2D.h>
@@ -14,31 +14,19 @@
 namespace risknav::speed {
 /** [ScanMatching] of risknav-explore (Explore.ego_motion = scan_matching):
  * the robot's localization, beyond the paper (Miura et al. 2006 take the
- * ego-motion as given). */
-struct TScanMatchOptions : public common::CValidatedOptions {
-    /** Gauss-Newton iterations per scan at most. */
+ * ego-motion as given). Every key, its range and its doc are declared once,
+ * in declare() (CScanMatchLocalizer.cpp). */
+struct TScanMatchOptions : public common::CDeclaredOptions {
+    TScanMatchOptions() { section = "ScanMatching"; }
     int max_iterations = 40;
-    /** [m] a scan point and a map point further apart than this never
-     * correspond (the threshold halves on convergence down to
-     * min_match_distance). */
-    double match_distance = 0.5;
+    double match_distance = 0.5;       ///< [m] halves on convergence down to the next
     double min_match_distance = 0.05;  ///< [m]
-    /** Share of the scan's points with a map point within the final
-     * threshold below which the match is not trusted: that
-     * cycle the belief moves by odometry alone. */
     double min_goodness = 0.3;
-    /** [m] a match that moves the belief further than this from the
-     * odometry prediction is refused (a wrong minimum, e.g. one rack for
-     * the next): odometry alone that cycle. */
-    double max_correction = 0.3;
-    double max_correction_deg = 5;  ///< [deg] the same for the heading
-    /** [m] the scan is added to the map each time the belief has moved this
-     * far since the last scan added (and at the start). */
-    double keyframe_distance = 0.2;
-    double keyframe_angle_deg = 10;  ///< [deg] or turned this much
-    /** [m] at most one map point per cell of this side (the first: the map
-     * keeps what it saw first, so that it does not drift with the robot). */
-    double map_point_spacing = 0.05;
+    double max_correction = 0.3;      ///< [m]
+    double max_correction_deg = 5;    ///< [deg]
+    double keyframe_distance = 0.2;   ///< [m]
+    double keyframe_angle_deg = 10;   ///< [deg]
+    double map_point_spacing = 0.05;  ///< [m]
     /** The odometry prediction's uncertainty since the last scan, the
      * match's prior: sigma_xy = odometry_sigma_xy + odometry_relative * d,
      * sigma_phi = odometry_sigma_deg + odometry_relative * (|dphi| + d / 1 m) (d, dphi:
@@ -47,9 +35,7 @@ struct TScanMatchOptions : public common::CValidatedOptions {
     double odometry_sigma_xy = 0.01;  ///< [m]
     double odometry_sigma_deg = 0.5;  ///< [deg]
     double odometry_relative = 0.05;  ///< [m/m and rad/rad]
-    /** [m] a scan point's distance to the map's line (range noise and the
-     * map's own), as weighed against the prior. */
-    double point_sigma = 0.05;
+    double point_sigma = 0.05;        ///< [m]
     /** Estimate the laser's constant range offset with the matches and take
      * it off the scans and the map. A range offset pushes every wall away
      * along the beams, by its cosine to the wall's normal: a wall seen
@@ -58,18 +44,13 @@ struct TScanMatchOptions : public common::CValidatedOptions {
      * that turn to the map, so the belief drifts (a simulated laser's rays
      * end inside the cell they hit: half a cell further on average). */
     bool estimate_range_bias = true;
-    /** [m] the prior's spread of the offset's change in one match. */
-    double range_bias_sigma = 0.05;
-    /** Share of one match's offset estimate taken into the running one
-     * (the offset is a property of the sensor: averaged over matches). */
+    double range_bias_sigma = 0.05;  ///< [m]
     double range_bias_rate = 0.1;
-    double max_range_bias = 0.2;  ///< [m] |offset| at most
-    std::string section = "ScanMatching";
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& section) override;
-    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                          const std::string& section) const override;
-    void validate() const override;
+    double max_range_bias = 0.2;  ///< [m]
+
+  protected:
+    void declare(Visitor& v) override;
+    void validateRules() const override;
 };
 
 /** A light SLAM front end for the explorer (beyond the paper: the robot's

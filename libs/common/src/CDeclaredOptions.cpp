@@ -1,0 +1,114 @@
+#include <risknav/common/CDeclaredOptions.h>
+
+namespace risknav::common {
+namespace {
+using mrpt::config::CConfigFileBase;
+
+std::string rangeText(const TRange& r) {
+    // "must be in [1, 1000]" -> "[1, 1000]" (TRange::describe()'s wording)
+    const std::string d = r.describe();
+    const std::string lead = "must be in ";
+    return d.rfind(lead, 0) == 0 ? d.substr(lead.size()) : d;
+}
+
+class CLoader : public CDeclaredOptions::Visitor {
+  public:
+    CLoader(const CConfigFileBase& c, const std::string& s) : m_c(c), m_s(s) {}
+    void number(double& v, const char* key, const TRange&, const char*) override {
+        v = readDouble(m_c, m_s, key, v);
+    }
+    void integer(int& v, const char* key, const TRange&, const char*) override {
+        v = readInt(m_c, m_s, key, v);
+    }
+    void flag(bool& v, const char* key, const char*) override {
+        v = readBool(m_c, m_s, key, v);
+    }
+
+  private:
+    const CConfigFileBase& m_c;
+    const std::string& m_s;
+};
+
+class CSaver : public CDeclaredOptions::Visitor {
+  public:
+    CSaver(CConfigFileBase& c, const std::string& s) : m_c(c), m_s(s) {}
+    void number(double& v, const char* key, const TRange& r, const char* doc) override {
+        put(key, numberText(v), doc, rangeText(r));
+    }
+    void integer(int& v, const char* key, const TRange& r, const char* doc) override {
+        put(key, std::to_string(v), doc, rangeText(r));
+    }
+    void flag(bool& v, const char* key, const char* doc) override {
+        put(key, v ? "true" : "false", doc, "true | false");
+    }
+
+  private:
+    void put(const char* key, const std::string& value, const char* doc,
+             const std::string& range) {
+        m_c.write(m_s, key, value, mrpt::config::MRPT_SAVE_NAME_PADDING(),
+                  mrpt::config::MRPT_SAVE_VALUE_PADDING(),
+                  std::string(doc) + ", " + range);
+    }
+    CConfigFileBase& m_c;
+    const std::string& m_s;
+};
+
+class CChecker : public CDeclaredOptions::Visitor {
+  public:
+    explicit CChecker(const std::string& s) : m_s(s) {}
+    void number(double& v, const char* key, const TRange& r, const char*) override {
+        checkKey(m_s, key, v, r);
+    }
+    void integer(int& v, const char* key, const TRange& r, const char*) override {
+        checkKey(m_s, key, double(v), r);
+    }
+    void flag(bool&, const char*, const char*) override {}
+
+  private:
+    const std::string& m_s;
+};
+
+class CLister : public CDeclaredOptions::Visitor {
+  public:
+    std::vector<CDeclaredOptions::TKey> keys;
+    void number(double& v, const char* key, const TRange& r, const char* doc) override {
+        keys.push_back({key, doc, rangeText(r), numberText(v)});
+    }
+    void integer(int& v, const char* key, const TRange& r, const char* doc) override {
+        keys.push_back({key, doc, rangeText(r), std::to_string(v)});
+    }
+    void flag(bool& v, const char* key, const char* doc) override {
+        keys.push_back({key, doc, "true | false", v ? "true" : "false"});
+    }
+};
+}  // namespace
+
+void CDeclaredOptions::declareConst(Visitor& v) const {
+    // the saver, checker and lister only read the members they are handed
+    const_cast<CDeclaredOptions*>(this)->declare(v);
+}
+
+void CDeclaredOptions::loadFromConfigFile(const CConfigFileBase& c,
+                                          const std::string& s) {
+    section = s;
+    CLoader l(c, s);
+    declare(l);
+}
+
+void CDeclaredOptions::saveToConfigFile(CConfigFileBase& c, const std::string& s) const {
+    CSaver w(c, s);
+    declareConst(w);
+}
+
+void CDeclaredOptions::validate() const {
+    CChecker k(section);
+    declareConst(k);
+    validateRules();
+}
+
+std::vector<CDeclaredOptions::TKey> CDeclaredOptions::keys() const {
+    CLister l;
+    declareConst(l);
+    return l.keys;
+}
+}  // namespace risknav::common
