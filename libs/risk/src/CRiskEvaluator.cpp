@@ -298,6 +298,29 @@ TRiskOptions CRiskEvaluator::riskOptions() const {
     return makeRiskOptions(odometry, propagation, options.eval_step, options.seed);
 }
 
+namespace {
+/** Every subset of n sensing points (by index) of at most maxSize points,
+ * the empty one first, then by size, each size in colexicographic order. */
+std::vector<std::vector<size_t>> sensingPointSubsets(size_t n, size_t maxSize) {
+    std::vector<std::vector<size_t>> subsets = {{}};
+    for (size_t k = 1; k <= std::min(n, maxSize); k++) {
+        std::vector<size_t> c(k);
+        std::iota(c.begin(), c.end(), 0);
+        for (;;) {
+            subsets.push_back(c);
+            size_t i = 0;
+            while (i < k && c[i] + 1 == (i + 1 < k ? c[i + 1] : n))
+                i++;
+            if (i == k)
+                break;
+            c[i]++;
+            std::iota(c.begin(), c.begin() + long(i), 0);
+        }
+    }
+    return subsets;
+}
+}  // namespace
+
 void CRiskEvaluator::evaluate() {
     if (!m_field)
         prepare();
@@ -341,24 +364,9 @@ void CRiskEvaluator::evaluate() {
             m_noWayReason = ways.front().reason;
         }
     }
-    // Every subset of sensing points up to max_sensing_subset, smallest first,
-    // each size in colexicographic order (validate() bounded their number).
-    std::vector<std::vector<size_t>> subsets = {{}};
-    const size_t n = sensingPoints.size();
-    for (size_t k = 1; k <= std::min(n, size_t(options.max_sensing_subset)); k++) {
-        std::vector<size_t> c(k);
-        std::iota(c.begin(), c.end(), 0);
-        for (;;) {
-            subsets.push_back(c);
-            size_t i = 0;
-            while (i < k && c[i] + 1 == (i + 1 < k ? c[i + 1] : n))
-                i++;
-            if (i == k)
-                break;
-            c[i]++;
-            std::iota(c.begin(), c.begin() + long(i), 0);
-        }
-    }
+    // (validate() bounded the number of subsets)
+    const std::vector<std::vector<size_t>> subsets =
+        sensingPointSubsets(sensingPoints.size(), size_t(options.max_sensing_subset));
     m_rows.clear();
     m_best = -1;
     for (size_t r = 0; r < m_routes.size(); r++)
