@@ -207,44 +207,9 @@ const TPlanRow* bestOfS(const TSweepPoint& sp, double tol) {
         rows.push_back(&r);
     return bestPlan(rows, tol);
 }
-}  // namespace
 
-TPlanWaypoints planWaypoints(const TPlanRow& row) {
-    TPlanWaypoints w;
-    size_t v = 0;
-    double s = 0;
-    for (size_t i = 0; i < row.path.size(); i++) {
-        if (i > 0) {
-            const double L = std::hypot(row.path[i].x - row.path[i - 1].x,
-                                        row.path[i].y - row.path[i - 1].y);
-            // Viewpoints strictly inside this segment, in order.
-            while (v < row.viewpoints.size() && row.viewpoints[v].at.s < s + L - 1e-9) {
-                if (row.viewpoints[v].at.s > s + 1e-9) {
-                    w.points.push_back({row.viewpoints[v].at.x, row.viewpoints[v].at.y});
-                    w.viewpoint.push_back(int(v));
-                } else if (!w.viewpoint.empty()) {
-                    w.viewpoint.back() = int(v);  // on the vertex just added
-                }
-                v++;
-            }
-            s += L;
-        }
-        w.points.push_back(row.path[i]);
-        w.viewpoint.push_back(-1);
-    }
-    // A viewpoint exactly at the goal marks the last vertex.
-    if (v < row.viewpoints.size())
-        w.viewpoint.back() = int(v);
-    return w;
-}
-
-json writeViewpointReport(const CViewpointPlanner& p, COutputDir& out) {
-    const auto& lms = p.world().landmarks;
-    const TPlanRow* opt = optimalRow(p);
-    json j;
-    j["status"] = opt ? "ok" : "no feasible plan";
-
-    // sweep.csv: every (S, path).
+// sweep.csv: every (S, path); its rows for summary.json.
+json writeSweepCsv(const CViewpointPlanner& p, const TPlanRow* opt, COutputDir& out) {
     CCsvWriter csv(
         out.stage("sweep.csv"),
         {"S_m", "path", "route", "length_m", "viewpoints", "feasible", "fail_at_m",
@@ -302,52 +267,56 @@ json writeViewpointReport(const CViewpointPlanner& p, COutputDir& out) {
                          {"paths", paths}});
     }
     csv.close();
-    j["sweep"] = sweep;
-    j["routes"] = p.routeCount();
+    return sweep;
+}
 
-    // sweep.md: 004 Tables II/III (per S the chosen path), then every row.
-    {
-        std::ostringstream md;
-        md << "# Path and viewpoint sweep\n\n"
-           << "Per safety margin S the shortest feasible path (then the fewest "
-              "viewpoints), "
-              "as in Yamashita et al. 004 Tables II/III. Optimal: **bold**.\n\n"
-           << "| S [mm] | route | path length [mm] | viewpoints "
-              "|\n|---:|---:|---:|---:|\n";
-        for (const auto& sp : p.sweep()) {
-            const TPlanRow* b = bestOfS(sp, p.options.length_tolerance);
-            const bool o = b && b == opt;
-            char line[160];
-            if (b)
-                std::snprintf(line, sizeof(line), "| %s%.0f%s | %d | %.0f | %zu |\n",
-                              o ? "**" : "", sp.S * 1000, o ? " (optimal)**" : "",
-                              b->route, b->length * 1000, b->viewpoints.size());
-            else
-                std::snprintf(line, sizeof(line), "| %.0f | - | - | - |\n", sp.S * 1000);
+// sweep.md: 004 Tables II/III (per S the chosen path), then every row.
+void writeSweepMd(const CViewpointPlanner& p, const TPlanRow* opt, COutputDir& out) {
+    std::ostringstream md;
+    md << "# Path and viewpoint sweep\n\n"
+       << "Per safety margin S the shortest feasible path (then the fewest "
+          "viewpoints), "
+          "as in Yamashita et al. 004 Tables II/III. Optimal: **bold**.\n\n"
+       << "| S [mm] | route | path length [mm] | viewpoints "
+          "|\n|---:|---:|---:|---:|\n";
+    for (const auto& sp : p.sweep()) {
+        const TPlanRow* b = bestOfS(sp, p.options.length_tolerance);
+        const bool o = b && b == opt;
+        char line[160];
+        if (b)
+            std::snprintf(line, sizeof(line), "| %s%.0f%s | %d | %.0f | %zu |\n",
+                          o ? "**" : "", sp.S * 1000, o ? " (optimal)**" : "", b->route,
+                          b->length * 1000, b->viewpoints.size());
+        else
+            std::snprintf(line, sizeof(line), "| %.0f | - | - | - |\n", sp.S * 1000);
+        md << line;
+    }
+    md << "\nEvery (S, path): route = homotopy class (1 = the class of the shortest "
+          "path).\n\n| S [mm] | path | route | length [mm] | feasible | viewpoints | "
+          "fails at [mm] |\n|---:|---:|---:|---:|---|---:|---:|\n";
+    for (const auto& sp : p.sweep())
+        for (size_t r = 0; r < sp.rows.size(); r++) {
+            const auto& row = sp.rows[r];
+            char line[200];
+            std::snprintf(
+                line, sizeof(line), "| %.0f | %zu | %d | %.0f | %s | %s | %s |\n",
+                sp.S * 1000, r + 1, row.route, row.length * 1000,
+                row.feasible ? "yes" : "no",
+                row.feasible ? std::to_string(row.viewpoints.size()).c_str() : "-",
+                row.feasible
+                    ? "-"
+                    : std::to_string(long(std::lround(row.reach * 1000))).c_str());
             md << line;
         }
-        md << "\nEvery (S, path): route = homotopy class (1 = the class of the shortest "
-              "path).\n\n| S [mm] | path | route | length [mm] | feasible | viewpoints | "
-              "fails at [mm] |\n|---:|---:|---:|---:|---|---:|---:|\n";
-        for (const auto& sp : p.sweep())
-            for (size_t r = 0; r < sp.rows.size(); r++) {
-                const auto& row = sp.rows[r];
-                char line[200];
-                std::snprintf(
-                    line, sizeof(line), "| %.0f | %zu | %d | %.0f | %s | %s | %s |\n",
-                    sp.S * 1000, r + 1, row.route, row.length * 1000,
-                    row.feasible ? "yes" : "no",
-                    row.feasible ? std::to_string(row.viewpoints.size()).c_str() : "-",
-                    row.feasible
-                        ? "-"
-                        : std::to_string(long(std::lround(row.reach * 1000))).c_str());
-                md << line;
-            }
-        out.writeText("sweep.md", md.str());
-    }
+    out.writeText("sweep.md", md.str());
+}
 
-    // strategies.csv: the optimal plan's viewpoints, every strategy's best
-    // option there (003 Table 1's layout), the chosen one flagged.
+// strategies.csv: the optimal plan's viewpoints, every strategy's best
+// option there (003 Table 1's layout), the chosen one flagged; the
+// viewpoints for summary.json.
+json writeStrategiesCsv(const CViewpointPlanner& p, const TPlanRow* opt,
+                        COutputDir& out) {
+    const auto& lms = p.world().landmarks;
     CCsvWriter st(out.stage("strategies.csv"),
                   {"viewpoint", "s_m", "x", "y", "heading_deg", "strategy", "chosen",
                    "landmarks", "pan_left_deg", "pan_right_deg", "e_pos_m", "d_phi_deg",
@@ -395,8 +364,13 @@ json writeViewpointReport(const CViewpointPlanner& p, COutputDir& out) {
                            {"alternatives", alts}});
         }
     st.close();
+    return vps;
+}
 
-    // waypoints.ini: MRPT's TWaypointSequence (section [Waypoints]).
+// waypoints.ini: MRPT's TWaypointSequence (section [Waypoints]); its points
+// for summary.json.
+json writeWaypointsIni(const CViewpointPlanner& p, const TPlanRow* opt, COutputDir& out) {
+    const auto& lms = p.world().landmarks;
     json wpts = json::array();
     if (opt) {
         const TPlanWaypoints pw = planWaypoints(*opt);
@@ -437,7 +411,11 @@ json writeViewpointReport(const CViewpointPlanner& p, COutputDir& out) {
             "(those waypoints have allow_skip = false)\n" +
                 ini.getContent());
     }
+    return wpts;
+}
 
+/** The optimal plan for summary.json (null: none). */
+json optimalJson(const TPlanRow* opt, const json& wpts, const json& vps) {
     if (opt) {
         size_t cnt[3] = {0, 0, 0};
         for (const auto& vp : opt->viewpoints)
@@ -445,43 +423,44 @@ json writeViewpointReport(const CViewpointPlanner& p, COutputDir& out) {
         json path = json::array();
         for (const auto& q : opt->path)
             path.push_back({q.x, q.y});
-        j["optimal"] = {{"S", opt->S},
-                        {"path", opt->rank + 1},
-                        {"route", opt->route},
-                        {"length_m", opt->length},
-                        {"viewpoints", opt->viewpoints.size()},
-                        {"strategies", {{"A", cnt[0]}, {"B", cnt[1]}, {"C", cnt[2]}}},
-                        {"path_vertices", path},
-                        {"waypoints", wpts},
-                        {"viewpoint_list", vps}};
-    } else
-        j["optimal"] = nullptr;
-
-    // Monte Carlo of the image errors on every feasible plan.
-    {
-        CViewpointPlanner::TMonteCarlo all;
-        size_t plans = 0;
-        for (const auto& sp : p.sweep())
-            for (const auto& row : sp.rows) {
-                if (!row.feasible)
-                    continue;
-                plans++;
-                const auto mc = p.monteCarlo(row, size_t(p.options.monte_carlo_draws),
-                                             p.options.seed + plans);
-                all.draws += mc.draws;
-                all.failures += mc.failures;
-                all.maxRatioPos = std::max(all.maxRatioPos, mc.maxRatioPos);
-                all.maxRatioTotal = std::max(all.maxRatioTotal, mc.maxRatioTotal);
-            }
-        j["monte_carlo"] = {{"plans", plans},
-                            {"draws", all.draws},
-                            {"failures", all.failures},
-                            {"max_ratio_position", all.maxRatioPos},
-                            {"max_ratio_total", all.maxRatioTotal}};
+        return {{"S", opt->S},
+                {"path", opt->rank + 1},
+                {"route", opt->route},
+                {"length_m", opt->length},
+                {"viewpoints", opt->viewpoints.size()},
+                {"strategies", {{"A", cnt[0]}, {"B", cnt[1]}, {"C", cnt[2]}}},
+                {"path_vertices", path},
+                {"waypoints", wpts},
+                {"viewpoint_list", vps}};
     }
+    return nullptr;
+}
 
-    drawPlan(p, out.stage("plan.png"));
+// Monte Carlo of the image errors on every feasible plan.
+json monteCarloJson(const CViewpointPlanner& p) {
+    CViewpointPlanner::TMonteCarlo all;
+    size_t plans = 0;
+    for (const auto& sp : p.sweep())
+        for (const auto& row : sp.rows) {
+            if (!row.feasible)
+                continue;
+            plans++;
+            const auto mc = p.monteCarlo(row, size_t(p.options.monte_carlo_draws),
+                                         p.options.seed + plans);
+            all.draws += mc.draws;
+            all.failures += mc.failures;
+            all.maxRatioPos = std::max(all.maxRatioPos, mc.maxRatioPos);
+            all.maxRatioTotal = std::max(all.maxRatioTotal, mc.maxRatioTotal);
+        }
+    return {{"plans", plans},
+            {"draws", all.draws},
+            {"failures", all.failures},
+            {"max_ratio_position", all.maxRatioPos},
+            {"max_ratio_total", all.maxRatioTotal}};
+}
 
+/** The world and the parameters planned with, for summary.json. */
+void addWorldJson(const CViewpointPlanner& p, json& j) {
     const auto& w = p.world();
     json lmList = json::array();
     for (const auto& l : w.landmarks)
@@ -508,6 +487,51 @@ json writeViewpointReport(const CViewpointPlanner& p, COutputDir& out) {
                        {"k_paths", p.options.k_paths},
                        {"sample_step", p.options.sample_step},
                        {"safety_margins", p.options.safety_margins}};
+}
+}  // namespace
+
+TPlanWaypoints planWaypoints(const TPlanRow& row) {
+    TPlanWaypoints w;
+    size_t v = 0;
+    double s = 0;
+    for (size_t i = 0; i < row.path.size(); i++) {
+        if (i > 0) {
+            const double L = std::hypot(row.path[i].x - row.path[i - 1].x,
+                                        row.path[i].y - row.path[i - 1].y);
+            // Viewpoints strictly inside this segment, in order.
+            while (v < row.viewpoints.size() && row.viewpoints[v].at.s < s + L - 1e-9) {
+                if (row.viewpoints[v].at.s > s + 1e-9) {
+                    w.points.push_back({row.viewpoints[v].at.x, row.viewpoints[v].at.y});
+                    w.viewpoint.push_back(int(v));
+                } else if (!w.viewpoint.empty()) {
+                    w.viewpoint.back() = int(v);  // on the vertex just added
+                }
+                v++;
+            }
+            s += L;
+        }
+        w.points.push_back(row.path[i]);
+        w.viewpoint.push_back(-1);
+    }
+    // A viewpoint exactly at the goal marks the last vertex.
+    if (v < row.viewpoints.size())
+        w.viewpoint.back() = int(v);
+    return w;
+}
+
+json writeViewpointReport(const CViewpointPlanner& p, COutputDir& out) {
+    const TPlanRow* opt = optimalRow(p);
+    json j;
+    j["status"] = opt ? "ok" : "no feasible plan";
+    j["sweep"] = writeSweepCsv(p, opt, out);
+    j["routes"] = p.routeCount();
+    writeSweepMd(p, opt, out);
+    const json vps = writeStrategiesCsv(p, opt, out);
+    const json wpts = writeWaypointsIni(p, opt, out);
+    j["optimal"] = optimalJson(opt, wpts, vps);
+    j["monte_carlo"] = monteCarloJson(p);
+    drawPlan(p, out.stage("plan.png"));
+    addWorldJson(p, j);
     return j;
 }
 
