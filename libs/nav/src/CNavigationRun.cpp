@@ -182,13 +182,17 @@ std::string CNavigationRun::engineFailsInOpenSpace(const std::string& cacheDir,
 }
 
 /** One run's navigator, outputs and loop state: run()'s locals, shared by
- * its parts. Members are destroyed in the reverse order of their
- * declaration, as run()'s locals were: the progress line and the simulated
- * clock first. */
-struct CNavigationRun::TRun {
-    TRun(sim::CSimWorld& world, const TNavRunSetup& runSetup)
-        : setup(runSetup),
-          robotIf(world),
+ * its parts, on the closed loop (each cycle: sense, localize, record,
+ * navigationStep(); then nav_period in sim_dt sub-steps). Members are
+ * destroyed in the reverse order of their declaration, as run()'s locals
+ * were: the progress line and the simulated clock first. */
+struct CNavigationRun::TRun : public sim::CClosedLoop {
+    TRun(CNavigationRun& navRun, const sim::CClosedLoop::TOptions& loopOptions,
+         const TNavRunSetup& runSetup)
+        : sim::CClosedLoop(navRun.world, loopOptions),
+          owner(navRun),
+          setup(runSetup),
+          robotIf(navRun.world),
           navlog(!runSetup.navlogDir.empty()),
           nav(robotIf, false, false, navlogFolder(runSetup)),
           fixRng(runSetup.seed ^ 0x5EED5EEDull) {}
@@ -203,6 +207,14 @@ struct CNavigationRun::TRun {
         return setup.navlogDir;
     }
 
+    bool onCycle(int cycle) override { return owner.runCycle(*this, cycle); }
+    void onCycleSteps(int) override { owner.startSteps(*this); }
+    void onStepped(int, int, const TPose2D& now) override {
+        r.track.emplace_back(now.x, now.y);
+    }
+    void onCycleEnd(int) override { owner.endSteps(*this); }
+
+    CNavigationRun& owner;
     const TNavRunSetup& setup;
     TNavRunResult r;
     sim::CSimRobotInterface robotIf;
@@ -217,7 +229,6 @@ struct CNavigationRun::TRun {
     std::string cacheDir;  // this run's subfolder of the PTG cache
     mrpt::nav::TWaypointSequence wps;
     double goalAllowed = 0;  // the end's own allowed distance
-    int stepsPerCycle = 0;
     std::unique_ptr<sim::CRawlogWriter> rawlog;
     std::ofstream gt;
     mrpt::poses::CPose2D odoFix;  // believed = odoFix (+) odometry (odometry mode)
@@ -239,22 +250,31 @@ TNavRunResult CNavigationRun::run(const TNavRunSetup& setup) {
         throw std::logic_error("CNavigationRun::run() before loadFromConfigFile()");
     applyRunSetup(setup);
     world.reset(options.start, setup.seed, options.start_time);
-    TRun s(world, setup);
+    sim::CClosedLoop::TOptions lo;
+    lo.sim_dt = options.sim_dt;
+    lo.steps_per_cycle = int(std::lround(options.nav_period / options.sim_dt));
+    lo.duration_max = options.duration_max;
+    // People entering the stopping corridor: the robot cannot stop before
+    // them (Choi et al. (002) eqs. 1-5, no beta margin).
+    lo.watch_corridor = true;
+    TRun s(*this, lo, setup);
     s.robotIf.setMinLoggingLevel(mrpt::system::LVL_ERROR);
     startNavigator(s);
     aimWaypoints(s);
     openRunOutputs(s);
 
     s.nav.navigateWaypoints(s.wps);
-    s.stepsPerCycle = int(std::lround(options.nav_period / options.sim_dt));
     s.clock.emplace(options.start_time);
     s.progress.emplace(setup.label.empty() ? "navigate" : setup.label,
                        size_t(options.duration_max), "s", setup.quiet);
     s.r.track.emplace_back(world.truePose().x, world.truePose().y);
     s.stallSpot = mrpt::math::TPoint2D(world.truePose().x, world.truePose().y);
     s.stallSince = world.time();
-    for (int cycle = 0; runCycle(s, cycle); cycle++) {
+    if (s.run() == sim::CClosedLoop::TEnd::Timeout) {
+        s.r.status = "timeout";
+        s.nav.cancel();
     }
+    s.r.safety = s.safety;
     s.progress->finish();
     finishRun(s);
     s.r.wallSeconds =
@@ -450,11 +470,8 @@ bool CNavigationRun::runCycle(TRun& s, int cycle) {
         throw writeFailure(s.setup.navlogDir + "/navigation.reactivenavlog",
                            s.navlogWriteErrno);
     checkEngineFailures(s, cycle, t, truth);
-    if (runEnds(s, cycle, t, truth))
-        return false;
-    s.r.timePerLimiter[rec.limiter.empty() ? "none" : rec.limiter] += options.nav_period;
-    stepWorld(s);
-    return true;
+    // (the loop ends the run at duration_max: status "timeout")
+    return !runEnds(s, cycle, t, truth);
 }
 
 TPose2D CNavigationRun::senseAndLocalize(TRun& s, double t) {
@@ -686,34 +703,19 @@ bool CNavigationRun::runEnds(TRun& s, int cycle, double t, const TPose2D& truth)
         nav.cancel();
         return true;
     }
-    if (t >= options.duration_max) {
-        r.status = "timeout";
-        nav.cancel();
-        return true;
-    }
     return false;
 }
 
-void CNavigationRun::stepWorld(TRun& s) {
+void CNavigationRun::startSteps(TRun& s) {
     auto& r = s.r;
+    const std::string& limiter = r.cycles.back().limiter;
+    r.timePerLimiter[limiter.empty() ? "none" : limiter] += options.nav_period;
     for (const auto& d : world.agents.discs())
         r.people[d.objectId].emplace_back(d.x, d.y);
-    for (int k = 0; k < s.stepsPerCycle; k++) {
-        const TPose2D before = world.truePose();
-        world.step(options.sim_dt);
-        const TPose2D now = world.truePose();
-        r.distance += std::hypot(now.x - before.x, now.y - before.y);
-        r.track.emplace_back(now.x, now.y);
-        const double tn = world.time();
-        r.safety.update(tn, now, world.robot.radius, world.agents,
-                        world.pointClearance(now.x, now.y));
-        const auto& rb = world.robot;
-        // People entering the stopping corridor: the robot cannot stop
-        // before them (Choi et al. (002) eqs. 1-5, no beta margin).
-        r.safety.updateCorridor(tn, now, world.speed(), rb.radius,
-                                stoppingDistance(world.speed(), rb.t_delay, rb.decel),
-                                rb.radius, world.agents);
-    }
+}
+
+void CNavigationRun::endSteps(TRun& s) {
+    s.r.distance = s.travelled();
     s.clock->set(options.start_time + world.time());
     s.progress->update(size_t(world.time()));
 }
@@ -733,7 +735,7 @@ void CNavigationRun::finishRun(TRun& s) {
             if (cy.waypoint == int(wps.waypoints.size()) - 1)
                 break;
             else
-                from += s.stepsPerCycle;
+                from += s.options.steps_per_cycle;
         for (size_t k = std::min(from, r.track.size()); k < r.track.size(); k++)
             r.goalTrueDistance = std::min(
                 r.goalTrueDistance, std::hypot(r.track[k].x - g.x, r.track[k].y - g.y));

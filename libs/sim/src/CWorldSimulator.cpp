@@ -5,6 +5,7 @@
 #include <risknav/common/config_read.h>
 #include <risknav/common/stopping.h>
 #include <risknav/common/summary_json.h>
+#include <risknav/sim/CClosedLoop.h>
 #include <risknav/sim/CRawlogWriter.h>
 #include <risknav/sim/CWorldSimulator.h>
 
@@ -175,20 +176,30 @@ void writePoseLine(std::ofstream& f, double t, const TPose2D& p) {
 }
 }  // namespace
 
-struct CWorldSimulator::TRun {
-    TRun(COutputDir& out, size_t estFrames, bool quiet)
-        : rawlog(out.stage("simulation.rawlog")),
+// The run on the closed loop: a frame recorded each cycle, the route
+// follower and the stopping rule commanding every sub-step.
+struct CWorldSimulator::TRun : public CClosedLoop {
+    TRun(CWorldSimulator& s, const CClosedLoop::TOptions& lo, COutputDir& out,
+         size_t estFrames, bool quiet)
+        : CClosedLoop(s.world, lo),
+          sim(s),
+          rawlog(out.stage("simulation.rawlog")),
           gtFile(out.stage("groundtruth.txt")),
           odoFile(out.stage("odometry.txt")),
           progress("simulate", estFrames, "frames", quiet) {}
+    bool onCycle(int) override {
+        sim.recordFrame(*this);
+        return !done;
+    }
+    void onSubStep(int, int) override { sim.controlStep(*this); }
+    CWorldSimulator& sim;
     CRawlogWriter rawlog;
     std::ofstream gtFile, odoFile;
     CProgress progress;
-    CSafetyMonitor safety;
     std::vector<TPoint2D> gtTrack, odoTrack;
     mrpt::obs::CObservation2DRangeScan::Ptr lastScan;
     TPose2D start, lastOdo;
-    double distance = 0, stoppedTime = 0;
+    double stoppedTime = 0;
     int stops = 0;
     bool blockedPrev = false, timeout = false, done = false;
 };
@@ -216,11 +227,10 @@ void CWorldSimulator::recordFrame(TRun& r) {
     r.gtTrack.emplace_back(gt.x, gt.y);
     r.odoTrack.emplace_back(odo.x, odo.y);
     r.progress.update(r.rawlog.frames());
+    // (the loop ends at duration_max after this frame: status "timeout")
     if (route.finished() && std::abs(world.speed()) < 1e-9 &&
         std::abs(world.turnRate()) < 1e-9)
         r.done = true;
-    else if (t >= simulation.duration_max)
-        r.done = r.timeout = true;
 }
 
 void CWorldSimulator::controlStep(TRun& r) {
@@ -261,7 +271,15 @@ json CWorldSimulator::run(COutputDir& out, bool quiet) {
         size_t(std::min(simulation.duration_max, 1.1 * estDuration + 10) *
                simulation.frame_rate_hz);
 
-    TRun r(out, estFrames, quiet);
+    CClosedLoop::TOptions lo;
+    lo.sim_dt = dt;
+    lo.steps_per_cycle = int(stepsPerFrame);
+    lo.duration_max = simulation.duration_max;
+    lo.watch_corridor = true;
+    lo.corridor_beta = simulation.relevance_beta;
+    lo.corridor_lateral_margin = simulation.relevance_lateral_margin;
+    lo.time_as_sum = true;
+    TRun r(*this, lo, out, estFrames, quiet);
     r.start = route.startPose();
     world.reset(r.start, simulation.seed, simulation.start_time);
     r.lastOdo = world.odometricPose();
@@ -270,27 +288,7 @@ json CWorldSimulator::run(COutputDir& out, bool quiet) {
         << "% t x y phi  (ground truth at each frame; t = UNIX time [s], phi [rad])\n";
     r.odoFile << "% t x y phi  (odometry at each frame, as logged in the rawlog)\n";
 
-    for (long k = 0;; k++) {
-        if (k % stepsPerFrame == 0) {
-            recordFrame(r);
-            if (r.done)
-                break;
-        }
-        controlStep(r);
-        const double t = world.time();
-        const TPose2D before = world.truePose();
-        world.step(dt);
-        const TPose2D now = world.truePose();
-        r.distance += std::hypot(now.x - before.x, now.y - before.y);
-        r.safety.update(t + dt, now, world.robot.radius, world.agents,
-                        world.pointClearance(now.x, now.y));
-        const auto& rb = world.robot;
-        r.safety.updateCorridor(t + dt, now, world.speed(), rb.radius,
-                                stoppingDistance(world.speed(), rb.t_delay, rb.decel) +
-                                    simulation.relevance_beta,
-                                rb.radius + simulation.relevance_lateral_margin,
-                                world.agents);
-    }
+    r.timeout = r.run() == CClosedLoop::TEnd::Timeout;
     r.rawlog.close();
     for (auto [f, name] : {std::pair{&r.gtFile, "groundtruth.txt"},
                            std::pair{&r.odoFile, "odometry.txt"}}) {
@@ -394,7 +392,7 @@ void CWorldSimulator::drawWorld(const TRun& r, const std::string& path) const {
                   "risknav-simulate: %s  |  %.0f s, %.1f m, %zu frames, %d "
                   "collisions, %d near misses",
                   std::filesystem::path(world.mapSource.map_file).filename().c_str(),
-                  duration, r.distance, r.rawlog.frames(), collisions,
+                  duration, r.travelled(), r.rawlog.frames(), collisions,
                   r.safety.nearMisses());
     img.setTitle(title);
     img.save(path);
@@ -411,7 +409,7 @@ json CWorldSimulator::summary(const TRun& r, COutputDir& out) const {
     j["status"] = r.timeout ? "timeout" : "completed";
     j["frames"] = r.rawlog.frames();
     j["duration_s"] = (r.rawlog.frames() - 1) / simulation.frame_rate_hz;
-    j["distance_m"] = r.distance;
+    j["distance_m"] = r.travelled();
     j["route_length_m"] = route.length();
     j["laps"] = route.options.laps;
     j["collisions"] = r.safety.collisions() + r.safety.collisionsStatic();

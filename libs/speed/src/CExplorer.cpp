@@ -4,6 +4,7 @@
 #include <risknav/mapping/CFreeSpaceMemory.h>
 #include <risknav/mapping/free_space.h>
 #include <risknav/mapping/scan_points.h>
+#include <risknav/sim/CClosedLoop.h>
 #include <risknav/speed/CExplorer.h>
 
 #include <mrpt/math/wrap2pi.h>
@@ -18,6 +19,7 @@
 #include <optional>
 #include <set>
 #include <stdexcept>
+#include <tuple>
 
 using namespace risknav::common;
 using mrpt::math::TPoint2D;
@@ -246,6 +248,18 @@ std::pair<double, double> follow(const TPlannedPath& path, const TPlanningField&
         v = maxW / std::abs(kappa);
     return {v, std::clamp(kappa * v, -maxW, maxW)};
 }
+
+/** One mode's closed loop, its hooks runMode()'s lambdas on runMode()'s
+ * state (the destinations, the pipeline, the cycle's decision). */
+struct TModeLoop : public sim::CClosedLoop {
+    using sim::CClosedLoop::CClosedLoop;
+    std::function<bool(int)> cycle;
+    std::function<void()> command, stepped, cycleEnd;
+    bool onCycle(int c) override { return cycle(c); }
+    void onSubStep(int, int) override { command(); }
+    void onStepped(int, int, const TPose2D&) override { stepped(); }
+    void onCycleEnd(int) override { cycleEnd(); }
+};
 }  // namespace
 
 TModeResult CExplorer::runMode(int fixedIndex,
@@ -313,10 +327,7 @@ TModeResult CExplorer::runMode(int fixedIndex,
                               std::numeric_limits<double>::quiet_NaN());
     r.destinationBeliefError = r.destinationError;
     r.timeAtSpeed.assign(speed.speeds.size(), 0.0);
-    sim::CSafetyMonitor safety;
-    safety.reset();
     int lastSpeedIndex = -2;
-    TPose2D prevTrue = world.truePose();
     const int steps = std::max(1, int(std::lround(T / explore.sim_dt)));
     const double lookAroundW = 0.8 * world.robot.max_w_deg * M_PI / 180;
     // one turn, plus a second for the turn-rate ramp
@@ -326,8 +337,18 @@ TModeResult CExplorer::runMode(int fixedIndex,
     double noiseTolerance = std::max(0.01, 2 * world.laser.options.noise_std);
     if (world.range2.options.enabled)
         noiseTolerance = std::max(noiseTolerance, 2 * world.range2.options.noise_std);
-    for (int cycle = 0; world.time() < explore.duration_max && dest < goalsEgo.size();
-         cycle++) {
+    // the cycle's decision, driven over its sub-steps
+    TSpeedDecision d;
+    double v = 0, vc = 0;
+    int vIndex = -1;
+    bool lookingAround = false;
+    sim::CClosedLoop::TOptions lo;
+    lo.sim_dt = dt;
+    lo.steps_per_cycle = steps;
+    TModeLoop loop(world, lo);
+    loop.cycle = [&](int cycle) {
+        if (!(world.time() < explore.duration_max && dest < goalsEgo.size()))
+            return false;
         const auto scans = world.sense();
         const auto t0 = std::chrono::steady_clock::now();
         // the robot's localization (beyond the paper): this scan aligned to
@@ -360,13 +381,12 @@ TModeResult CExplorer::runMode(int fixedIndex,
             nextDestination(a.status);
         }
         if (dest == goalsEgo.size())
-            break;
+            return false;
         // Beyond the paper: first a turn on the spot, so that the laser (180
         // deg, ahead of the centre) has seen all around before the fused map
         // is asked for free space beside and behind the robot.
-        const bool lookingAround = explore.look_around && world.time() < lookAroundEnd;
-        const TSpeedDecision d =
-            lookingAround
+        lookingAround = explore.look_around && world.time() < lookAroundEnd;
+        d = lookingAround
                 ? TSpeedDecision{}
                 : pipeline.decide(ego, goalsEgo[dest], fixedIndex, previousTarget);
         const double ms = std::chrono::duration<double, std::milli>(
@@ -399,8 +419,8 @@ TModeResult CExplorer::runMode(int fixedIndex,
         rec.computeMs = ms;
         rec.localizationMs = localizationMs;
         // the stopping rule: sensed obstacles within the stopping distance
-        double v = d.speed;
-        int vIndex = d.speedIndex;
+        v = d.speed;
+        vIndex = d.speedIndex;
         // Beyond the paper: a robot held by the undecided rule has, after N
         // cycles in place, observed the region N times; what is still
         // undecided then (a gap in a wall seen edge-on) will not be decided
@@ -484,33 +504,34 @@ TModeResult CExplorer::runMode(int fixedIndex,
             r.snapshots.push_back(std::move(s));
         }
         lastSpeedIndex = d.speedIndex;
-        // drive the cycle
-        for (int k = 0; k < steps; k++) {
-            const auto [vc, wc] =
-                lookingAround
-                    ? std::pair<double, double>(0.0, lookAroundW)
-                    : follow(d.path, field, egoPose(), v,
-                             world.robot.max_w_deg * M_PI / 180, world.robot.radius);
-            world.command(vc, wc);
-            world.step(dt);
-            const TPose2D tp = world.truePose();
-            safety.update(world.time(), tp, world.robot.radius, world.agents,
-                          world.pointClearance(tp.x, tp.y));
-            r.distance += std::hypot(tp.x - prevTrue.x, tp.y - prevTrue.y);
-            prevTrue = tp;
-            if (vc <= 0)
-                r.timeStopped += dt;
-            else if (vIndex >= 0)
-                r.timeAtSpeed[size_t(vIndex)] += dt;
-        }
+        return true;
+    };
+    // drive the cycle
+    loop.command = [&] {
+        double wc = 0;
+        std::tie(vc, wc) = lookingAround ? std::pair<double, double>(0.0, lookAroundW)
+                                         : follow(d.path, pipeline.field(), egoPose(), v,
+                                                  world.robot.max_w_deg * M_PI / 180,
+                                                  world.robot.radius);
+        world.command(vc, wc);
+    };
+    loop.stepped = [&] {
+        if (vc <= 0)
+            r.timeStopped += dt;
+        else if (vIndex >= 0)
+            r.timeAtSpeed[size_t(vIndex)] += dt;
+    };
+    loop.cycleEnd = [&] {
+        r.distance = loop.travelled();
         if (progress)
             progress(world.time());
-    }
+    };
+    loop.run();
     r.time = world.time();
-    r.collisions = safety.collisions();
-    r.collisionsStatic = safety.collisionsStatic();
-    r.nearMisses = safety.nearMisses();
-    r.minClearance = safety.minGapStatic();
+    r.collisions = loop.safety.collisions();
+    r.collisionsStatic = loop.safety.collisionsStatic();
+    r.nearMisses = loop.safety.nearMisses();
+    r.minClearance = loop.safety.minGapStatic();
     if (m_localizer) {
         r.localization = m_localizer->stats();
         r.localizationMapPoints = m_localizer->map().size();

@@ -10,6 +10,7 @@
 #include <mrpt/maps/CSimplePointsMap.h>
 
 #include <gtest/gtest.h>
+#include "sim_fixtures.h"
 
 #include <cmath>
 
@@ -17,12 +18,7 @@ using namespace risknav::sim;
 using mrpt::math::TPose2D;
 
 namespace {
-// An empty 20 x 20 m room (the outside counts as walls).
-mrpt::maps::COccupancyGridMap2D emptyRoom() {
-    mrpt::maps::COccupancyGridMap2D g(-10, 10, -10, 10, 0.05f);
-    g.fill(1.0f);
-    return g;
-}
+using risknav::test::emptyRoom;
 
 void fastRobot(CSimWorld& w) {
     // Acceleration limits that reach any commanded speed within one step, so

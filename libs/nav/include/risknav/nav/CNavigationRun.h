@@ -6,6 +6,7 @@
 #include <risknav/planning/CGlobalPlanner.h>
 #include <risknav/risk/CRiskRouteChooser.h>
 #include <risknav/sim/CAgentsSim.h>
+#include <risknav/sim/CClosedLoop.h>
 #include <risknav/sim/CSafetyMonitor.h>
 #include <risknav/sim/CSimRobotInterface.h>
 #include <risknav/sim/CSimWorld.h>
@@ -111,14 +112,14 @@ struct TNavRunSetup {
     std::string label;  ///< progress label
 };
 
-/** risknav-navigate's closed loop: MRPT's reactive engine with
+/** risknav-navigate on the closed loop (sim::CClosedLoop): MRPT's reactive engine with
  * risknav's limiters (CRiskAwareReactiveNav) drives the steppable world
  * (CSimWorld, people included) through MRPT's robot interface on MRPT's
  * simulated clock. Each cycle of nav_period: the world is sensed, the
  * localizer (ground truth, the drifting odometry with fixes at sensing
  * points, or MCL on the laser) gives the pose the navigator sees, the
  * frame goes to the rawlog, navigationStep() runs, and the world advances in
- * sim_dt steps while a CSafetyMonitor counts collisions and near misses.
+ * sim_dt steps while the loop's CSafetyMonitor counts collisions and near misses.
  *
  * Config: [Navigate] (TNavigateOptions), the world's sections (CSimWorld),
  * MRPT's engine sections ([CAbstractNavigator], [CWaypointsNavigator],
@@ -194,7 +195,8 @@ class CNavigationRun {
     void checkEngineFailures(TRun& s, int cycle, double t,
                              const mrpt::math::TPose2D& truth) const;
     bool runEnds(TRun& s, int cycle, double t, const mrpt::math::TPose2D& truth) const;
-    void stepWorld(TRun& s);
+    void startSteps(TRun& s);
+    void endSteps(TRun& s);
     void finishRun(TRun& s);
     const TWaypointTag* tagOf(int waypoint) const;
     mrpt::poses::CPose2D odoFixFor(const mrpt::math::TPose2D& pose) const;

@@ -15,10 +15,11 @@
 #include <string>
 
 namespace risknav::sim {
-/** risknav-simulate's loop: a robot follows a route (CRouteFollower) through a
- * steppable world (CSimWorld) under the stopping rule (CStoppingDistanceLimiter); every
- * frame period the world's scans and the odometry increment go to an MRPT
- * rawlog; a CSafetyMonitor counts collisions and near misses.
+/** risknav-simulate on the closed loop (CClosedLoop): a robot follows a route
+ * (CRouteFollower) through a steppable world (CSimWorld) under the stopping
+ * rule (CStoppingDistanceLimiter); every frame period the world's scans and
+ * the odometry increment go to an MRPT rawlog; the loop's CSafetyMonitor
+ * counts collisions and near misses.
  *
  * Config sections: [Simulation] [Route] [CStoppingDistanceLimiter] and the world's
  * ([World] [Robot] [Odometry] [Laser] [RangeSensor2] [DoorPedestrianN] [CorridorWalkerN]

@@ -141,7 +141,8 @@ double exploreMemorySize(double configured, double resolution, double localMapSi
                          const mrpt::math::TPoint2D& start,
                          const std::vector<double>& destinations, int maxCells = 4096);
 
-/** risknav-explore's loop (Miura et al. 2006, section 5, Fig. 13): a robot
+/** risknav-explore on the closed loop (sim::CClosedLoop; Miura et al. 2006,
+ * section 5, Fig. 13): a robot
  * that does not know the world visits destinations; each cycle of T it
  * senses (laser + RANGE2), moves its two local grids by the ego-motion,
  * updates, classifies and fuses them, and lets the adaptive controller (or a
