@@ -1,8 +1,35 @@
 #include <risknav/common/CDeclaredOptions.h>
 
+#include <algorithm>
+#include <sstream>
+
 namespace risknav::common {
 namespace {
 using mrpt::config::CConfigFileBase;
+
+std::vector<std::string> splitWords(const std::string& s) {
+    std::vector<std::string> w;
+    std::istringstream in(s);
+    for (std::string x; in >> x;)
+        w.push_back(x);
+    return w;
+}
+
+std::string joined(const std::vector<std::string>& w, const char* sep = " ") {
+    std::string s;
+    for (const auto& x : w)
+        s += (s.empty() ? "" : sep) + x;
+    return s;
+}
+
+std::string numbersText(const std::vector<double>& v) {
+    std::string t;
+    for (double x : v)
+        t += (t.empty() ? "" : " ") + numberText(x);
+    return t;
+}
+
+const TRange kSeedRange = TRange::closed(0, kMaxSeed);
 
 std::string rangeText(const TRange& r) {
     // "must be in [1, 1000]" -> "[1, 1000]" (TRange::describe()'s wording)
@@ -23,6 +50,21 @@ class CLoader : public CDeclaredOptions::Visitor {
     void flag(bool& v, const char* key, const char*) override {
         v = readBool(m_c, m_s, key, v);
     }
+    void numbers(std::vector<double>& v, const char* key, const TRange&,
+                 const char*) override {
+        v = readNumbers(m_c, m_s, key, v);
+    }
+    void choice(std::string& v, const char* key, const std::vector<std::string>& allowed,
+                const char*) override {
+        v = readChoice(m_c, m_s, key, v, allowed);
+    }
+    void words(std::vector<std::string>& v, const char* key,
+               const std::vector<std::string>&, const char*) override {
+        v = splitWords(readString(m_c, m_s, key, joined(v)));
+    }
+    void seed(uint64_t& v, const char* key, const char*) override {
+        v = uint64_t(readDouble(m_c, m_s, key, double(v), kSeedRange));
+    }
 
   private:
     const CConfigFileBase& m_c;
@@ -40,6 +82,21 @@ class CSaver : public CDeclaredOptions::Visitor {
     }
     void flag(bool& v, const char* key, const char* doc) override {
         put(key, v ? "true" : "false", doc, "true | false");
+    }
+    void numbers(std::vector<double>& v, const char* key, const TRange& r,
+                 const char* doc) override {
+        put(key, numbersText(v), doc, "each " + rangeText(r));
+    }
+    void choice(std::string& v, const char* key, const std::vector<std::string>& allowed,
+                const char* doc) override {
+        put(key, v, doc, joined(allowed, " | "));
+    }
+    void words(std::vector<std::string>& v, const char* key,
+               const std::vector<std::string>& allowed, const char* doc) override {
+        put(key, joined(v), doc, "of " + joined(allowed, ", "));
+    }
+    void seed(uint64_t& v, const char* key, const char* doc) override {
+        put(key, numberText(double(v)), doc, rangeText(kSeedRange));
     }
 
   private:
@@ -63,6 +120,26 @@ class CChecker : public CDeclaredOptions::Visitor {
         checkKey(m_s, key, double(v), r);
     }
     void flag(bool&, const char*, const char*) override {}
+    void numbers(std::vector<double>& v, const char* key, const TRange& r,
+                 const char*) override {
+        checkKey(m_s, key, v, r);
+    }
+    void choice(std::string& v, const char* key, const std::vector<std::string>& allowed,
+                const char*) override {
+        checkRule(std::find(allowed.begin(), allowed.end(), v) != allowed.end(), m_s, key,
+                  v, "must be one of: " + joined(allowed, ", "));
+    }
+    void words(std::vector<std::string>& v, const char* key,
+               const std::vector<std::string>& allowed, const char*) override {
+        checkRule(!v.empty(), m_s, key, "",
+                  "needs one or more of: " + joined(allowed, ", "));
+        for (const auto& w : v)
+            checkRule(std::find(allowed.begin(), allowed.end(), w) != allowed.end(), m_s,
+                      key, w, "each must be one of: " + joined(allowed, ", "));
+    }
+    void seed(uint64_t& v, const char* key, const char*) override {
+        checkKey(m_s, key, double(v), kSeedRange);
+    }
 
   private:
     const std::string& m_s;
@@ -79,6 +156,21 @@ class CLister : public CDeclaredOptions::Visitor {
     }
     void flag(bool& v, const char* key, const char* doc) override {
         keys.push_back({key, doc, "true | false", v ? "true" : "false"});
+    }
+    void numbers(std::vector<double>& v, const char* key, const TRange& r,
+                 const char* doc) override {
+        keys.push_back({key, doc, "each " + rangeText(r), numbersText(v)});
+    }
+    void choice(std::string& v, const char* key, const std::vector<std::string>& allowed,
+                const char* doc) override {
+        keys.push_back({key, doc, joined(allowed, " | "), v});
+    }
+    void words(std::vector<std::string>& v, const char* key,
+               const std::vector<std::string>& allowed, const char* doc) override {
+        keys.push_back({key, doc, "of " + joined(allowed, ", "), joined(v)});
+    }
+    void seed(uint64_t& v, const char* key, const char* doc) override {
+        keys.push_back({key, doc, rangeText(kSeedRange), numberText(double(v))});
     }
 };
 }  // namespace

@@ -3,6 +3,7 @@
 // map and the known poses the scans were taken at.
 #include <risknav/common/CBadInputError.h>
 #include <risknav/speed/CScanMatchLocalizer.h>
+#include <risknav/speed/TExploreOptions.h>
 
 #include "test_support.h"
 
@@ -338,4 +339,19 @@ TEST(TScanMatchOptions, TheDocumentedConfigHoldsEveryDeclaredKeyWithItsDefault) 
     back.max_iterations = 1;
     back.loadFromConfigFile(text, "ScanMatching");
     EXPECT_EQ(back.max_iterations, defaults.max_iterations);
+}
+
+TEST(TExploreOptions, TheDocumentedConfigHoldsEveryDeclaredKey) {
+    mrpt::config::CConfigFileMemory doc(
+        risknav::test::readFile(risknav::test::sourcePath("config/risknav-explore.ini")));
+    const auto keys = TExploreOptions().keys();
+    ASSERT_EQ(keys.size(), 17u);
+    for (const auto& k : keys) {
+        EXPECT_TRUE(doc.keyExists("Explore", k.key)) << k.key;
+        EXPECT_FALSE(k.doc.empty()) << k.key;
+    }
+    // a required list has no default; the declared choices are listed
+    EXPECT_EQ(keys[0].key, "start");
+    EXPECT_EQ(keys[0].defaultText, "");
+    EXPECT_EQ(keys[3].range, "scan_matching | odometry | ground_truth");
 }

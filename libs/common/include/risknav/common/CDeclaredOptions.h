@@ -2,6 +2,7 @@
 #include <risknav/common/CValidatedOptions.h>
 #include <risknav/common/config_read.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,17 @@ class CDeclaredOptions : public CValidatedOptions {
         virtual void integer(int& v, const char* key, const TRange& range,
                              const char* doc) = 0;
         virtual void flag(bool& v, const char* key, const char* doc) = 0;
+        /** A list of numbers, each in `each` (its count: a rule). */
+        virtual void numbers(std::vector<double>& v, const char* key, const TRange& each,
+                             const char* doc) = 0;
+        /** One of `allowed`. */
+        virtual void choice(std::string& v, const char* key,
+                            const std::vector<std::string>& allowed, const char* doc) = 0;
+        /** Words separated by spaces, each one of `allowed`, at least one. */
+        virtual void words(std::vector<std::string>& v, const char* key,
+                           const std::vector<std::string>& allowed, const char* doc) = 0;
+        /** A random seed, [0, 2^53] (exact as a double: kMaxSeed). */
+        virtual void seed(uint64_t& v, const char* key, const char* doc) = 0;
     };
 
     /** One declared key, as the documentation check lists it. */

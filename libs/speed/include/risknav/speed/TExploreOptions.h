@@ -1,13 +1,15 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace risknav::speed {
-/** [Explore] of risknav-explore: the run, not the method. */
-struct TExploreOptions : public common::CValidatedOptions {
+/** [Explore] of risknav-explore: the run, not the method. Every key, its
+ * range and its doc are declared once, in declare() (TExploreOptions.cpp). */
+struct TExploreOptions : public common::CDeclaredOptions {
+    TExploreOptions() { section = "Explore"; }
     std::vector<double> start = {};         ///< x y heading_deg (world frame)
     std::vector<double> destinations = {};  ///< x y pairs, visited in order (world frame)
     /** Modes of one run: "adaptive" and / or "fixed" (one run per candidate
@@ -53,11 +55,9 @@ struct TExploreOptions : public common::CValidatedOptions {
     bool look_around = true;
     int max_snapshots = 40;  ///< snapshots/ of the adaptive mode (0 = none)
     uint64_t seed = 1;
-    std::string section = "Explore";
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& section) override;
-    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                          const std::string& section) const override;
-    void validate() const override;
+
+  protected:
+    void declare(Visitor& v) override;
+    void validateRules() const override;
 };
 }  // namespace risknav::speed
