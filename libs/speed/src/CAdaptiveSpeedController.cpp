@@ -182,7 +182,6 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
             "speed controller: the planning field's clearance ends before the widest "
             "inflation");
     const double res = field.map.resolution;
-    auto inflation = [&](size_t k) { return m_radius + m_o.margins[k]; };
     const size_t slowest = nSpeeds - 1;
     checkWayOnReach(field);
     // Beyond the paper, a speed-up with the same decisions: a goal in known
@@ -211,20 +210,10 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
     }
     d.nearestToGoal =
         !d.temporaryTarget && std::hypot(d.target.x - goal.x, d.target.y - goal.y) > 1e-9;
-    // d for speed k on path p: its margin disc's front meets the unknown; a
-    // path to a temporary target ends at the unknown anyway
     auto undecidedDistance = [&](const TPlannedPath& p, size_t k) {
-        double du = distanceToUndecided(p, field, inflation(k));
-        if (d.temporaryTarget)
-            du = std::min(du, p.length);
-        return du;
+        return undecidedAlong(p, field, d, k);
     };
-    // a faster speed ends where its larger margin lets it near a temporary
-    // target (placed on the frontier for the slowest one); a destination is
-    // planned to exactly
-    auto tolerance = [&](size_t k) {
-        return d.temporaryTarget ? inflation(k) - inflation(slowest) + 2 * res : 0.0;
-    };
+    auto tolerance = [&](size_t k) { return targetTolerance(d, k, res); };
 
     // the slowest speed's plan to the target: the one made above when the
     // target is the goal
@@ -264,7 +253,27 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
         return d;
     }
 
+    planEverySpeed(field, start, d, slowestToTarget);
     std::vector<double> costs(nSpeeds);
+    for (size_t k = 0; k < nSpeeds; k++)
+        costs[k] = d.perSpeed[k].costToGo;
+    d.safeByGap = safeSpeedsByGap(costs, m_o.gap_threshold);
+    const size_t owner = d.safeByGap.front();  // the fastest safe speed owns the path
+    d.pathIndex = int(owner);
+    d.path = d.perSpeed[owner];
+    if (d.path.length < 0.5 * res && !d.path.reached) {
+        d.reason = TSpeedReason::Unreachable;
+        return d;
+    }
+    chooseSpeed(field, owner, d);
+    return d;
+}
+
+void CAdaptiveSpeedController::planEverySpeed(
+    const TPlanningField& field, const mrpt::math::TPoint2D& start, TSpeedDecision& d,
+    const std::function<TPlannedPath()>& slowestToTarget) const {
+    const size_t nSpeeds = m_o.speeds.size(), slowest = nSpeeds - 1;
+    const double res = field.map.resolution;
     d.perSpeed.assign(nSpeeds, TPlannedPath{});
     if (!d.temporaryTarget) {
         // Beyond the paper, a speed-up with the same decisions: to a
@@ -294,19 +303,25 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
     } else {
         common::parallelFor(m_parallel, nSpeeds, [&](size_t k) {
             d.perSpeed[k] = m_planner->plan(field, start, d.target, inflation(k),
-                                            tolerance(k), k == slowest);
+                                            targetTolerance(d, k, res), k == slowest);
         });
     }
-    for (size_t k = 0; k < nSpeeds; k++)
-        costs[k] = d.perSpeed[k].costToGo;
-    d.safeByGap = safeSpeedsByGap(costs, m_o.gap_threshold);
-    const size_t owner = d.safeByGap.front();  // the fastest safe speed owns the path
-    d.pathIndex = int(owner);
-    d.path = d.perSpeed[owner];
-    if (d.path.length < 0.5 * res && !d.path.reached) {
-        d.reason = TSpeedReason::Unreachable;
-        return d;
-    }
+}
+
+double CAdaptiveSpeedController::undecidedAlong(const TPlannedPath& p,
+                                                const TPlanningField& field,
+                                                const TSpeedDecision& d, size_t k) const {
+    double du = distanceToUndecided(p, field, inflation(k));
+    if (d.temporaryTarget)
+        du = std::min(du, p.length);
+    return du;
+}
+
+void CAdaptiveSpeedController::chooseSpeed(const TPlanningField& field, size_t owner,
+                                           TSpeedDecision& d) const {
+    auto undecidedDistance = [&](const TPlannedPath& p, size_t k) {
+        return undecidedAlong(p, field, d, k);
+    };
     // section 4.2: faster speeds whose margin holds along the next cycles
     for (size_t k = 0; k < owner; k++)
         if (clearanceHoldsAhead(d.path, field, inflation(k),
@@ -324,11 +339,10 @@ TSpeedDecision CAdaptiveSpeedController::decide(const TPlanningField& field,
             d.reason = k == 0         ? TSpeedReason::None
                        : undecidedCut ? TSpeedReason::Undecided
                                       : TSpeedReason::Narrow;
-            return d;
+            return;
         }
         undecidedCut = true;
     }
     d.reason = TSpeedReason::Undecided;  // even the slowest would reach it too soon
-    return d;
 }
 }  // namespace risknav::speed

@@ -105,129 +105,137 @@ json modeSummary(const TModeResult& r, const TSpeedControlOptions& o) {
     return j;
 }
 
-void writeExploreOutputs(const CExplorer& ex, const std::vector<TModeResult>& runs,
-                         COutputDir& out) {
+namespace {
+/** cycles.csv: one row per cycle of every mode. */
+void writeCyclesCsv(const CExplorer& ex, const std::vector<TModeResult>& runs,
+                    COutputDir& out) {
     const auto& o = ex.speed;
-    // cycles.csv
-    {
-        std::vector<std::string> head = {"mode",
-                                         "cycle",
-                                         "t",
-                                         "x",
-                                         "y",
-                                         "phi_deg",
-                                         "ego_x",
-                                         "ego_y",
-                                         "ego_phi_deg",
-                                         "distance",
-                                         "speed",
-                                         "commanded",
-                                         "reason",
-                                         "d_undecided",
-                                         "destination",
-                                         "temporary_target",
-                                         "margin_broken"};
-        for (double v : o.speeds)
-            head.push_back("cost_to_go_" + numberText(v));
-        head.push_back("compute_ms");
-        CCsvWriter csv(out.stage("cycles.csv"), head);
-        for (const auto& r : runs)
-            for (const auto& c : r.cycles) {
-                std::vector<std::string> row = {
-                    r.name,
-                    std::to_string(c.cycle),
-                    CCsvWriter::fixed(c.t, 3),
-                    CCsvWriter::num(c.truePose.x, 6),
-                    CCsvWriter::num(c.truePose.y, 6),
-                    CCsvWriter::num(c.truePose.phi * 180 / M_PI, 6),
-                    CCsvWriter::num(c.egoPose.x, 6),
-                    CCsvWriter::num(c.egoPose.y, 6),
-                    CCsvWriter::num(c.egoPose.phi * 180 / M_PI, 6),
-                    CCsvWriter::num(c.distance, 6),
-                    CCsvWriter::num(c.chosen),
-                    CCsvWriter::num(c.commanded),
-                    c.reason,
-                    CCsvWriter::num(c.dUndecided, 6),  // empty: none on the way
-                    std::to_string(c.destination),
-                    c.temporaryTarget ? "1" : "0",
-                    c.marginBroken ? "1" : "0"};
-                for (size_t k = 0; k < o.speeds.size(); k++)
-                    row.push_back(k < c.costToGo.size()  // empty: no path (or cut off)
-                                      ? CCsvWriter::num(c.costToGo[k], 6)
-                                      : "");
-                row.push_back(CCsvWriter::num(c.computeMs, 4));
-                csv.row(row);
-            }
-        csv.close();
-    }
-    // trace.png: the observation points of each mode (their spacing is the speed)
-    {
-        CMapImage img(ex.world.grid());
-        const auto& adaptive = runs.front();
-        img.setTitle("risknav-explore: observation points (one per " +
-                     numberText(o.cycle_time) + " s cycle); " + adaptive.name + " " +
-                     numberText(std::round(adaptive.time * 10) / 10) + " s");
-        for (size_t m = 0; m < runs.size(); m++) {
-            const TRgb c = kModeColours[m % 6];
-            std::vector<mrpt::math::TPoint2D> line;
-            for (const auto& p : runs[m].observations)
-                line.emplace_back(p.x, p.y);
-            img.polyline(line, c, 1);
-            for (const auto& p : line)
-                img.circle(p, 0.05, c, 1, m == 0);
-            char label[96];
-            std::snprintf(label, sizeof(label), "%s: %.1f s, %d collisions",
-                          runs[m].name.c_str(), runs[m].time,
-                          runs[m].collisions + runs[m].collisionsStatic);
-            img.legendLine(label, c);
+    std::vector<std::string> head = {"mode",
+                                     "cycle",
+                                     "t",
+                                     "x",
+                                     "y",
+                                     "phi_deg",
+                                     "ego_x",
+                                     "ego_y",
+                                     "ego_phi_deg",
+                                     "distance",
+                                     "speed",
+                                     "commanded",
+                                     "reason",
+                                     "d_undecided",
+                                     "destination",
+                                     "temporary_target",
+                                     "margin_broken"};
+    for (double v : o.speeds)
+        head.push_back("cost_to_go_" + numberText(v));
+    head.push_back("compute_ms");
+    CCsvWriter csv(out.stage("cycles.csv"), head);
+    for (const auto& r : runs)
+        for (const auto& c : r.cycles) {
+            std::vector<std::string> row = {
+                r.name,
+                std::to_string(c.cycle),
+                CCsvWriter::fixed(c.t, 3),
+                CCsvWriter::num(c.truePose.x, 6),
+                CCsvWriter::num(c.truePose.y, 6),
+                CCsvWriter::num(c.truePose.phi * 180 / M_PI, 6),
+                CCsvWriter::num(c.egoPose.x, 6),
+                CCsvWriter::num(c.egoPose.y, 6),
+                CCsvWriter::num(c.egoPose.phi * 180 / M_PI, 6),
+                CCsvWriter::num(c.distance, 6),
+                CCsvWriter::num(c.chosen),
+                CCsvWriter::num(c.commanded),
+                c.reason,
+                CCsvWriter::num(c.dUndecided, 6),  // empty: none on the way
+                std::to_string(c.destination),
+                c.temporaryTarget ? "1" : "0",
+                c.marginBroken ? "1" : "0"};
+            for (size_t k = 0; k < o.speeds.size(); k++)
+                row.push_back(k < c.costToGo.size()  // empty: no path (or cut off)
+                                  ? CCsvWriter::num(c.costToGo[k], 6)
+                                  : "");
+            row.push_back(CCsvWriter::num(c.computeMs, 4));
+            csv.row(row);
         }
-        const auto& d = ex.explore.destinations;
-        for (size_t k = 0; k + 1 < d.size(); k += 2) {
-            img.marker({d[k], d[k + 1]}, CMapImage::TMarker::Star, {0, 0, 0}, 12);
-            img.text({d[k] + 0.15, d[k + 1] + 0.15}, "D" + std::to_string(k / 2 + 1),
-                     {0, 0, 0});
-        }
-        img.marker({ex.explore.start[0], ex.explore.start[1]}, CMapImage::TMarker::Square,
-                   {0, 0, 0}, 10);
-        img.legendMarker("destinations", CMapImage::TMarker::Star, {0, 0, 0});
-        img.save(out.stage("trace.png"));
+    csv.close();
+}
+
+/** trace.png: the observation points of each mode (their spacing is the
+ * speed). */
+void writeTraceImage(const CExplorer& ex, const std::vector<TModeResult>& runs,
+                     COutputDir& out) {
+    const auto& o = ex.speed;
+    CMapImage img(ex.world.grid());
+    const auto& adaptive = runs.front();
+    img.setTitle("risknav-explore: observation points (one per " +
+                 numberText(o.cycle_time) + " s cycle); " + adaptive.name + " " +
+                 numberText(std::round(adaptive.time * 10) / 10) + " s");
+    for (size_t m = 0; m < runs.size(); m++) {
+        const TRgb c = kModeColours[m % 6];
+        std::vector<mrpt::math::TPoint2D> line;
+        for (const auto& p : runs[m].observations)
+            line.emplace_back(p.x, p.y);
+        img.polyline(line, c, 1);
+        for (const auto& p : line)
+            img.circle(p, 0.05, c, 1, m == 0);
+        char label[96];
+        std::snprintf(label, sizeof(label), "%s: %.1f s, %d collisions",
+                      runs[m].name.c_str(), runs[m].time,
+                      runs[m].collisions + runs[m].collisionsStatic);
+        img.legendLine(label, c);
     }
-    // speed_profile.png: speed vs distance, coloured by the limiting reason
-    {
-        CPlotImage plot;
-        plot.setTitle("risknav-explore: speed vs distance travelled");
-        plot.setXLabel("distance travelled [m]");
-        plot.setYLabel("speed [m/s]");
-        for (size_t m = 1; m < runs.size(); m++) {
+    const auto& d = ex.explore.destinations;
+    for (size_t k = 0; k + 1 < d.size(); k += 2) {
+        img.marker({d[k], d[k + 1]}, CMapImage::TMarker::Star, {0, 0, 0}, 12);
+        img.text({d[k] + 0.15, d[k + 1] + 0.15}, "D" + std::to_string(k / 2 + 1),
+                 {0, 0, 0});
+    }
+    img.marker({ex.explore.start[0], ex.explore.start[1]}, CMapImage::TMarker::Square,
+               {0, 0, 0}, 10);
+    img.legendMarker("destinations", CMapImage::TMarker::Star, {0, 0, 0});
+    img.save(out.stage("trace.png"));
+}
+
+/** speed_profile.png: speed vs distance, coloured by the limiting reason. */
+void writeSpeedProfile(const std::vector<TModeResult>& runs, COutputDir& out) {
+    CPlotImage plot;
+    plot.setTitle("risknav-explore: speed vs distance travelled");
+    plot.setXLabel("distance travelled [m]");
+    plot.setYLabel("speed [m/s]");
+    for (size_t m = 1; m < runs.size(); m++) {
+        std::vector<double> x, y;
+        for (const auto& c : runs[m].cycles) {
+            x.push_back(c.distance);
+            y.push_back(c.commanded);
+        }
+        plot.addSeries(runs[m].name, x, y, {170, 170, 170}, 1, true);
+    }
+    if (!runs.empty() && runs.front().fixedIndex < 0) {
+        std::set<std::string> labelled;
+        const auto& cs = runs.front().cycles;
+        for (size_t a = 0; a < cs.size();) {
+            size_t b = a;
+            while (b + 1 < cs.size() && cs[b + 1].reason == cs[a].reason)
+                b++;
             std::vector<double> x, y;
-            for (const auto& c : runs[m].cycles) {
-                x.push_back(c.distance);
-                y.push_back(c.commanded);
+            for (size_t k = a; k <= std::min(b + 1, cs.size() - 1); k++) {
+                x.push_back(cs[k].distance);
+                y.push_back(cs[k].commanded);
             }
-            plot.addSeries(runs[m].name, x, y, {170, 170, 170}, 1, true);
+            const std::string label =
+                labelled.insert(cs[a].reason).second ? "adaptive: " + cs[a].reason : "";
+            plot.addSeries(label, x, y, reasonColour(cs[a].reason), 3);
+            a = b + 1;
         }
-        if (!runs.empty() && runs.front().fixedIndex < 0) {
-            std::set<std::string> labelled;
-            const auto& cs = runs.front().cycles;
-            for (size_t a = 0; a < cs.size();) {
-                size_t b = a;
-                while (b + 1 < cs.size() && cs[b + 1].reason == cs[a].reason)
-                    b++;
-                std::vector<double> x, y;
-                for (size_t k = a; k <= std::min(b + 1, cs.size() - 1); k++) {
-                    x.push_back(cs[k].distance);
-                    y.push_back(cs[k].commanded);
-                }
-                const std::string label = labelled.insert(cs[a].reason).second
-                                              ? "adaptive: " + cs[a].reason
-                                              : "";
-                plot.addSeries(label, x, y, reasonColour(cs[a].reason), 3);
-                a = b + 1;
-            }
-        }
-        plot.save(out.stage("speed_profile.png"));
     }
-    // snapshots/: the free-space map where the adaptive speed changes (Fig. 16)
+    plot.save(out.stage("speed_profile.png"));
+}
+
+/** snapshots/: the free-space map where the adaptive speed changes (Fig. 16). */
+void writeSnapshots(const CExplorer& ex, const std::vector<TModeResult>& runs,
+                    COutputDir& out) {
+    const auto& o = ex.speed;
     if (!runs.empty() && runs.front().fixedIndex < 0 && !runs.front().snapshots.empty()) {
         for (const auto& s : runs.front().snapshots) {
             const auto& map = s.field.map;
@@ -280,6 +288,15 @@ void writeExploreOutputs(const CExplorer& ex, const std::vector<TModeResult>& ru
             img.save(out.stage(name));
         }
     }
+}
+}  // namespace
+
+void writeExploreOutputs(const CExplorer& ex, const std::vector<TModeResult>& runs,
+                         COutputDir& out) {
+    writeCyclesCsv(ex, runs, out);
+    writeTraceImage(ex, runs, out);
+    writeSpeedProfile(runs, out);
+    writeSnapshots(ex, runs, out);
 }
 
 void runExploreApp(const TAppContext& ctx) {

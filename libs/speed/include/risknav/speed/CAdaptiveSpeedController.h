@@ -114,6 +114,28 @@ class CAdaptiveSpeedController {
   private:
     /** std::invalid_argument unless the field's wayOnDist reaches wayOnBand. */
     void checkWayOnReach(const TPlanningField& field) const;
+    /** [m] the disc speed k plans with: the robot and that speed's margin. */
+    double inflation(size_t k) const { return m_radius + m_o.margins[k]; }
+    /** [m] how near d.target speed k's plan must end: a faster speed ends
+     * where its larger margin lets it near a temporary target (placed on the
+     * frontier for the slowest one); a destination is planned to exactly. */
+    double targetTolerance(const TSpeedDecision& d, size_t k, double res) const {
+        return d.temporaryTarget
+                   ? inflation(k) - inflation(m_o.speeds.size() - 1) + 2 * res
+                   : 0.0;
+    }
+    /** [m] d for speed k on path p: where its margin disc's front meets the
+     * unknown (a path to a temporary target ends at the unknown anyway). */
+    double undecidedAlong(const TPlannedPath& p, const TPlanningField& field,
+                          const TSpeedDecision& d, size_t k) const;
+    /** Every speed's plan to d.target into d.perSpeed (multi-speed planning,
+     * section 4.1), given the slowest one's to a destination. */
+    void planEverySpeed(const TPlanningField& field, const mrpt::math::TPoint2D& start,
+                        TSpeedDecision& d,
+                        const std::function<TPlannedPath()>& slowest) const;
+    /** The fastest allowed speed whose undecided rule holds (section 4.2 and
+     * eq. 6) into d, on d.path of speed `owner`. */
+    void chooseSpeed(const TPlanningField& field, size_t owner, TSpeedDecision& d) const;
     TSpeedControlOptions m_o;
     double m_radius;
     int m_N;
