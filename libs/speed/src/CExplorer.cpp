@@ -249,45 +249,85 @@ std::pair<double, double> follow(const TPlannedPath& path, const TPlanningField&
     return {v, std::clamp(kappa * v, -maxW, maxW)};
 }
 
-/** One mode's closed loop, its hooks runMode()'s lambdas on runMode()'s
- * state (the destinations, the pipeline, the cycle's decision). */
-struct TModeLoop : public sim::CClosedLoop {
-    using sim::CClosedLoop::CClosedLoop;
-    std::function<bool(int)> cycle;
-    std::function<void()> command, stepped, cycleEnd;
-    bool onCycle(int c) override { return cycle(c); }
-    void onSubStep(int, int) override { command(); }
-    void onStepped(int, int, const TPose2D&) override { stepped(); }
-    void onCycleEnd(int) override { cycleEnd(); }
-};
+const double kInf = std::numeric_limits<double>::infinity();
+const TPoint2D kNoNearest(kInf, kInf);  // no point nearest the destination
 }  // namespace
 
-TModeResult CExplorer::runMode(int fixedIndex,
-                               const std::function<void(double)>& progress) {
+/** One mode's run on the closed loop: runMode()'s state. Each cycle senses,
+ * maps and decides (the pipeline), judges arrivals and records
+ * (onCycle()); each sub-step follows the cycle's path (onSubStep()). */
+struct CExplorer::TModeRun : public sim::CClosedLoop {
+    TModeRun(CExplorer& explorer, const TOptions& lo, int fixedIdx,
+             const std::function<void(double)>& progressFn, const TPose2D& start,
+             const TPose2D& ego0);
+    bool onCycle(int cycle) override;
+    void onSubStep(int, int) override;
+    void onStepped(int, int, const TPose2D&) override;
+    void onCycleEnd(int) override;
+    /** The destinations the belief `ego` arrived at, judged; false when
+     * none is left. */
+    bool judgeArrivals(const TPose2D& ego);
+    /** The speed driven this cycle: the decision's, held, slowed for the
+     * destination or braked by the stopping rule (rec.reason says why). */
+    void chooseSpeed(TCycleRecord& rec, const sim::CSimWorld::TScans& scans,
+                     const TPose2D& ego);
+    /** The not-approaching and unreachable alarms. */
+    void watchApproach(const TPose2D& ego);
+    /** On to the next destination, this one `status`. */
+    void nextDestination(const char* status);
+    /** The belief in the world frame: world = start + (ego0^-1 + ego), as
+     * the destinations were placed in the ego frame. */
+    TPose2D believedInWorld(const TPose2D& ego) const {
+        return (s0 + (mrpt::poses::CPose2D(ego) - e0)).asTPose();
+    }
+
+    CExplorer& ex;
+    const int fixedIndex;
+    const std::function<void(double)>& progress;
     TModeResult r;
+    // mapping, fusion, planning field and the controller, one cycle at a time
+    CAdaptiveSpeedPipeline pipeline;
+    // destinations in the ego frame: ego = ego0 + (start^-1 + world point)
+    const mrpt::poses::CPose2D e0, s0;
+    std::vector<TPoint2D> goalsWorld, goalsEgo;
+    // how near the robot may truly come to each destination: 0 in the open,
+    // more where it lies nearer an obstacle than the robot's radius and the
+    // slowest speed's margin (judgeArrival())
+    std::vector<double> nearestPossible;
+    std::optional<TPoint2D> previousTarget;  // temporary, of this destination
+    // the point nearest this destination; none: one at infinity, never arrived at
+    // (not a std::optional: gcc 12 warned it might be read uninitialized)
+    TPoint2D nearestTarget = kNoNearest;
+    double bestToGoal = std::numeric_limits<double>::infinity(), bestToGoalTime = 0;
+    double unreachableSince = -1;
+    size_t dest = 0;
+    int lastSpeedIndex = -2;
+    double lookAroundW = 0, lookAroundEnd = 0, noiseTolerance = 0;
+    // the cycle's decision, driven over its sub-steps
+    TSpeedDecision d;
+    double v = 0, vc = 0;
+    int vIndex = -1;
+    bool lookingAround = false;
+};
+
+CExplorer::TModeRun::TModeRun(CExplorer& explorer, const TOptions& lo, int fixedIdx,
+                              const std::function<void(double)>& progressFn,
+                              const TPose2D& start, const TPose2D& ego0)
+    : sim::CClosedLoop(explorer.world, lo),
+      ex(explorer),
+      fixedIndex(fixedIdx),
+      progress(progressFn),
+      pipeline(explorer.pipelineParams(), ego0),
+      e0(ego0),
+      s0(start) {
+    const auto& explore = ex.explore;
+    const auto& speed = ex.speed;
     r.fixedIndex = fixedIndex;
     if (fixedIndex < 0) {
         r.name = "adaptive";
     } else {
         r.name = "fixed_" + numberText(speed.speeds[size_t(fixedIndex)]);
     }
-    const TPose2D start(explore.start[0], explore.start[1],
-                        explore.start[2] * M_PI / 180);
-    world.reset(start, explore.seed);
-    m_localizer.reset();
-    if (explore.ego_motion == "scan_matching")
-        m_localizer.emplace(scanMatch);
-    const double T = speed.cycle_time;
-    const TPose2D ego0 = egoPose();
-    // mapping, fusion, planning field and the controller, one cycle at a time
-    CAdaptiveSpeedPipeline pipeline(pipelineParams(), ego0);
-    // destinations in the ego frame: ego = ego0 + (start^-1 + world point)
-    const mrpt::poses::CPose2D e0(ego0), s0(start);
-    std::vector<TPoint2D> goalsWorld, goalsEgo;
-    // how near the robot may truly come to each destination: 0 in the open,
-    // more where it lies nearer an obstacle than the robot's radius and the
-    // slowest speed's margin (judgeArrival())
-    std::vector<double> nearestPossible;
     for (size_t k = 0; k + 1 < explore.destinations.size(); k += 2) {
         goalsWorld.emplace_back(explore.destinations[k], explore.destinations[k + 1]);
         const mrpt::poses::CPoint2D local =
@@ -298,244 +338,256 @@ TModeResult CExplorer::runMode(int fixedIndex,
             0.0, world.robot.radius + speed.margins.back() -
                      world.pointClearance(goalsWorld.back().x, goalsWorld.back().y)));
     }
-    // the belief in the world frame: world = start + (ego0^-1 + ego), as the
-    // destinations were placed in the ego frame
-    auto believedInWorld = [&](const TPose2D& ego) {
-        return (s0 + (mrpt::poses::CPose2D(ego) - e0)).asTPose();
-    };
-    std::optional<TPoint2D> previousTarget;  // temporary, of this destination
-    // the point nearest this destination; none: one at infinity, never arrived at
-    // (not a std::optional: gcc 12 warned it might be read uninitialized)
-    const double inf = std::numeric_limits<double>::infinity();
-    const TPoint2D noNearest(inf, inf);
-    TPoint2D nearestTarget = noNearest;
-    double bestToGoal = std::numeric_limits<double>::infinity(), bestToGoalTime = 0;
-    double unreachableSince = -1;
-    size_t dest = 0;
-    // on to the next destination, this one `status`
-    auto nextDestination = [&](const char* status) {
-        r.destinationStatus[dest] = status;
-        dest++;
-        previousTarget.reset();
-        nearestTarget = noNearest;
-        unreachableSince = -1;
-        bestToGoal = std::numeric_limits<double>::infinity();
-        bestToGoalTime = world.time();
-    };
     r.destinationStatus.assign(goalsWorld.size(), "not_reached");
     r.destinationError.assign(goalsWorld.size(),
                               std::numeric_limits<double>::quiet_NaN());
     r.destinationBeliefError = r.destinationError;
     r.timeAtSpeed.assign(speed.speeds.size(), 0.0);
-    int lastSpeedIndex = -2;
-    const int steps = std::max(1, int(std::lround(T / explore.sim_dt)));
-    const double lookAroundW = 0.8 * world.robot.max_w_deg * M_PI / 180;
+    lookAroundW = 0.8 * world.robot.max_w_deg * M_PI / 180;
     // one turn, plus a second for the turn-rate ramp
-    const double lookAroundEnd = 2 * M_PI / lookAroundW + 1.0;
-    const double dt = T / steps;
+    lookAroundEnd = 2 * M_PI / lookAroundW + 1.0;
     // two standard deviations of the noisier range sensor, 1 cm at least
-    double noiseTolerance = std::max(0.01, 2 * world.laser.options.noise_std);
+    noiseTolerance = std::max(0.01, 2 * world.laser.options.noise_std);
     if (world.range2.options.enabled)
         noiseTolerance = std::max(noiseTolerance, 2 * world.range2.options.noise_std);
-    // the cycle's decision, driven over its sub-steps
-    TSpeedDecision d;
-    double v = 0, vc = 0;
-    int vIndex = -1;
-    bool lookingAround = false;
-    sim::CClosedLoop::TOptions lo;
-    lo.sim_dt = dt;
-    lo.steps_per_cycle = steps;
-    TModeLoop loop(world, lo);
-    loop.cycle = [&](int cycle) {
-        if (!(world.time() < explore.duration_max && dest < goalsEgo.size()))
-            return false;
-        const auto scans = world.sense();
-        const auto t0 = std::chrono::steady_clock::now();
-        // the robot's localization (beyond the paper): this scan aligned to
-        // the map built from the earlier ones, odometry as the prior
-        if (m_localizer)
-            m_localizer->update(world.odometricPose(), scans.laser.get());
-        const double localizationMs = std::chrono::duration<double, std::milli>(
-                                          std::chrono::steady_clock::now() - t0)
-                                          .count();
-        const TPose2D ego = egoPose();
-        pipeline.update(ego, scans.laser.get(), scans.range2.get());
-        const TPlanningField& field = pipeline.field();
-        // arrived, as the robot believes: within arrival_radius, or (a
-        // destination nearer an obstacle than the robot may come) at the
-        // point nearest it. It halts and goes on: it cannot know the truth.
-        auto arrived = [&] {
-            return std::hypot(goalsEgo[dest].x - ego.x, goalsEgo[dest].y - ego.y) <
-                       explore.arrival_radius ||
-                   std::hypot(nearestTarget.x - ego.x, nearestTarget.y - ego.y) <
-                       std::min(explore.arrival_radius, explore.goal_tolerance / 2);
-        };
-        // reached is judged on the true pose; a belief that arrived where
-        // the truth is not within goal_tolerance is a localization error
-        while (dest < goalsEgo.size() && arrived()) {
-            const TArrival a =
-                judgeArrival(goalsWorld[dest], world.truePose(), believedInWorld(ego),
-                             explore.goal_tolerance, nearestPossible[dest]);
-            r.destinationError[dest] = a.trueError;
-            r.destinationBeliefError[dest] = a.beliefError;
-            nextDestination(a.status);
+}
+
+void CExplorer::TModeRun::nextDestination(const char* status) {
+    r.destinationStatus[dest] = status;
+    dest++;
+    previousTarget.reset();
+    nearestTarget = kNoNearest;
+    unreachableSince = -1;
+    bestToGoal = std::numeric_limits<double>::infinity();
+    bestToGoalTime = world.time();
+}
+
+bool CExplorer::TModeRun::judgeArrivals(const TPose2D& ego) {
+    const auto& explore = ex.explore;
+    // arrived, as the robot believes: within arrival_radius, or (a
+    // destination nearer an obstacle than the robot may come) at the
+    // point nearest it. It halts and goes on: it cannot know the truth.
+    auto arrived = [&] {
+        return std::hypot(goalsEgo[dest].x - ego.x, goalsEgo[dest].y - ego.y) <
+                   explore.arrival_radius ||
+               std::hypot(nearestTarget.x - ego.x, nearestTarget.y - ego.y) <
+                   std::min(explore.arrival_radius, explore.goal_tolerance / 2);
+    };
+    // reached is judged on the true pose; a belief that arrived where
+    // the truth is not within goal_tolerance is a localization error
+    while (dest < goalsEgo.size() && arrived()) {
+        const TArrival a =
+            judgeArrival(goalsWorld[dest], world.truePose(), believedInWorld(ego),
+                         explore.goal_tolerance, nearestPossible[dest]);
+        r.destinationError[dest] = a.trueError;
+        r.destinationBeliefError[dest] = a.beliefError;
+        nextDestination(a.status);
+    }
+    return dest < goalsEgo.size();
+}
+
+bool CExplorer::TModeRun::onCycle(int cycle) {
+    const auto& explore = ex.explore;
+    if (!(world.time() < explore.duration_max && dest < goalsEgo.size()))
+        return false;
+    const auto scans = world.sense();
+    const auto t0 = std::chrono::steady_clock::now();
+    // the robot's localization (beyond the paper): this scan aligned to
+    // the map built from the earlier ones, odometry as the prior
+    if (ex.m_localizer)
+        ex.m_localizer->update(world.odometricPose(), scans.laser.get());
+    const double localizationMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+            .count();
+    const TPose2D ego = ex.egoPose();
+    pipeline.update(ego, scans.laser.get(), scans.range2.get());
+    const TPlanningField& field = pipeline.field();
+    if (!judgeArrivals(ego))
+        return false;
+    // Beyond the paper: first a turn on the spot, so that the laser (180
+    // deg, ahead of the centre) has seen all around before the fused map
+    // is asked for free space beside and behind the robot.
+    lookingAround = explore.look_around && world.time() < lookAroundEnd;
+    d = lookingAround ? TSpeedDecision{}
+                      : pipeline.decide(ego, goalsEgo[dest], fixedIndex, previousTarget);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+            .count();
+    TCycleRecord rec;
+    rec.cycle = cycle;
+    rec.t = world.time();
+    rec.truePose = world.truePose();
+    rec.egoPose = ego;
+    rec.distance = r.distance;
+    rec.chosen = d.speed;
+    rec.reason = lookingAround ? "look_around" : reasonName(d.reason);
+    rec.dUndecided = d.dUndecided;
+    for (const auto& p : d.perSpeed)
+        rec.costToGo.push_back(p.costToGo);
+    rec.destination = int(dest);
+    rec.temporaryTarget = d.temporaryTarget;
+    if (!lookingAround) {
+        if (d.nearestToGoal)
+            nearestTarget = d.target;
+        else
+            nearestTarget = kNoNearest;
+        if (d.temporaryTarget && d.reason != TSpeedReason::Unreachable)
+            previousTarget = d.target;
+        else
+            previousTarget.reset();
+    }
+    rec.marginBroken = d.marginBroken;
+    rec.computeMs = ms;
+    rec.localizationMs = localizationMs;
+    chooseSpeed(rec, scans, ego);
+    rec.commanded = v;
+    watchApproach(ego);
+    r.marginBrokenCycles += d.marginBroken ? 1 : 0;
+    r.cycles.push_back(rec);
+    r.observations.push_back(rec.truePose);
+    if (fixedIndex < 0 && (d.speedIndex != lastSpeedIndex || cycle < 3) &&
+        int(r.snapshots.size()) < explore.max_snapshots) {
+        TSnapshot s;
+        s.cycle = cycle;
+        s.field = field;
+        s.decision = d;
+        s.egoPose = ego;
+        r.snapshots.push_back(std::move(s));
+    }
+    lastSpeedIndex = d.speedIndex;
+    return true;
+}
+
+void CExplorer::TModeRun::chooseSpeed(TCycleRecord& rec,
+                                      const sim::CSimWorld::TScans& scans,
+                                      const TPose2D& ego) {
+    const auto& speed = ex.speed;
+    const auto& stopRule = ex.stopRule;
+    // the stopping rule: sensed obstacles within the stopping distance
+    v = d.speed;
+    vIndex = d.speedIndex;
+    // Beyond the paper: a robot held by the undecided rule has, after N
+    // cycles in place, observed the region N times; what is still
+    // undecided then (a gap in a wall seen edge-on) will not be decided
+    // from here, so it creeps on at the slowest speed.
+    if (pipeline.heldLongEnough(!lookingAround && d.reason == TSpeedReason::Undecided &&
+                                d.speed == 0 && d.path.points.size() > 1)) {
+        vIndex = int(speed.speeds.size()) - 1;
+        v = speed.speeds.back();
+    }
+    // Beyond the paper: at a destination the robot stops, so no speed
+    // whose stopping distance exceeds the path left to it
+    if (!lookingAround && !d.temporaryTarget && d.speedIndex >= 0) {
+        const double left = d.path.length;
+        while (vIndex >= 0 && vIndex + 1 < int(speed.speeds.size()) &&
+               stoppingDistance(v, world.robot.t_delay, world.robot.decel) > left) {
+            vIndex++;
+            v = speed.speeds[size_t(vIndex)];
+            rec.reason = "goal";
         }
-        if (dest == goalsEgo.size())
-            return false;
-        // Beyond the paper: first a turn on the spot, so that the laser (180
-        // deg, ahead of the centre) has seen all around before the fused map
-        // is asked for free space beside and behind the robot.
-        lookingAround = explore.look_around && world.time() < lookAroundEnd;
-        d = lookingAround
-                ? TSpeedDecision{}
-                : pipeline.decide(ego, goalsEgo[dest], fixedIndex, previousTarget);
-        const double ms = std::chrono::duration<double, std::milli>(
-                              std::chrono::steady_clock::now() - t0)
-                              .count();
-        TCycleRecord rec;
-        rec.cycle = cycle;
-        rec.t = world.time();
-        rec.truePose = world.truePose();
-        rec.egoPose = ego;
-        rec.distance = r.distance;
-        rec.chosen = d.speed;
-        rec.reason = lookingAround ? "look_around" : reasonName(d.reason);
-        rec.dUndecided = d.dUndecided;
-        for (const auto& p : d.perSpeed)
-            rec.costToGo.push_back(p.costToGo);
-        rec.destination = int(dest);
-        rec.temporaryTarget = d.temporaryTarget;
-        if (!lookingAround) {
-            if (d.nearestToGoal)
-                nearestTarget = d.target;
-            else
-                nearestTarget = noNearest;
-            if (d.temporaryTarget && d.reason != TSpeedReason::Unreachable)
-                previousTarget = d.target;
-            else
-                previousTarget.reset();
-        }
-        rec.marginBroken = d.marginBroken;
-        rec.computeMs = ms;
-        rec.localizationMs = localizationMs;
-        // the stopping rule: sensed obstacles within the stopping distance
-        v = d.speed;
-        vIndex = d.speedIndex;
-        // Beyond the paper: a robot held by the undecided rule has, after N
-        // cycles in place, observed the region N times; what is still
-        // undecided then (a gap in a wall seen edge-on) will not be decided
-        // from here, so it creeps on at the slowest speed.
-        if (pipeline.heldLongEnough(!lookingAround &&
-                                    d.reason == TSpeedReason::Undecided && d.speed == 0 &&
-                                    d.path.points.size() > 1)) {
-            vIndex = int(speed.speeds.size()) - 1;
-            v = speed.speeds.back();
-        }
-        // Beyond the paper: at a destination the robot stops, so no speed
-        // whose stopping distance exceeds the path left to it
-        if (!lookingAround && !d.temporaryTarget && d.speedIndex >= 0) {
-            const double left = d.path.length;
-            while (vIndex >= 0 && vIndex + 1 < int(speed.speeds.size()) &&
-                   stoppingDistance(v, world.robot.t_delay, world.robot.decel) > left) {
-                vIndex++;
-                v = speed.speeds[size_t(vIndex)];
-                rec.reason = "goal";
-            }
-        }
-        // the sensed points in the ego frame, when the stopping rule will look
-        std::vector<TPoint2D> sensed;
-        for (const auto& sc : {scans.laser, scans.range2})
-            if (sc && stopRule.options.enabled && v > 0)
-                for (const auto& q : mapping::scanToRobotFrame(*sc))
-                    sensed.emplace_back(
-                        ego.x + std::cos(ego.phi) * q.x - std::sin(ego.phi) * q.y,
-                        ego.y + std::sin(ego.phi) * q.x + std::cos(ego.phi) * q.y);
-        // a robot still faster than speedV (braking from a faster candidate)
-        // stops from the speed it drives, not from the one it is told
-        const double driven = world.speed();
-        auto blocked = [&](double speedV) {
-            return stopRule.options.enabled && speedV > 0 &&
-                   pathBlocked(d.path, sensed, std::max(speedV, driven), world.robot,
-                               stopRule.options.margin, stopRule.options.lateral_margin,
-                               noiseTolerance);
-        };
-        if (blocked(v)) {
-            v = 0;
-            vIndex = -1;
-            if (fixedIndex < 0)
-                for (size_t k = size_t(std::max(0, d.speedIndex)) + 1;
-                     k < speed.speeds.size(); k++)
-                    if (!blocked(speed.speeds[k])) {
-                        v = speed.speeds[k];
-                        vIndex = int(k);
-                        break;
-                    }
-            rec.reason = "obstacle";
-        }
-        rec.commanded = v;
-        // the not-approaching alarm
-        const double toGoal =
-            std::hypot(goalsEgo[dest].x - ego.x, goalsEgo[dest].y - ego.y);
-        if (toGoal < bestToGoal - 0.5) {
-            bestToGoal = toGoal;
-            bestToGoalTime = world.time();
-        }
-        if (explore.not_approaching_timeout > 0 &&
-            world.time() - bestToGoalTime > explore.not_approaching_timeout) {
+    }
+    // the sensed points in the ego frame, when the stopping rule will look
+    std::vector<TPoint2D> sensed;
+    for (const auto& sc : {scans.laser, scans.range2})
+        if (sc && stopRule.options.enabled && v > 0)
+            for (const auto& q : mapping::scanToRobotFrame(*sc))
+                sensed.emplace_back(
+                    ego.x + std::cos(ego.phi) * q.x - std::sin(ego.phi) * q.y,
+                    ego.y + std::sin(ego.phi) * q.x + std::cos(ego.phi) * q.y);
+    // a robot still faster than speedV (braking from a faster candidate)
+    // stops from the speed it drives, not from the one it is told
+    const double driven = world.speed();
+    auto blocked = [&](double speedV) {
+        return stopRule.options.enabled && speedV > 0 &&
+               pathBlocked(d.path, sensed, std::max(speedV, driven), world.robot,
+                           stopRule.options.margin, stopRule.options.lateral_margin,
+                           noiseTolerance);
+    };
+    if (blocked(v)) {
+        v = 0;
+        vIndex = -1;
+        if (fixedIndex < 0)
+            for (size_t k = size_t(std::max(0, d.speedIndex)) + 1;
+                 k < speed.speeds.size(); k++)
+                if (!blocked(speed.speeds[k])) {
+                    v = speed.speeds[k];
+                    vIndex = int(k);
+                    break;
+                }
+        rec.reason = "obstacle";
+    }
+}
+
+void CExplorer::TModeRun::watchApproach(const TPose2D& ego) {
+    const auto& explore = ex.explore;
+    // the not-approaching alarm
+    const double toGoal = std::hypot(goalsEgo[dest].x - ego.x, goalsEgo[dest].y - ego.y);
+    if (toGoal < bestToGoal - 0.5) {
+        bestToGoal = toGoal;
+        bestToGoalTime = world.time();
+    }
+    if (explore.not_approaching_timeout > 0 &&
+        world.time() - bestToGoalTime > explore.not_approaching_timeout) {
+        nextDestination("unreachable");
+    } else if (d.reason == TSpeedReason::Unreachable && !lookingAround) {
+        if (unreachableSince < 0)
+            unreachableSince = world.time();
+        else if (world.time() - unreachableSince >= explore.unreachable_after)
             nextDestination("unreachable");
-        } else if (d.reason == TSpeedReason::Unreachable && !lookingAround) {
-            if (unreachableSince < 0)
-                unreachableSince = world.time();
-            else if (world.time() - unreachableSince >= explore.unreachable_after)
-                nextDestination("unreachable");
-        } else {
-            unreachableSince = -1;
-        }
-        r.marginBrokenCycles += d.marginBroken ? 1 : 0;
-        r.cycles.push_back(rec);
-        r.observations.push_back(rec.truePose);
-        if (fixedIndex < 0 && (d.speedIndex != lastSpeedIndex || cycle < 3) &&
-            int(r.snapshots.size()) < explore.max_snapshots) {
-            TSnapshot s;
-            s.cycle = cycle;
-            s.field = field;
-            s.decision = d;
-            s.egoPose = ego;
-            r.snapshots.push_back(std::move(s));
-        }
-        lastSpeedIndex = d.speedIndex;
-        return true;
-    };
-    // drive the cycle
-    loop.command = [&] {
-        double wc = 0;
-        std::tie(vc, wc) = lookingAround ? std::pair<double, double>(0.0, lookAroundW)
-                                         : follow(d.path, pipeline.field(), egoPose(), v,
-                                                  world.robot.max_w_deg * M_PI / 180,
-                                                  world.robot.radius);
-        world.command(vc, wc);
-    };
-    loop.stepped = [&] {
-        if (vc <= 0)
-            r.timeStopped += dt;
-        else if (vIndex >= 0)
-            r.timeAtSpeed[size_t(vIndex)] += dt;
-    };
-    loop.cycleEnd = [&] {
-        r.distance = loop.travelled();
-        if (progress)
-            progress(world.time());
-    };
-    loop.run();
+    } else {
+        unreachableSince = -1;
+    }
+}
+
+// drive the cycle
+void CExplorer::TModeRun::onSubStep(int, int) {
+    double wc = 0;
+    std::tie(vc, wc) =
+        lookingAround ? std::pair<double, double>(0.0, lookAroundW)
+                      : follow(d.path, pipeline.field(), ex.egoPose(), v,
+                               world.robot.max_w_deg * M_PI / 180, world.robot.radius);
+    world.command(vc, wc);
+}
+
+void CExplorer::TModeRun::onStepped(int, int, const TPose2D&) {
+    if (vc <= 0)
+        r.timeStopped += options.sim_dt;
+    else if (vIndex >= 0)
+        r.timeAtSpeed[size_t(vIndex)] += options.sim_dt;
+}
+
+void CExplorer::TModeRun::onCycleEnd(int) {
+    r.distance = travelled();
+    if (progress)
+        progress(world.time());
+}
+
+TModeResult CExplorer::runMode(int fixedIndex,
+                               const std::function<void(double)>& progress) {
+    const TPose2D start(explore.start[0], explore.start[1],
+                        explore.start[2] * M_PI / 180);
+    world.reset(start, explore.seed);
+    m_localizer.reset();
+    if (explore.ego_motion == "scan_matching")
+        m_localizer.emplace(scanMatch);
+    const double T = speed.cycle_time;
+    const TPose2D ego0 = egoPose();
+    const int steps = std::max(1, int(std::lround(T / explore.sim_dt)));
+    sim::CClosedLoop::TOptions lo;
+    lo.sim_dt = T / steps;
+    lo.steps_per_cycle = steps;
+    TModeRun m(*this, lo, fixedIndex, progress, start, ego0);
+    m.run();
+    TModeResult& r = m.r;
     r.time = world.time();
-    r.collisions = loop.safety.collisions();
-    r.collisionsStatic = loop.safety.collisionsStatic();
-    r.nearMisses = loop.safety.nearMisses();
-    r.minClearance = loop.safety.minGapStatic();
+    r.collisions = m.safety.collisions();
+    r.collisionsStatic = m.safety.collisionsStatic();
+    r.nearMisses = m.safety.nearMisses();
+    r.minClearance = m.safety.minGapStatic();
     if (m_localizer) {
         r.localization = m_localizer->stats();
         r.localizationMapPoints = m_localizer->map().size();
     }
-    return r;
+    return std::move(m.r);
 }
 }  // namespace risknav::speed

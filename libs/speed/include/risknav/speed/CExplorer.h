@@ -191,6 +191,7 @@ class CExplorer {
     double memorySize() const;
 
   private:
+    struct TModeRun;  // one mode's run on the closed loop (runMode())
     /** The pose the robot moves its maps by and steers with (the ego frame):
      * ground truth, odometry, or the scan matcher's belief moved on by the
      * odometry since its last scan. */
