@@ -1,6 +1,7 @@
 #include <risknav/common/CDeclaredOptions.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace risknav::common {
@@ -30,6 +31,10 @@ std::string numbersText(const std::vector<double>& v) {
 }
 
 const TRange kSeedRange = TRange::closed(0, kMaxSeed);
+
+double toDegrees(double radians) {
+    return radians * 180.0 / M_PI;
+}
 
 std::string rangeText(const TRange& r) {
     // "must be in [1, 1000]" -> "[1, 1000]" (TRange::describe()'s wording)
@@ -65,6 +70,18 @@ class CLoader : public CDeclaredOptions::Visitor {
     void seed(uint64_t& v, const char* key, const char*) override {
         v = uint64_t(readDouble(m_c, m_s, key, double(v), kSeedRange));
     }
+    void text(std::string& v, const char* key, bool, const char*) override {
+        v = readString(m_c, m_s, key, v);
+    }
+    void path(std::string& v, const char* key, bool mustExist, const char*) override {
+        // an empty value is "none": only a given path must exist
+        v = readPath(m_c, m_s, key, v,
+                     mustExist && !readString(m_c, m_s, key, v).empty());
+    }
+    void degrees(double& radians, const char* key, const TRange& rangeDeg,
+                 const char*) override {
+        radians = readDegrees(m_c, m_s, key, radians, rangeDeg);
+    }
 
   private:
     const CConfigFileBase& m_c;
@@ -97,6 +114,16 @@ class CSaver : public CDeclaredOptions::Visitor {
     }
     void seed(uint64_t& v, const char* key, const char* doc) override {
         put(key, numberText(double(v)), doc, rangeText(kSeedRange));
+    }
+    void text(std::string& v, const char* key, bool, const char* doc) override {
+        put(key, v, doc, "text");
+    }
+    void path(std::string& v, const char* key, bool, const char* doc) override {
+        put(key, v, doc, "a file path");
+    }
+    void degrees(double& radians, const char* key, const TRange& rangeDeg,
+                 const char* doc) override {
+        put(key, numberText(toDegrees(radians)), doc, rangeText(rangeDeg));
     }
 
   private:
@@ -140,6 +167,14 @@ class CChecker : public CDeclaredOptions::Visitor {
     void seed(uint64_t& v, const char* key, const char*) override {
         checkKey(m_s, key, double(v), kSeedRange);
     }
+    void text(std::string& v, const char* key, bool nonEmpty, const char*) override {
+        checkRule(!nonEmpty || !v.empty(), m_s, key, v, "must not be empty");
+    }
+    void path(std::string&, const char*, bool, const char*) override {}
+    void degrees(double& radians, const char* key, const TRange& rangeDeg,
+                 const char*) override {
+        checkKey(m_s, key, toDegrees(radians), rangeDeg);
+    }
 
   private:
     const std::string& m_s;
@@ -171,6 +206,16 @@ class CLister : public CDeclaredOptions::Visitor {
     }
     void seed(uint64_t& v, const char* key, const char* doc) override {
         keys.push_back({key, doc, rangeText(kSeedRange), numberText(double(v))});
+    }
+    void text(std::string& v, const char* key, bool, const char* doc) override {
+        keys.push_back({key, doc, "text", v});
+    }
+    void path(std::string& v, const char* key, bool, const char* doc) override {
+        keys.push_back({key, doc, "a file path", v});
+    }
+    void degrees(double& radians, const char* key, const TRange& rangeDeg,
+                 const char* doc) override {
+        keys.push_back({key, doc, rangeText(rangeDeg), numberText(toDegrees(radians))});
     }
 };
 }  // namespace

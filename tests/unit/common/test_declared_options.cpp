@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace risknav::common;
 
 namespace {
@@ -91,4 +93,53 @@ TEST(CDeclaredOptions, ListsEveryKeyWithItsDocRangeAndValue) {
     EXPECT_EQ(keys[0].range, "[0, 5] m/s");
     EXPECT_EQ(keys[0].defaultText, "0.5");
     EXPECT_EQ(keys[2].range, "true | false");
+}
+
+namespace {
+struct TKindsOptions : public CDeclaredOptions {
+    TKindsOptions() { section = "Kinds"; }
+    std::string label = "LASER";
+    std::string file;
+    double fov = M_PI;  // [rad]
+
+  protected:
+    void declare(Visitor& v) override {
+        v.text(label, "label", true, "the sensor's label");
+        v.path(file, "file", true, "a map file ('' = none)");
+        v.degrees(fov, "fov_deg", TRange::closed(1, 360, "deg"), "field of view");
+    }
+};
+}  // namespace
+
+// Text, paths and angles: degrees in the file, radians in the struct; an
+// empty label refused; a given path that is not there refused, none allowed.
+TEST(CDeclaredOptions, TextPathsAndDegrees) {
+    TKindsOptions o;
+    mrpt::config::CConfigFileMemory c("[Kinds]\nlabel = FRONT\nfov_deg = 90\n");
+    o.loadFromConfigFile(c, "Kinds");
+    EXPECT_EQ(o.label, "FRONT");
+    EXPECT_NEAR(o.fov, M_PI / 2, 1e-12);
+    EXPECT_EQ(o.file, "");
+    o.validate();
+    mrpt::config::CConfigFileMemory saved;
+    o.saveToConfigFile(saved, "Kinds");
+    EXPECT_NE(saved.getContent().find("field of view, [1, 360] deg"), std::string::npos)
+        << saved.getContent();
+    // (as text: MRPT keeps a padded name in memory)
+    const mrpt::config::CConfigFileMemory text(saved.getContent());
+    EXPECT_EQ(text.read_string("Kinds", "fov_deg", ""), "90");
+    const auto keys = o.keys();
+    ASSERT_EQ(keys.size(), 3u);
+    EXPECT_EQ(keys[2].defaultText, "90");
+    EXPECT_EQ(keys[1].range, "a file path");
+
+    o.fov = 2 * M_PI + 0.1;
+    EXPECT_THROW(o.validate(), std::exception);
+    o.fov = 1;
+    o.label = "";
+    EXPECT_THROW(o.validate(), std::exception);
+
+    mrpt::config::CConfigFileMemory missing("[Kinds]\nfile = /nonexistent/map.png\n");
+    TKindsOptions p;
+    EXPECT_THROW(p.loadFromConfigFile(missing, "Kinds"), CBadInputError);
 }

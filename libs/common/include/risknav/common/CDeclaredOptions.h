@@ -38,6 +38,18 @@ class CDeclaredOptions : public CValidatedOptions {
                            const std::vector<std::string>& allowed, const char* doc) = 0;
         /** A random seed, [0, 2^53] (exact as a double: kMaxSeed). */
         virtual void seed(uint64_t& v, const char* key, const char* doc) = 0;
+        /** Free text (a label); `nonEmpty`: "" is refused. */
+        virtual void text(std::string& v, const char* key, bool nonEmpty,
+                          const char* doc) = 0;
+        /** A file path, relative to the config file's folder (readPath());
+         * `mustExist`: the file must be there when the key is given ("" =
+         * none, unless a rule demands one). */
+        virtual void path(std::string& v, const char* key, bool mustExist,
+                          const char* doc) = 0;
+        /** An angle held in radians (MRPT's convention), written and ranged
+         * in degrees in the file (a key named *_deg or MRPT's own). */
+        virtual void degrees(double& radians, const char* key, const TRange& rangeDeg,
+                             const char* doc) = 0;
     };
 
     /** One declared key, as the documentation check lists it. */
