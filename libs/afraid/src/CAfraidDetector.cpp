@@ -17,38 +17,22 @@ namespace {
 constexpr double kSameHeading = 15 * M_PI / 180;
 }  // namespace
 
-void CAfraidDetector::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                                   const std::string& s) {
-    beta = readDouble(c, s, "beta", beta);
-    lateral_margin = readDouble(c, s, "lateral_margin", lateral_margin);
-    foot_step = readInt(c, s, "foot_step", foot_step);
-    diff_threshold = readDouble(c, s, "diff_threshold", diff_threshold);
-    directions = readInt(c, s, "directions", directions);
-    unexpected_margin = readDouble(c, s, "unexpected_margin", unexpected_margin);
-    explain_sigmas = readDouble(c, s, "explain_sigmas", explain_sigmas);
-}
-
-void CAfraidDetector::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                                 const std::string& s) const {
-    writeKey(c, s, "beta", beta);
-    writeKey(c, s, "lateral_margin", lateral_margin);
-    writeKey(c, s, "foot_step", foot_step);
-    writeKey(c, s, "diff_threshold", diff_threshold);
-    writeKey(c, s, "directions", directions);
-    writeKey(c, s, "unexpected_margin", unexpected_margin);
-    writeKey(c, s, "explain_sigmas", explain_sigmas);
-}
-
-void CAfraidDetector::TOptions::validate() const {
-    const std::string s = "AfraidDetector";
-    checkKey(s, "beta", beta, TRange::closed(0, 10, "m"));
-    checkKey(s, "lateral_margin", lateral_margin, TRange::closed(0, 5, "m"));
-    checkKey(s, "foot_step", foot_step, TRange::closed(1, 1000));
-    checkKey(s, "diff_threshold", diff_threshold,
-             TRange::closed(0, 1, "(a fraction of the collision-possible area)"));
-    checkKey(s, "directions", directions, TRange::closed(3, 3601));
-    checkKey(s, "unexpected_margin", unexpected_margin, TRange::closed(0, 5, "m"));
-    checkKey(s, "explain_sigmas", explain_sigmas, TRange::closed(0, 10));
+void CAfraidDetector::TOptions::declare(Visitor& v) {
+    v.number(beta, "beta", TRange::closed(0, 10, "m"), "marginal distance of eq. (5)");
+    v.number(lateral_margin, "lateral_margin", TRange::closed(0, 5, "m"),
+             "the area's half-width = [Robot] radius + this");
+    v.integer(foot_step, "foot_step", TRange::closed(1, 1000),
+              "cycles of eq. (6): an unexpected obstacle seen this recently is tracked");
+    v.number(diff_threshold, "diff_threshold",
+             TRange::closed(0, 1, "(a fraction of the collision-possible area)"),
+             "eq. (11): |E_area - A_area| as a fraction of the whole area");
+    v.integer(directions, "directions", TRange::closed(3, 3601),
+              "directions over the forward half-plane in eq. (9)");
+    v.number(unexpected_margin, "unexpected_margin", TRange::closed(0, 5, "m"),
+             "a scan point this close to a map obstacle is the map's, even from a "
+             "perfect pose");
+    v.number(explain_sigmas, "explain_sigmas", TRange::closed(0, 10),
+             "pose standard deviations that still explain a point's offset");
 }
 
 void CAfraidDetector::loadFromConfigFile(const mrpt::config::CConfigFileBase& c) {

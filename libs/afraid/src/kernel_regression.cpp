@@ -11,25 +11,13 @@
 using namespace risknav::common;
 
 namespace risknav::afraid {
-void TKrrOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                     const std::string& s) {
-    section = s;
-    bandwidth = readDouble(c, s, "kernel_bandwidth", bandwidth);
-    lambda = readDouble(c, s, "kernel_lambda", lambda);
-    cutoff = readDouble(c, s, "kernel_cutoff", cutoff);
-}
-
-void TKrrOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                   const std::string& s) const {
-    writeKey(c, s, "kernel_bandwidth", bandwidth);
-    writeKey(c, s, "kernel_lambda", lambda);
-    writeKey(c, s, "kernel_cutoff", cutoff);
-}
-
-void TKrrOptions::validate() const {
-    checkKey(section, "kernel_bandwidth", bandwidth, TRange::closed(0.01, 100, "m"));
-    checkKey(section, "kernel_lambda", lambda, {0, 1e6, true, false, ""});
-    checkKey(section, "kernel_cutoff", cutoff, TRange::closed(1, 10, "bandwidths"));
+void TKrrOptions::declare(Visitor& v) {
+    v.number(bandwidth, "kernel_bandwidth", TRange::closed(0.01, 100, "m"),
+             "Gaussian kernel h");
+    v.number(lambda, "kernel_lambda", TRange{0, 1e6, true, false, ""},
+             "ridge regularization");
+    v.number(cutoff, "kernel_cutoff", TRange::closed(1, 10, "bandwidths"),
+             "the kernel is cut here (sparse solve)");
 }
 
 namespace {

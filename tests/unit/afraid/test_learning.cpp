@@ -1,3 +1,4 @@
+#include <risknav/afraid/CAfraidDetector.h>
 #include <risknav/afraid/CAfraidGrid.h>
 #include <risknav/afraid/CAfraidLearner.h>
 #include <risknav/afraid/afraid_zones.h>
@@ -241,4 +242,31 @@ TEST(GroundTruthReader, ReadsSimulatorLinesAndNamesTheFirstBadLine) {
                 << e.what() << " for " << text;
         }
     }
+}
+
+namespace {
+/** Every key `o` declares is in `section` of the documented config, with a
+ * doc, and where the file gives the default, as the struct writes it. */
+void expectDocumented(const risknav::common::CDeclaredOptions& o,
+                      const std::string& section, size_t count) {
+    mrpt::config::CConfigFileMemory doc(risknav::test::readFile(
+        risknav::test::sourcePath("config/risknav-afraid-learn.ini")));
+    const auto keys = o.keys();
+    ASSERT_EQ(keys.size(), count);
+    for (const auto& k : keys) {
+        ASSERT_TRUE(doc.keyExists(section, k.key)) << k.key;
+        EXPECT_FALSE(k.doc.empty()) << k.key;
+        const std::string v = doc.read_string(section, k.key, "");
+        EXPECT_EQ(v.substr(0, v.find_first_of(" \t/")), k.defaultText) << k.key;
+    }
+}
+}  // namespace
+
+TEST(TKrrOptions, TheDocumentedConfigHoldsEveryDeclaredKeyWithItsDefault) {
+    // the kernel keys live in the host's section ([AfraidLearn] here)
+    expectDocumented(TKrrOptions(), "AfraidLearn", 3);
+}
+
+TEST(CAfraidDetectorOptions, TheDocumentedConfigHoldsEveryDeclaredKeyWithItsDefault) {
+    expectDocumented(CAfraidDetector::TOptions(), "AfraidDetector", 7);
 }

@@ -1,6 +1,6 @@
 #pragma once
 #include <risknav/afraid/afraid_functions.h>
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/common/TRobotOptions.h>
 #include <risknav/mapping/CDistanceField.h>
 
@@ -55,7 +55,8 @@ struct TAfraidStep {
 class CAfraidDetector {
   public:
     /** The [AfraidDetector] keys. */
-    struct TOptions : public common::CValidatedOptions {
+    struct TOptions : public common::CDeclaredOptions {
+        TOptions() { section = "AfraidDetector"; }
         double beta = 0.4;  ///< [m] marginal distance of eq. (5)
         /** [m] the collision area's half-width = robot radius + this. */
         double lateral_margin = 0.1;
@@ -69,11 +70,8 @@ class CAfraidDetector {
         /** Pose standard deviations that still explain a point's offset. */
         double explain_sigmas = 3.0;
 
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& section) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& section) const override;
-        void validate() const override;
+      protected:
+        void declare(Visitor& v) override;
     };
 
     TOptions options;             ///< [AfraidDetector]

@@ -1,5 +1,5 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 
 #include <string>
 #include <vector>
@@ -17,18 +17,18 @@ namespace risknav::afraid {
  *
  * Config keys kernel_bandwidth, kernel_lambda, kernel_cutoff in the host
  * section (e.g. [AfraidLearn]); the CG tolerance is not configurable. */
-struct TKrrOptions : public common::CValidatedOptions {
+struct TKrrOptions : public common::CDeclaredOptions {
+    /** The host section (for messages) until loaded from one. */
+    TKrrOptions() { section = "AfraidLearn"; }
+
     double bandwidth = 0.5;  ///< h [m]
     double lambda = 0.5;     ///< ridge regularization
     double cutoff = 4.0;     ///< kernel support, in bandwidths
     double tolerance = 1e-10;
-    std::string section = "AfraidLearn";  ///< the host section (for messages)
 
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& section) override;
-    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                          const std::string& section) const override;
-    void validate() const override;
+    /** Public: the host sections' structs declare these keys among theirs
+     * (CAfraidSpeedLimiter::TOptions). */
+    void declare(Visitor& v) override;
 };
 
 struct TKrrSample {
