@@ -6,52 +6,30 @@
 using namespace risknav::common;
 
 namespace risknav::localization {
-void TLostDetectionOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                               const std::string& s) {
-    section = s;
-    fit_distance = readDouble(c, s, "fit_distance", fit_distance);
-    min_fit = readDouble(c, s, "min_fit", min_fit);
-    max_range = readDouble(c, s, "max_range", max_range);
-    min_points = readInt(c, s, "min_points", min_points);
-    max_spread_xy = readDouble(c, s, "max_spread_xy", max_spread_xy);
-    max_spread_phi_deg = readDouble(c, s, "max_spread_phi_deg", max_spread_phi_deg);
-    lost_after = readInt(c, s, "lost_after", lost_after);
-    converge_checks = readInt(c, s, "converge_checks", converge_checks);
-    recovery_xy = readDouble(c, s, "recovery_xy", recovery_xy);
-    recovery_phi_deg = readDouble(c, s, "recovery_phi_deg", recovery_phi_deg);
-    recovery_particles = readInt(c, s, "recovery_particles", recovery_particles);
-}
-
-void TLostDetectionOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                             const std::string& s) const {
-    writeKey(c, s, "fit_distance", fit_distance);
-    writeKey(c, s, "min_fit", min_fit);
-    writeKey(c, s, "max_range", max_range);
-    writeKey(c, s, "min_points", min_points);
-    writeKey(c, s, "max_spread_xy", max_spread_xy);
-    writeKey(c, s, "max_spread_phi_deg", max_spread_phi_deg);
-    writeKey(c, s, "lost_after", lost_after);
-    writeKey(c, s, "converge_checks", converge_checks);
-    writeKey(c, s, "recovery_xy", recovery_xy);
-    writeKey(c, s, "recovery_phi_deg", recovery_phi_deg);
-    writeKey(c, s, "recovery_particles", recovery_particles);
-}
-
-void TLostDetectionOptions::validate() const {
-    const std::string& s = section;
-    checkKey(s, "fit_distance", fit_distance, TRange{0, 10, true, false, "m"});
-    checkKey(s, "min_fit", min_fit, TRange::closed(0, 1));
-    checkKey(s, "max_range", max_range, TRange::closed(0, 1000, "m"));
-    checkKey(s, "min_points", double(min_points), TRange::closed(1, 100000));
-    checkKey(s, "max_spread_xy", max_spread_xy, TRange{0, 1e6, true, false, "m"});
-    checkKey(s, "max_spread_phi_deg", max_spread_phi_deg,
-             TRange{0, 360, true, false, "deg"});
-    checkKey(s, "lost_after", double(lost_after), TRange::closed(1, 100000));
-    checkKey(s, "converge_checks", double(converge_checks), TRange::closed(1, 100000));
-    checkKey(s, "recovery_xy", recovery_xy, TRange{0, 1e6, true, false, "m"});
-    checkKey(s, "recovery_phi_deg", recovery_phi_deg, TRange::closed(0, 180, "deg"));
-    checkKey(s, "recovery_particles", double(recovery_particles),
-             TRange::closed(10, 1000000));
+void TLostDetectionOptions::declare(Visitor& v) {
+    // the *_deg keys are held in degrees (they are compared, not turned by)
+    v.number(fit_distance, "fit_distance", TRange{0, 10, true, false, "m"},
+             "a scan point within this of a map obstacle fits the map");
+    v.number(min_fit, "min_fit", TRange::closed(0, 1),
+             "fraction of the scan's points that must fit at the mean pose");
+    v.number(max_range, "max_range", TRange::closed(0, 1000, "m"),
+             "returns farther than this are not counted (0 = every range)");
+    v.integer(min_points, "min_points", TRange::closed(1, 100000),
+              "fewer points within max_range and the fit is not judged");
+    v.number(max_spread_xy, "max_spread_xy", TRange{0, 1e6, true, false, "m"},
+             "particles' position spread above which the filter has no estimate");
+    v.number(max_spread_phi_deg, "max_spread_phi_deg", TRange{0, 360, true, false, "deg"},
+             "the same for the heading's standard deviation");
+    v.integer(lost_after, "lost_after", TRange::closed(1, 100000),
+              "consecutive failed checks that make the filter lost");
+    v.integer(converge_checks, "converge_checks", TRange::closed(1, 100000),
+              "checks a new or re-spread filter may take to converge");
+    v.number(recovery_xy, "recovery_xy", TRange{0, 1e6, true, false, "m"},
+             "recover(): half-width of the box the particles are re-spread over");
+    v.number(recovery_phi_deg, "recovery_phi_deg", TRange::closed(0, 180, "deg"),
+             "recover(): heading half-range");
+    v.integer(recovery_particles, "recovery_particles", TRange::closed(10, 1000000),
+              "recover(): particles drawn");
 }
 
 TLocalizationCheck judgeLocalization(const TScanFit& fit, double spreadXY,

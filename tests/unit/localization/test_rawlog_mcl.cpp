@@ -11,6 +11,10 @@
 #include <cmath>
 #include <functional>
 #include <iostream>
+#include <map>
+#include <sstream>
+
+#include "test_support.h"
 
 using namespace risknav::localization;
 using risknav::common::CConfigKeyError;
@@ -415,4 +419,33 @@ TEST(LostDetection, MrptLocalizationDemoStartedThreeMetresOffIsLost) {
     EXPECT_LE(across, CRawlogMcl().lostOptions.lost_after);
     const int along = lostAt(3, 0, "east");
     EXPECT_GE(along, 0);  // before the log ends
+}
+
+TEST(LostDetection, TheDocumentedConfigHoldsEveryDeclaredKeyWithItsDefault) {
+    // config/risknav-navigate.ini documents [LostLocalization] commented out
+    // (the section is refused unless localization = mcl): "; key = value"
+    // lines from "; [LostLocalization]" to the blank line
+    std::map<std::string, std::string> documented;
+    bool in = false;
+    for (const auto& line : risknav::test::readLines(
+             risknav::test::sourcePath("config/risknav-navigate.ini"))) {
+        if (line.rfind("; [LostLocalization]", 0) == 0)
+            in = true;
+        else if (in && line.rfind("; ", 0) != 0)
+            break;
+        else if (in && line.find('=') != std::string::npos) {
+            std::istringstream l(line.substr(2));
+            std::string key, eq, value;
+            l >> key >> eq >> value;
+            documented[key] = value;
+        }
+    }
+    const auto keys = TLostDetectionOptions().keys();
+    ASSERT_EQ(keys.size(), 11u);
+    EXPECT_EQ(documented.size(), keys.size());
+    for (const auto& k : keys) {
+        ASSERT_TRUE(documented.count(k.key)) << k.key;
+        EXPECT_FALSE(k.doc.empty()) << k.key;
+        EXPECT_EQ(documented[k.key], k.defaultText) << k.key;
+    }
 }

@@ -1,5 +1,5 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/localization/scan_fit.h>
 
 #include <string>
@@ -21,7 +21,10 @@ namespace risknav::localization {
  * featureless corridor keeps most scan points on its walls, which no
  * scan-fit threshold can see until the corridor's ends or doors come into
  * view. */
-struct TLostDetectionOptions : public common::CValidatedOptions {
+struct TLostDetectionOptions : public common::CDeclaredOptions {
+    /** risknav-navigate's section; a host loads it from the one it chooses. */
+    TLostDetectionOptions() { section = "LostLocalization"; }
+
     /** [m] a scan point within this of a map obstacle (and not deeper than
      * this inside one) fits the map (scanMapFit()). */
     double fit_distance = 0.25;
@@ -67,13 +70,9 @@ struct TLostDetectionOptions : public common::CValidatedOptions {
      * documents (kMinParticlesPerBin = 0.1) with the initial set's margin.
      * 5000 (0.09 per bin) was below even that bound. */
     int recovery_particles = 20000;
-    std::string section = "LostLocalization";  ///< the host section (for messages)
 
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& section) override;
-    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                          const std::string& section) const override;
-    void validate() const override;
+  protected:
+    void declare(Visitor& v) override;
 };
 
 /** One check of a particle filter's state against the last scan. */
