@@ -43,33 +43,22 @@ namespace fs = std::filesystem;
 using mrpt::maps::COccupancyGridMap2D;
 
 namespace risknav::common {
-void TMapSourceOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                           const std::string& s) {
-    section = s;
-    map_file = readPath(c, s, "map_file", map_file, true);
-    map_resolution = readDouble(c, s, "map_resolution", map_resolution);
-    map_origin_x = readDouble(c, s, "map_origin_x", map_origin_x);
-    map_origin_y = readDouble(c, s, "map_origin_y", map_origin_y);
-    simplemap_resolution = readDouble(c, s, "simplemap_resolution", simplemap_resolution);
-}
-
-void TMapSourceOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                         const std::string& s) const {
-    writeKey(c, s, "map_file", map_file);
-    writeKey(c, s, "map_resolution", map_resolution);
-    writeKey(c, s, "map_origin_x", map_origin_x);
-    writeKey(c, s, "map_origin_y", map_origin_y);
-    writeKey(c, s, "simplemap_resolution", simplemap_resolution);
-}
-
-void TMapSourceOptions::validate() const {
-    checkRule(!map_file.empty(), section, "map_file", map_file, "required");
-    checkKey(section, "map_resolution", map_resolution, TRange::closed(0.001, 10, "m"));
+void TMapSourceOptions::declare(Visitor& v) {
+    v.path(map_file, "map_file", true,
+           "the static map: .png/.pgm/.bmp, .gridmap(.gz), ROS .yaml or .simplemap(.gz)");
+    v.number(map_resolution, "map_resolution", TRange::closed(0.001, 10, "m"),
+             "a bitmap's pixel side");
     // Beyond a million metres MRPT's grid index arithmetic loses its cells.
-    checkKey(section, "map_origin_x", map_origin_x, TRange::closed(-1e6, 1e6, "m"));
-    checkKey(section, "map_origin_y", map_origin_y, TRange::closed(-1e6, 1e6, "m"));
-    checkKey(section, "simplemap_resolution", simplemap_resolution,
-             TRange::closed(0.001, 10, "m"));
+    v.number(map_origin_x, "map_origin_x", TRange::closed(-1e6, 1e6, "m"),
+             "world x of a bitmap's lower-left corner");
+    v.number(map_origin_y, "map_origin_y", TRange::closed(-1e6, 1e6, "m"),
+             "world y of a bitmap's lower-left corner");
+    v.number(simplemap_resolution, "simplemap_resolution", TRange::closed(0.001, 10, "m"),
+             "cell of a grid built from a .simplemap");
+}
+
+void TMapSourceOptions::validateRules() const {
+    checkRule(!map_file.empty(), section, "map_file", map_file, "required");
 }
 
 namespace grid_readers {

@@ -1,5 +1,5 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/common/diff_drive.h>
 
 #include <string>
@@ -10,8 +10,10 @@ namespace risknav::common {
  * errors, and how the errors behave (Irie et al. (001) section 4; PAPER_NOTES
  * M2): `systematic` (drawn once: constant biases of a real robot, the
  * default), `per_step` (fresh every step: the paper's eq. 15) or `none`.
- * Apps may read further keys of their own from the same section. */
-struct TOdometryOptions : public CValidatedOptions {
+ * Apps may read further keys of their own from the same section. Every key,
+ * its range and its doc are declared once, in declare(). */
+struct TOdometryOptions : public CDeclaredOptions {
+    TOdometryOptions() { section = "Odometry"; }
     double wheel_radius_l = 0.063;           ///< [m] nominal
     double wheel_radius_r = 0.063;           ///< [m] nominal
     double tread = 0.399;                    ///< [m] nominal wheel separation
@@ -22,11 +24,10 @@ struct TOdometryOptions : public CValidatedOptions {
 
     TWheelGeometry nominal() const { return {wheel_radius_l, wheel_radius_r, tread}; }
 
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& section) override;
-    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                          const std::string& section) const override;
-    void validate() const override;
+  protected:
+    void declare(Visitor& v) override;
+    /** A 3-sigma error must not flip the sign of a radius or of the tread. */
+    void validateRules() const override;
 };
 
 }  // namespace risknav::common

@@ -1,5 +1,5 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/maps/COccupancyGridMap2D.h>
@@ -8,9 +8,11 @@
 
 namespace risknav::common {
 /** Where a static occupancy map comes from; the `map_*` keys of any app
- * section. PNG/PGM bitmaps need resolution and origin; the other formats
- * carry their own. */
-struct TMapSourceOptions : public CValidatedOptions {
+ * section (`section`: the host section, for messages). PNG/PGM bitmaps need
+ * resolution and origin; the other formats carry their own. Every key, its
+ * range and its doc are declared once, in declare(). */
+struct TMapSourceOptions : public CDeclaredOptions {
+    TMapSourceOptions() { section = "World"; }
     std::string map_file;  ///< .png/.pgm/.bmp, .gridmap(.gz), .yaml (ROS map_server),
                            ///< .simplemap(.gz)
     double map_resolution = 0.05;  ///< [m/px] bitmaps only
@@ -20,14 +22,10 @@ struct TMapSourceOptions : public CValidatedOptions {
     double simplemap_resolution =
         0.05;  ///< [m] cell size when building a grid from a .simplemap
 
-    /** The host section the keys were loaded from (for messages). */
-    std::string section = "World";
-
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& section) override;
-    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                          const std::string& section) const override;
-    void validate() const override;
+  protected:
+    void declare(Visitor& v) override;
+    /** map_file is required. */
+    void validateRules() const override;
 };
 
 /** Loads a grid. Bitmaps: P(free) = grey/255 (white free, black occupied),
