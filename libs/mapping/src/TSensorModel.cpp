@@ -6,35 +6,22 @@
 using namespace risknav::common;
 
 namespace risknav::mapping {
-void TSensorModel::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                      const std::string& s) {
-    section = s;
-    p_obs_given_obstacle = readDouble(c, s, "p_obs_given_obstacle", p_obs_given_obstacle);
-    p_obs_given_free = readDouble(c, s, "p_obs_given_free", p_obs_given_free);
-    range_uncertainty = readDouble(c, s, "range_uncertainty", range_uncertainty);
-    range_uncertainty_quad =
-        readDouble(c, s, "range_uncertainty_quad", range_uncertainty_quad);
+void TSensorModel::declare(Visitor& v) {
+    v.number(p_obs_given_obstacle, "p_obs_given_obstacle", TRange{0, 1, true, true, ""},
+             "P(O|E): a cell with an obstacle reads occupied (> p_obs_given_free)");
+    v.number(p_obs_given_free, "p_obs_given_free", TRange{0, 1, true, true, ""},
+             "P(O|~E): a free cell reads occupied");
+    v.number(range_uncertainty, "range_uncertainty", TRange::closed(0, 5, "m"),
+             "range uncertainty delta at R = 0");
+    v.number(range_uncertainty_quad, "range_uncertainty_quad",
+             TRange::closed(0, 1, "1/m"), "delta grows by this * R^2");
 }
 
-void TSensorModel::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                    const std::string& s) const {
-    writeKey(c, s, "p_obs_given_obstacle", p_obs_given_obstacle);
-    writeKey(c, s, "p_obs_given_free", p_obs_given_free);
-    writeKey(c, s, "range_uncertainty", range_uncertainty);
-    writeKey(c, s, "range_uncertainty_quad", range_uncertainty_quad);
-}
-
-void TSensorModel::validate() const {
-    checkKey(section, "p_obs_given_obstacle", p_obs_given_obstacle,
-             TRange{0, 1, true, true, ""});
-    checkKey(section, "p_obs_given_free", p_obs_given_free, TRange{0, 1, true, true, ""});
+void TSensorModel::validateRules() const {
     checkRule(p_obs_given_obstacle > p_obs_given_free, section, "p_obs_given_obstacle",
               numberText(p_obs_given_obstacle),
               "must be > p_obs_given_free (an occupied reading must be evidence of an "
               "obstacle)");
-    checkKey(section, "range_uncertainty", range_uncertainty, TRange::closed(0, 5, "m"));
-    checkKey(section, "range_uncertainty_quad", range_uncertainty_quad,
-             TRange::closed(0, 1, "1/m"));
 }
 
 int necessaryObservations(const TSensorModel& m, double freeThreshold, double pStart) {

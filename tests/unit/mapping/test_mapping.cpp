@@ -1,8 +1,13 @@
 #include <risknav/common/CBadInputError.h>
+#include <risknav/common/config_read.h>
 #include <risknav/mapping/CDistanceField.h>
+#include <risknav/mapping/TSensorModel.h>
 #include <risknav/mapping/scan_points.h>
 
+#include <mrpt/config/CConfigFileMemory.h>
+
 #include <gtest/gtest.h>
+#include "test_support.h"
 
 #include <cmath>
 #include <limits>
@@ -226,4 +231,35 @@ TEST(DistanceField, DepthInsideObstacles) {
     EXPECT_NEAR(f.depth(13, 5), 0.4, 1e-6);  // its middle
     EXPECT_EQ(f.clearance(13, 5), 0.0);      // inside: no clearance
     EXPECT_EQ(f.depth(-1, 5), 0.0);          // off the map
+}
+
+TEST(SensorModel, TheExploreConfigDocumentsEveryDeclaredKey) {
+    // config/risknav-explore.ini documents both sensor models key by key,
+    // [MapRange2] with the struct's defaults (the stereo-like sensor's) but
+    // its range_uncertainty_quad
+    const mrpt::config::CConfigFileMemory doc(
+        risknav::test::readFile(risknav::test::sourcePath("config/risknav-explore.ini")));
+    const auto keys = TSensorModel().keys();
+    ASSERT_EQ(keys.size(), 4u);
+    for (const auto& k : keys) {
+        EXPECT_FALSE(k.doc.empty()) << k.key;
+        EXPECT_TRUE(doc.keyExists("MapLaser", k.key)) << k.key;
+        ASSERT_TRUE(doc.keyExists("MapRange2", k.key)) << k.key;
+        if (k.key == "range_uncertainty_quad")
+            continue;
+        std::string v = doc.read_string("MapRange2", k.key, "");
+        v = v.substr(0, v.find_first_of(" \t/"));
+        EXPECT_EQ(v, k.defaultText) << k.key;
+    }
+    // the rule across keys stays, after the ranges
+    TSensorModel m;
+    m.loadFromConfigFile(doc, "MapLaser");
+    m.p_obs_given_free = 0.8;
+    try {
+        m.validate();
+        FAIL() << "no error";
+    } catch (const risknav::common::CConfigKeyError& e) {
+        EXPECT_EQ(e.section, "MapLaser");
+        EXPECT_EQ(e.key, "p_obs_given_obstacle");
+    }
 }

@@ -1,5 +1,5 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 
 #include <string>
 
@@ -14,13 +14,14 @@ namespace risknav::mapping {
  *    obstacle when unknown_is_obstacle.
  * Cells outside the map are obstacles when outside_is_obstacle (a map without
  * a border wall then still bounds the robot). The keys live in the section
- * that names the map (e.g. [World], [RiskEval], [AfraidLearn]). */
-struct TObstacleRule : public common::CValidatedOptions {
+ * that names the map (e.g. [World], [RiskEval], [AfraidLearn]). Every key,
+ * its range and its doc are declared once, in declare(). */
+struct TObstacleRule : public common::CDeclaredOptions {
+    TObstacleRule() { section = "World"; }
     double occupied_threshold = 0.65;  ///< occupancy >= this: obstacle
     double free_threshold = 0.35;      ///< occupancy <= this: free; between: unknown
     bool unknown_is_obstacle = true;
     bool outside_is_obstacle = true;
-    std::string section = "World";  ///< the host section (for messages)
 
     /** The rule for one cell value (MRPT's P(free) in [0, 1]): the one
      * function that makes a cell a wall for the collisions, the clearances
@@ -30,11 +31,10 @@ struct TObstacleRule : public common::CValidatedOptions {
         return occ >= occupied_threshold || (unknown_is_obstacle && occ > free_threshold);
     }
 
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& section) override;
-    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                          const std::string& section) const override;
-    void validate() const override;
+  protected:
+    void declare(Visitor& v) override;
+    /** free_threshold < occupied_threshold. */
+    void validateRules() const override;
 };
 
 }  // namespace risknav::mapping

@@ -1,5 +1,5 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 
 #include <string>
 
@@ -11,26 +11,25 @@ namespace risknav::mapping {
  * delta(R) = range_uncertainty + range_uncertainty_quad * R^2 (constant for a
  * laser, growing with R^2 for stereo). Section per sensor ([MapLaser],
  * [MapRange2] in risknav-explore). */
-struct TSensorModel : public common::CValidatedOptions {
+struct TSensorModel : public common::CDeclaredOptions {
+    TSensorModel() { section = "MapLaser"; }
     // Defaults: a noisy stereo-like sensor; they give N = 5 (the paper's N).
     double p_obs_given_obstacle =
         0.6;                          ///< P(O|E): a cell with an obstacle reads occupied
     double p_obs_given_free = 0.45;   ///< P(O|~E): a free cell reads occupied
     double range_uncertainty = 0.05;  ///< [m] delta at R = 0
     double range_uncertainty_quad = 0;  ///< [1/m] delta grows by this * R^2
-    std::string section = "MapLaser";   ///< for messages
 
     /** delta(R) [m]. */
     double delta(double range) const {
         return range_uncertainty + range_uncertainty_quad * range * range;
     }
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& section) override;
-    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                          const std::string& section) const override;
-    /** Likelihoods in (0, 1), P(O|E) > P(O|~E) (an occupied reading is
-     * evidence of an obstacle), uncertainties >= 0. */
-    void validate() const override;
+
+  protected:
+    /** Likelihoods in (0, 1), uncertainties >= 0. */
+    void declare(Visitor& v) override;
+    /** P(O|E) > P(O|~E): an occupied reading is evidence of an obstacle. */
+    void validateRules() const override;
 };
 
 /** Bayes update of one cell, (000) section 2 (its display equation for
