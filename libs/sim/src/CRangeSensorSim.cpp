@@ -9,52 +9,22 @@
 using namespace risknav::common;
 
 namespace risknav::sim {
-void CRangeSensorSim::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                                   const std::string& s) {
-    section = s;
-    enabled = readBool(c, s, "enabled", enabled);
-    label = readString(c, s, "label", label);
-    fov_deg = readDouble(c, s, "fov_deg", fov_deg);
-    beams = readInt(c, s, "beams", beams);
-    max_range = readDouble(c, s, "max_range", max_range);
-    noise_std = readDouble(c, s, "noise_std", noise_std);
-    dropout_probability = readDouble(c, s, "dropout_probability", dropout_probability);
-    frame_decimation = readInt(c, s, "frame_decimation", frame_decimation);
-    x = readDouble(c, s, "x", x);
-    y = readDouble(c, s, "y", y);
-    z = readDouble(c, s, "z", z);
-    yaw_deg = readDouble(c, s, "yaw_deg", yaw_deg);
-}
-
-void CRangeSensorSim::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                                 const std::string& s) const {
-    writeKey(c, s, "enabled", enabled);
-    writeKey(c, s, "label", label);
-    writeKey(c, s, "fov_deg", fov_deg);
-    writeKey(c, s, "beams", beams);
-    writeKey(c, s, "max_range", max_range);
-    writeKey(c, s, "noise_std", noise_std);
-    writeKey(c, s, "dropout_probability", dropout_probability);
-    writeKey(c, s, "frame_decimation", frame_decimation);
-    writeKey(c, s, "x", x);
-    writeKey(c, s, "y", y);
-    writeKey(c, s, "z", z);
-    writeKey(c, s, "yaw_deg", yaw_deg);
-}
-
-void CRangeSensorSim::TOptions::validate() const {
-    const std::string& s = section;
-    checkRule(!label.empty(), s, "label", label, "must not be empty");
-    checkKey(s, "fov_deg", fov_deg, {0, 360, true, false, "deg"});
-    checkKey(s, "beams", beams, TRange::closed(2, 10000));
-    checkKey(s, "max_range", max_range, TRange::closed(0.1, 200, "m"));
-    checkKey(s, "noise_std", noise_std, TRange::closed(0, 1, "m"));
-    checkKey(s, "dropout_probability", dropout_probability, {0, 1, false, true, ""});
-    checkKey(s, "frame_decimation", frame_decimation, TRange::closed(1, 1000));
-    checkKey(s, "x", x, TRange::closed(-5, 5, "m"));
-    checkKey(s, "y", y, TRange::closed(-5, 5, "m"));
-    checkKey(s, "z", z, TRange::closed(-5, 5, "m"));
-    checkKey(s, "yaw_deg", yaw_deg, TRange::closed(-180, 180, "deg"));
+void CRangeSensorSim::TOptions::declare(Visitor& v) {
+    v.flag(enabled, "enabled", "the sensor scans");
+    v.text(label, "label", true, "sensorLabel in the rawlog");
+    // degrees as the file has them: the members hold degrees too
+    v.number(fov_deg, "fov_deg", {0, 360, true, false, "deg"}, "field of view");
+    v.integer(beams, "beams", TRange::closed(2, 10000), "rays per scan");
+    v.number(max_range, "max_range", TRange::closed(0.1, 200, "m"), "maximum range");
+    v.number(noise_std, "noise_std", TRange::closed(0, 1, "m"), "Gaussian range noise");
+    v.number(dropout_probability, "dropout_probability", {0, 1, false, true, ""},
+             "chance that a person / clutter disc is missed by a whole scan");
+    v.integer(frame_decimation, "frame_decimation", TRange::closed(1, 1000),
+              "a scan every N-th frame");
+    v.number(x, "x", TRange::closed(-5, 5, "m"), "mounting position on the robot, ahead");
+    v.number(y, "y", TRange::closed(-5, 5, "m"), "mounting position, to the left");
+    v.number(z, "z", TRange::closed(-5, 5, "m"), "mounting height");
+    v.number(yaw_deg, "yaw_deg", TRange::closed(-180, 180, "deg"), "mounting yaw");
 }
 
 mrpt::obs::CObservation2DRangeScan::Ptr CRangeSensorSim::simulate(

@@ -13,26 +13,14 @@ namespace risknav::sim {
 IMPLEMENTS_MRPT_OBJECT(CStoppingDistanceLimiter, risknav::common::CSpeedLimiter,
                        risknav::sim)
 
-void CStoppingDistanceLimiter::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s) {
-    section = s;
-    enabled = readBool(c, s, "enabled", enabled);
-    margin = readDouble(c, s, "margin", margin);
-    lateral_margin = readDouble(c, s, "lateral_margin", lateral_margin);
-    corridor = readChoice(c, s, "corridor", corridor, {"straight", "path", "both"});
-}
-
-void CStoppingDistanceLimiter::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const {
-    writeKey(c, s, "enabled", enabled);
-    writeKey(c, s, "margin", margin);
-    writeKey(c, s, "lateral_margin", lateral_margin);
-    writeKey(c, s, "corridor", corridor);
-}
-
-void CStoppingDistanceLimiter::TOptions::validate() const {
-    checkKey(section, "margin", margin, TRange::closed(0, 10, "m"));
-    checkKey(section, "lateral_margin", lateral_margin, TRange::closed(0, 2, "m"));
+void CStoppingDistanceLimiter::TOptions::declare(Visitor& v) {
+    v.flag(enabled, "enabled", "the safety stop acts");
+    v.number(margin, "margin", TRange::closed(0, 10, "m"), "beta, added to d_stop");
+    v.number(lateral_margin, "lateral_margin", TRange::closed(0, 2, "m"),
+             "swept corridor half-width = radius + this");
+    v.choice(corridor, "corridor", {"straight", "path", "both"},
+             "the swept corridor along the heading, the controller's path, or the "
+             "nearer of the two");
 }
 
 void CStoppingDistanceLimiter::loadConfig(const mrpt::config::CConfigFileBase& c,

@@ -29,45 +29,30 @@ using mrpt::math::TPose2D;
 using nlohmann::json;
 
 namespace risknav::sim {
-void CWorldSimulator::TSimulationOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s) {
-    sim_dt = readDouble(c, s, "sim_dt", sim_dt);
-    frame_rate_hz = readDouble(c, s, "frame_rate_hz", frame_rate_hz);
-    duration_max = readDouble(c, s, "duration_max", duration_max);
-    // The seed is an integer type: its range is a parsing rule.
-    seed = static_cast<uint64_t>(
-        readDouble(c, s, "seed", double(seed), TRange::closed(0, kMaxSeed)));
-    start_time = readDouble(c, s, "start_time", start_time);
-    near_miss_distance = readDouble(c, s, "near_miss_distance", near_miss_distance);
-    relevance_beta = readDouble(c, s, "relevance_beta", relevance_beta);
-    relevance_lateral_margin =
-        readDouble(c, s, "relevance_lateral_margin", relevance_lateral_margin);
+void CWorldSimulator::TSimulationOptions::declare(Visitor& v) {
+    v.number(sim_dt, "sim_dt", TRange::closed(0.001, 0.5, "s"),
+             "physics and control step");
+    v.number(
+        frame_rate_hz, "frame_rate_hz", TRange::closed(0.1, 100, "Hz"),
+        "one rawlog frame (odometry + scans) per period, a whole multiple of sim_dt");
+    v.number(duration_max, "duration_max", TRange::closed(1, 1e6, "s"),
+             "the run stops (status \"timeout\") if the route is not done");
+    v.seed(seed, "seed", "people, sensor noise, odometry errors (--seed overrides)");
+    v.number(start_time, "start_time", TRange::closed(0, 4e9, "s"),
+             "UNIX time of the first frame (reproducible logs)");
+    v.number(near_miss_distance, "near_miss_distance", TRange::closed(0, 5, "m"),
+             "a gap (robot edge to person edge) below this is a near miss");
+    v.number(relevance_beta, "relevance_beta", TRange::closed(0, 10, "m"),
+             "a door pedestrian within d_stop(v) + this ahead of the front is logged "
+             "(enter_corridor)");
+    v.number(relevance_lateral_margin, "relevance_lateral_margin",
+             TRange::closed(0, 5, "m"),
+             "... and within the robot's radius + this to each side of it");
 }
 
-void CWorldSimulator::TSimulationOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const {
-    writeKey(c, s, "sim_dt", sim_dt);
-    writeKey(c, s, "frame_rate_hz", frame_rate_hz);
-    writeKey(c, s, "duration_max", duration_max);
-    writeKey(c, s, "seed", std::to_string(seed));
-    writeKey(c, s, "start_time", start_time);
-    writeKey(c, s, "near_miss_distance", near_miss_distance);
-    writeKey(c, s, "relevance_beta", relevance_beta);
-    writeKey(c, s, "relevance_lateral_margin", relevance_lateral_margin);
-}
-
-void CWorldSimulator::TSimulationOptions::validate() const {
-    const std::string s = "Simulation";
-    checkKey(s, "sim_dt", sim_dt, TRange::closed(0.001, 0.5, "s"));
-    checkKey(s, "frame_rate_hz", frame_rate_hz, TRange::closed(0.1, 100, "Hz"));
-    checkKey(s, "duration_max", duration_max, TRange::closed(1, 1e6, "s"));
-    checkKey(s, "start_time", start_time, TRange::closed(0, 4e9, "s"));
-    checkKey(s, "near_miss_distance", near_miss_distance, TRange::closed(0, 5, "m"));
-    checkKey(s, "relevance_beta", relevance_beta, TRange::closed(0, 10, "m"));
-    checkKey(s, "relevance_lateral_margin", relevance_lateral_margin,
-             TRange::closed(0, 5, "m"));
+void CWorldSimulator::TSimulationOptions::validateRules() const {
     const double ratio = 1.0 / (frame_rate_hz * sim_dt);
-    checkRule(std::abs(ratio - std::round(ratio)) <= 1e-6, s, "sim_dt",
+    checkRule(std::abs(ratio - std::round(ratio)) <= 1e-6, section, "sim_dt",
               numberText(sim_dt),
               "the frame period 1/frame_rate_hz must be a whole multiple of sim_dt");
 }

@@ -1,4 +1,5 @@
 #include <risknav/common/CBadInputError.h>
+#include <risknav/common/config_read.h>
 #include <risknav/common/stopping.h>
 #include <risknav/mapping/scan_points.h>
 #include <risknav/sim/CRawlogWriter.h>
@@ -6,13 +7,17 @@
 #include <risknav/sim/CSimRobotInterface.h>
 #include <risknav/sim/CSimWorld.h>
 #include <risknav/sim/CStoppingDistanceLimiter.h>
+#include <risknav/sim/CWorldSimulator.h>
 
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 
 #include <gtest/gtest.h>
 #include "sim_fixtures.h"
+#include "test_support.h"
 
 #include <cmath>
+#include <set>
 
 using namespace risknav::sim;
 using mrpt::math::TPose2D;
@@ -392,5 +397,126 @@ TEST(SimWorld, LaserAndCollisionsSeeTheSameCells) {
                 ASSERT_EQ(w.rayCastMap().isObstacleAt(f.idx2x(cx), f.idx2y(cy)),
                           f.isObstacle(cx, cy))
                     << cx << ", " << cy;
+    }
+}
+
+// config/risknav-simulate.ini documents every key the declared options read,
+// under its section, with the value the app runs with by default (where it
+// does not set another on purpose): the declarations are the one place the
+// keys are named.
+namespace {
+void expectDocumented(const mrpt::config::CConfigFileBase& doc,
+                      const std::string& section,
+                      const risknav::common::CDeclaredOptions& o,
+                      const std::set<std::string>& notDefault = {}) {
+    const auto keys = o.keys();
+    ASSERT_FALSE(keys.empty());
+    for (const auto& k : keys) {
+        EXPECT_TRUE(doc.keyExists(section, k.key)) << "[" << section << "] " << k.key;
+        EXPECT_FALSE(k.doc.empty()) << "[" << section << "] " << k.key;
+        if (notDefault.count(k.key))
+            continue;
+        // the value before its comment, as the declaration writes it ("1.0": "1")
+        std::string v = doc.read_string(section, k.key, "");
+        v = v.substr(0, v.find_first_of(" \t/"));
+        double x = 0;
+        if (risknav::common::parseNumber(v, x))
+            v = risknav::common::numberText(x);
+        EXPECT_EQ(v, k.defaultText) << "[" << section << "] " << k.key;
+    }
+}
+
+mrpt::config::CConfigFileMemory simulateIni() {
+    return mrpt::config::CConfigFileMemory(risknav::test::readFile(
+        risknav::test::sourcePath("config/risknav-simulate.ini")));
+}
+}  // namespace
+
+TEST(DeclaredOptions, TheSimulateConfigDocumentsEveryDeclaredKey) {
+    const auto doc = simulateIni();
+    // duration_max: the example world runs 600 s of the 3600 s default
+    expectDocumented(doc, "Simulation", CWorldSimulator::TSimulationOptions(),
+                     {"duration_max"});
+    const CSimWorld w;
+    expectDocumented(doc, "World", w.mapSource, {"map_file"});
+    expectDocumented(doc, "World", w.obstacleRule);
+    expectDocumented(doc, "Robot", w.robot);
+    expectDocumented(doc, "Odometry", w.odometry.options);
+    expectDocumented(doc, "Laser", w.laser.options);
+    // the second sensor's defaults are the world's, not the struct's; the
+    // example scans every 2nd frame
+    expectDocumented(doc, "RangeSensor2", w.range2.options, {"frame_decimation"});
+    expectDocumented(doc, "CStoppingDistanceLimiter",
+                     CStoppingDistanceLimiter::TOptions());
+}
+
+TEST(DeclaredOptions, TheSavedKeysCarryTheirDocAndRangeAndLoadBack) {
+    // the documented values, saved as config_effective.ini saves them and
+    // read back: the same values, each with its doc and range as comment
+    const auto doc = simulateIni();
+    CWorldSimulator::TSimulationOptions sim;
+    CSimWorld w;
+    CStoppingDistanceLimiter::TOptions stop;
+    sim.loadFromConfigFile(doc, "Simulation");
+    w.robot.loadFromConfigFile(doc, "Robot");
+    w.odometry.options.loadFromConfigFile(doc, "Odometry");
+    w.obstacleRule.loadFromConfigFile(doc, "World");
+    w.range2.options.loadFromConfigFile(doc, "RangeSensor2");
+    stop.loadFromConfigFile(doc, "CStoppingDistanceLimiter");
+    mrpt::config::CConfigFileMemory saved;
+    sim.saveToConfigFile(saved, "Simulation");
+    w.robot.saveToConfigFile(saved, "Robot");
+    w.odometry.options.saveToConfigFile(saved, "Odometry");
+    w.obstacleRule.saveToConfigFile(saved, "World");
+    w.range2.options.saveToConfigFile(saved, "RangeSensor2");
+    stop.saveToConfigFile(saved, "CStoppingDistanceLimiter");
+    const std::string text = saved.getContent();
+    EXPECT_NE(text.find("// the robot is a disc, (0, 5] m"), std::string::npos) << text;
+    EXPECT_NE(text.find("// errors drawn once per run, every step, or none, systematic | "
+                        "per_step | none"),
+              std::string::npos)
+        << text;
+    const mrpt::config::CConfigFileMemory back(text);
+    CWorldSimulator::TSimulationOptions sim2;
+    CSimWorld w2;
+    CStoppingDistanceLimiter::TOptions stop2;
+    sim2.loadFromConfigFile(back, "Simulation");
+    w2.robot.loadFromConfigFile(back, "Robot");
+    w2.odometry.options.loadFromConfigFile(back, "Odometry");
+    w2.obstacleRule.loadFromConfigFile(back, "World");
+    w2.range2.options.loadFromConfigFile(back, "RangeSensor2");
+    stop2.loadFromConfigFile(back, "CStoppingDistanceLimiter");
+    auto same = [](const risknav::common::CDeclaredOptions& a,
+                   const risknav::common::CDeclaredOptions& b) {
+        const auto ka = a.keys(), kb = b.keys();
+        ASSERT_EQ(ka.size(), kb.size());
+        for (size_t i = 0; i < ka.size(); i++)
+            EXPECT_EQ(ka[i].defaultText, kb[i].defaultText) << ka[i].key;
+    };
+    same(sim, sim2);
+    same(w.robot, w2.robot);
+    same(w.odometry.options, w2.odometry.options);
+    same(w.obstacleRule, w2.obstacleRule);
+    same(w.range2.options, w2.range2.options);
+    same(stop, stop2);
+    EXPECT_EQ(sim2.duration_max, 600);
+    EXPECT_EQ(w2.range2.options.label, "RANGE2");
+}
+
+TEST(DeclaredOptions, RangeErrorsNameTheSectionRead) {
+    CSimWorld w;
+    w.robot.max_v = 0;
+    try {
+        w.robot.validate();
+        FAIL() << "no error";
+    } catch (const std::exception& e) {
+        EXPECT_STREQ(e.what(), "[Robot] max_v = '0': must be in (0, 5] m/s");
+    }
+    w.range2.options.beams = 1;
+    try {
+        w.range2.options.validate();
+        FAIL() << "no error";
+    } catch (const std::exception& e) {
+        EXPECT_STREQ(e.what(), "[RangeSensor2] beams = '1': must be in [2, 10000]");
     }
 }

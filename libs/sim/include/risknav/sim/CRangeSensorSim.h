@@ -1,5 +1,5 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/sim/CRayCastMap.h>
 #include <risknav/sim/range_geometry.h>
 
@@ -23,8 +23,10 @@ namespace risknav::sim {
  * (MRPT ray order: -fov/2 .. +fov/2, right to left). */
 class CRangeSensorSim {
   public:
-    struct TOptions : public common::CValidatedOptions {
-        std::string section = "Laser";  ///< the section loaded from (for messages)
+    /** [Laser], [RangeSensor2]: every key, its range and its doc are
+     * declared once, in declare(). */
+    struct TOptions : public common::CDeclaredOptions {
+        TOptions() { section = "Laser"; }
         bool enabled = true;
         std::string label = "LASER";
         double fov_deg = 180;            ///< [deg] (0, 360]
@@ -37,11 +39,8 @@ class CRangeSensorSim {
         double x = 0.2, y = 0.0, z = 0.3;  ///< [m] mounting position on the robot
         double yaw_deg = 0;                ///< [deg] mounting yaw
 
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& s) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& s) const override;
-        void validate() const override;
+      protected:
+        void declare(Visitor& v) override;
     } options;
 
     /** One scan from the robot pose at timestamp t. */

@@ -1,6 +1,6 @@
 #pragma once
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/common/CSpeedLimiter.h>
-#include <risknav/common/CValidatedOptions.h>
 
 #include <string>
 
@@ -15,7 +15,11 @@ namespace risknav::sim {
 class CStoppingDistanceLimiter : public common::CSpeedLimiter {
     DEFINE_MRPT_OBJECT(CStoppingDistanceLimiter, risknav::sim)
   public:
-    struct TOptions : public common::CValidatedOptions {
+    /** The section read (its errors name it): [CStoppingDistanceLimiter] in
+     * every app (and in MRPT's engine INI). Every key, its range and its doc
+     * are declared once, in declare(). */
+    struct TOptions : public common::CDeclaredOptions {
+        TOptions() { section = "CStoppingDistanceLimiter"; }
         bool enabled = true;
         double margin = 0.1;          ///< [m] beta: added to d_stop
         double lateral_margin = 0.1;  ///< [m] swept corridor half-width = radius + this
@@ -24,15 +28,9 @@ class CStoppingDistanceLimiter : public common::CSpeedLimiter {
          * "both" (the nearer of the two: a robot that lags its planned turn
          * sweeps between them). */
         std::string corridor = "both";
-        /** The section read (its errors name it): [CStoppingDistanceLimiter] in
-         * every app (and in MRPT's engine INI). */
-        std::string section = "CStoppingDistanceLimiter";
 
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& s) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& s) const override;
-        void validate() const override;
+      protected:
+        void declare(Visitor& v) override;
     } options;
 
     /** Whether moving at speed v [m/s] is blocked by a point of the scan: the

@@ -1,8 +1,8 @@
 #pragma once
 #include <risknav/common/CAppRunner.h>
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/common/CIniConfig.h>
 #include <risknav/common/COutputDir.h>
-#include <risknav/common/CValidatedOptions.h>
 #include <risknav/sim/CRouteFollower.h>
 #include <risknav/sim/CSafetyMonitor.h>
 #include <risknav/sim/CSimWorld.h>
@@ -26,7 +26,10 @@ namespace risknav::sim {
  * [ClutterN]); every key is documented in config/risknav-simulate.ini. */
 class CWorldSimulator {
   public:
-    struct TSimulationOptions : public common::CValidatedOptions {
+    /** [Simulation]: every key, its range and its doc are declared once, in
+     * declare(). */
+    struct TSimulationOptions : public common::CDeclaredOptions {
+        TSimulationOptions() { section = "Simulation"; }
         double sim_dt = 0.05;  ///< [s] physics / control step
         double frame_rate_hz =
             5.0;  ///< [Hz] one rawlog frame (odometry + scans) per period
@@ -45,11 +48,10 @@ class CWorldSimulator {
         double relevance_beta = 0.4;
         double relevance_lateral_margin = 0.1;
 
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& s) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& s) const override;
-        void validate() const override;
+      protected:
+        void declare(Visitor& v) override;
+        /** The frame period is a whole multiple of sim_dt. */
+        void validateRules() const override;
     };
 
     TSimulationOptions simulation;
