@@ -523,9 +523,10 @@ void commitExperiment(const TAppContext& ctx, const TExperiment& x, const TTotal
         // without afraid_file: the experiment learns it (and refuses the key)
         mrpt::config::CConfigFileMemory l;
         x.lo.saveToConfigFile(l, "CAfraidSpeedLimiter");
-        copyConfigKeys(l, effective, [](const std::string&, const std::string& k) {
-            return k == "afraid_file";
-        });
+        // (read back as text: the saved key names are padded, as MRPT's)
+        copyConfigKeys(
+            reparsedConfig(l), effective,
+            [](const std::string&, const std::string& k) { return k == "afraid_file"; });
     }
     x.proto.detector.saveToConfigFile(effective);
     x.proto.mcl.saveToConfigFile(effective);

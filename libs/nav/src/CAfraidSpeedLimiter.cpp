@@ -14,38 +14,23 @@ using namespace risknav::common;
 namespace risknav::nav {
 IMPLEMENTS_MRPT_OBJECT(CAfraidSpeedLimiter, risknav::common::CSpeedLimiter, risknav::nav)
 
-void CAfraidSpeedLimiter::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s) {
-    // Missing: validate() says it is required (an experiment sets it itself).
-    if (!readString(c, s, "afraid_file", "").empty())
-        afraid_file = readPath(c, s, "afraid_file", afraid_file, true);
-    v_max = readDouble(c, s, "v_max", v_max);
-    v_safe = readDouble(c, s, "v_safe", v_safe);
-    zone_threshold = readDouble(c, s, "zone_threshold", zone_threshold);
-    sample_bin = readDouble(c, s, "sample_bin", sample_bin);
-    krr.loadFromConfigFile(c, s);
+void CAfraidSpeedLimiter::TOptions::declare(Visitor& v) {
+    // missing: validateRules() says it is required (an experiment sets it itself)
+    v.path(afraid_file, "afraid_file", true,
+           "risknav-afraid-learn's grid of this map (required)");
+    v.number(v_max, "v_max", TRange::closed(0.01, 5, "m/s"), "speed outside the zones");
+    v.number(v_safe, "v_safe", TRange::closed(0, 5, "m/s"),
+             "speed when a zone lies within d_stop(v_max) + radius ahead");
+    v.number(zone_threshold, "zone_threshold", TRange::closed(0, 1, "events per pass"),
+             "level above which a cell is afraid");
+    v.number(sample_bin, "sample_bin", TRange::closed(0.01, 10, "m"),
+             "as risknav-afraid-learn's");
+    krr.declare(v);  // its keys, in this section
 }
 
-void CAfraidSpeedLimiter::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                                     const std::string& s) const {
-    writeKey(c, s, "afraid_file", afraid_file);
-    writeKey(c, s, "v_max", v_max);
-    writeKey(c, s, "v_safe", v_safe);
-    writeKey(c, s, "zone_threshold", zone_threshold);
-    writeKey(c, s, "sample_bin", sample_bin);
-    krr.saveToConfigFile(c, s);
-}
-
-void CAfraidSpeedLimiter::TOptions::validate() const {
-    const std::string s = "CAfraidSpeedLimiter";
-    checkRule(!afraid_file.empty(), s, "afraid_file", afraid_file, "required");
-    checkKey(s, "v_max", v_max, TRange::closed(0.01, 5, "m/s"));
-    checkKey(s, "v_safe", v_safe, TRange::closed(0, 5, "m/s"));
-    checkRule(v_safe <= v_max, s, "v_safe", numberText(v_safe), "must be <= v_max");
-    checkKey(s, "zone_threshold", zone_threshold,
-             TRange::closed(0, 1, "events per pass"));
-    checkKey(s, "sample_bin", sample_bin, TRange::closed(0.01, 10, "m"));
-    krr.validate();
+void CAfraidSpeedLimiter::TOptions::validateRules() const {
+    checkRule(!afraid_file.empty(), section, "afraid_file", afraid_file, "required");
+    checkRule(v_safe <= v_max, section, "v_safe", numberText(v_safe), "must be <= v_max");
 }
 
 void CAfraidSpeedLimiter::loadConfig(const mrpt::config::CConfigFileBase& c,

@@ -48,47 +48,49 @@ class CReadRecordingConfig : public mrpt::config::CConfigFileMemory {
 
 }  // namespace
 
-void CRiskAwareReactiveNav::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s) {
-    const std::string list = readString(c, s, "speed_limiters", "");
-    speed_limiters.clear();
-    std::istringstream in(list);
-    for (std::string name; in >> name;)
-        speed_limiters.push_back(name);
-    turn_in_place_deg = readDouble(c, s, "turn_in_place_deg", turn_in_place_deg);
-    turn_rate_deg = readDouble(c, s, "turn_rate_deg", turn_rate_deg);
-    start_turn_deg = readDouble(c, s, "start_turn_deg", start_turn_deg);
-    unstick_time = readDouble(c, s, "unstick_time", unstick_time);
-    unstick_heading_deg = readDouble(c, s, "unstick_heading_deg", unstick_heading_deg);
-    guide_lookahead = readDouble(c, s, "guide_lookahead", guide_lookahead);
-    plan_follow_after = readDouble(c, s, "plan_follow_after", plan_follow_after);
-    plan_follow_speed = readDouble(c, s, "plan_follow_speed", plan_follow_speed);
-    plan_follow_distance = readDouble(c, s, "plan_follow_distance", plan_follow_distance);
-    plan_follow_margin = readDouble(c, s, "plan_follow_margin", plan_follow_margin);
-    final_approach_speed = readDouble(c, s, "final_approach_speed", final_approach_speed);
-}
-
-void CRiskAwareReactiveNav::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                                       const std::string& s) const {
+void CRiskAwareReactiveNav::TOptions::declare(Visitor& v) {
+    // the class names are no fixed set (MRPT's class registry says which
+    // exist, loadConfigFile() asks it): the list is held as its text
     std::string list;
     for (const auto& n : speed_limiters)
         list += (list.empty() ? "" : " ") + n;
-    writeKey(c, s, "speed_limiters", list);
-    writeKey(c, s, "turn_in_place_deg", turn_in_place_deg);
-    writeKey(c, s, "turn_rate_deg", turn_rate_deg);
-    writeKey(c, s, "start_turn_deg", start_turn_deg);
-    writeKey(c, s, "unstick_time", unstick_time);
-    writeKey(c, s, "unstick_heading_deg", unstick_heading_deg);
-    writeKey(c, s, "guide_lookahead", guide_lookahead);
-    writeKey(c, s, "plan_follow_after", plan_follow_after);
-    writeKey(c, s, "plan_follow_speed", plan_follow_speed);
-    writeKey(c, s, "plan_follow_distance", plan_follow_distance);
-    writeKey(c, s, "plan_follow_margin", plan_follow_margin);
-    writeKey(c, s, "final_approach_speed", final_approach_speed);
+    v.text(list, "speed_limiters", false,
+           "limiter class names, applied in this order (none: the bare MRPT engine)");
+    std::vector<std::string> names;
+    std::istringstream in(list);
+    for (std::string name; in >> name;)
+        names.push_back(name);
+    if (names != speed_limiters)  // (only the loader changes the text)
+        speed_limiters = names;
+    v.number(turn_in_place_deg, "turn_in_place_deg", TRange::closed(0, 180, "deg"),
+             "a target farther off the heading is turned to in place first (0 = off)");
+    v.number(turn_rate_deg, "turn_rate_deg", TRange::closed(1, 360, "deg/s"),
+             "of that turn");
+    v.number(start_turn_deg, "start_turn_deg", TRange::closed(0, 180, "deg"),
+             "a standing robot's aim farther off its heading is turned to first (0 = "
+             "off)");
+    v.number(unstick_time, "unstick_time", TRange::closed(0, 1e5, "s"),
+             "a robot that has not moved for this long is turned (0 = off, else >= 2)");
+    v.number(unstick_heading_deg, "unstick_heading_deg", TRange::closed(1, 180, "deg"),
+             "toward its target when that is more than this off its heading");
+    v.number(guide_lookahead, "guide_lookahead", TRange::closed(0, 20, "m"),
+             "MRPT steers to the point this far ahead on a limiter's way (0 = off)");
+    v.number(plan_follow_after, "plan_follow_after", TRange::closed(0, 1e5, "s"),
+             "no progress along the global plan for this long: follow it itself (0 = "
+             "off, else >= 2)");
+    v.number(plan_follow_speed, "plan_follow_speed", TRange::closed(0.02, 2, "m/s"),
+             "at up to this speed");
+    v.number(plan_follow_distance, "plan_follow_distance", TRange::closed(0.1, 100, "m"),
+             "for this far, then MRPT steers again");
+    v.number(plan_follow_margin, "plan_follow_margin", TRange::closed(0, 1, "m"),
+             "a sensed point may come this far inside MRPT's shape meanwhile");
+    v.number(
+        final_approach_speed, "final_approach_speed", TRange::closed(0, 2, "m/s"),
+        "the route's end inside MRPT's shape is driven to straight at this (0 = off)");
 }
 
-void CRiskAwareReactiveNav::TOptions::validate() const {
-    checkRule(speed_limiters.size() <= 16, kSection, "speed_limiters",
+void CRiskAwareReactiveNav::TOptions::validateRules() const {
+    checkRule(speed_limiters.size() <= 16, section, "speed_limiters",
               std::to_string(speed_limiters.size()) + " names", "at most 16 limiters");
     // one instance per class: both would read one section, and a repeated
     // name is a typo, not a second limiter
@@ -98,33 +100,15 @@ void CRiskAwareReactiveNav::TOptions::validate() const {
                 std::string list;
                 for (const auto& n : speed_limiters)
                     list += (list.empty() ? "" : " ") + n;
-                checkRule(false, kSection, "speed_limiters", list,
+                checkRule(false, section, "speed_limiters", list,
                           shortClassName(speed_limiters[i]) + " is listed twice");
             }
-    checkKey(kSection, "turn_in_place_deg", turn_in_place_deg,
-             TRange::closed(0, 180, "deg"));
-    checkKey(kSection, "turn_rate_deg", turn_rate_deg, TRange::closed(1, 360, "deg/s"));
-    checkKey(kSection, "start_turn_deg", start_turn_deg, TRange::closed(0, 180, "deg"));
-    checkKey(kSection, "unstick_time", unstick_time, TRange::closed(0, 1e5, "s"));
     // below 2 s a robot driving 0.25 m/s (5 cm a 0.2 s cycle) would count as stuck
-    checkRule(unstick_time == 0 || unstick_time >= 2, kSection, "unstick_time",
+    checkRule(unstick_time == 0 || unstick_time >= 2, section, "unstick_time",
               numberText(unstick_time), "must be 0 (off) or at least 2 s");
-    checkKey(kSection, "unstick_heading_deg", unstick_heading_deg,
-             TRange::closed(1, 180, "deg"));
-    checkKey(kSection, "guide_lookahead", guide_lookahead, TRange::closed(0, 20, "m"));
-    checkKey(kSection, "plan_follow_after", plan_follow_after,
-             TRange::closed(0, 1e5, "s"));
-    checkRule(plan_follow_after == 0 || plan_follow_after >= 2, kSection,
+    checkRule(plan_follow_after == 0 || plan_follow_after >= 2, section,
               "plan_follow_after", numberText(plan_follow_after),
               "must be 0 (off) or at least 2 s");
-    checkKey(kSection, "plan_follow_speed", plan_follow_speed,
-             TRange::closed(0.02, 2, "m/s"));
-    checkKey(kSection, "plan_follow_distance", plan_follow_distance,
-             TRange::closed(0.1, 100, "m"));
-    checkKey(kSection, "plan_follow_margin", plan_follow_margin,
-             TRange::closed(0, 1, "m"));
-    checkKey(kSection, "final_approach_speed", final_approach_speed,
-             TRange::closed(0, 2, "m/s"));
 }
 
 void CRiskAwareReactiveNav::checkPtgBuildTime(const mrpt::config::CConfigFileBase& c,
@@ -166,6 +150,7 @@ void CRiskAwareReactiveNav::loadConfigFile(const mrpt::config::CConfigFileBase& 
     // (with the config's robot shape; CNavigationRun checks again with the
     // shape it gives MRPT)
     checkPtgBuildTime(c);
+    riskOptions.speed_limiters.clear();  // a config without the key: none
     loadOptions(riskOptions, c, kSection);
     loadOptions(robot, c, "Robot");
     std::vector<CSpeedLimiter::Ptr> made;

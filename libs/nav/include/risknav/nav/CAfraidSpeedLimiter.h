@@ -1,8 +1,8 @@
 #pragma once
 #include <risknav/afraid/CAfraidGrid.h>
 #include <risknav/afraid/kernel_regression.h>
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/common/CSpeedLimiter.h>
-#include <risknav/common/CValidatedOptions.h>
 
 #include <string>
 #include <vector>
@@ -20,7 +20,8 @@ namespace risknav::nav {
 class CAfraidSpeedLimiter : public common::CSpeedLimiter {
     DEFINE_MRPT_OBJECT(CAfraidSpeedLimiter, risknav::nav)
   public:
-    struct TOptions : public common::CValidatedOptions {
+    struct TOptions : public common::CDeclaredOptions {
+        TOptions() { section = krr.section = "CAfraidSpeedLimiter"; }
         std::string afraid_file;       ///< required: the learned .afraid grid
         double v_max = 0.8;            ///< [m/s] outside zones (002: 0.8)
         double v_safe = 0.2;           ///< [m/s] in zones (002: 0.2)
@@ -28,11 +29,10 @@ class CAfraidSpeedLimiter : public common::CSpeedLimiter {
         double sample_bin = 0.25;      ///< [m] as risknav-afraid-learn's
         afraid::TKrrOptions krr;       ///< kernel_bandwidth etc., as the learner's
 
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& s) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& s) const override;
-        void validate() const override;
+      protected:
+        void declare(Visitor& v) override;
+        /** afraid_file required, v_safe <= v_max. */
+        void validateRules() const override;
     } options;
 
     /** Loads options, the grid and its level (throws CBadInputError). */

@@ -1,6 +1,6 @@
 #pragma once
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/common/CSpeedLimiter.h>
-#include <risknav/common/CValidatedOptions.h>
 #include <risknav/common/TRobotOptions.h>
 #include <risknav/nav/CPlanFollower.h>
 #include <risknav/nav/CTurnSupervisor.h>
@@ -31,7 +31,8 @@ namespace risknav::nav {
  * stopping model from [Robot]. */
 class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
   public:
-    struct TOptions : public common::CValidatedOptions {
+    struct TOptions : public common::CDeclaredOptions {
+        TOptions() { section = "CRiskAwareReactiveNav"; }
         /** Limiter class names, applied in this order (the first of equal
          * limits is the one recorded). Empty: the bare MRPT engine. */
         std::vector<std::string> speed_limiters;
@@ -96,11 +97,11 @@ class CRiskAwareReactiveNav : public mrpt::nav::CReactiveNavigationSystem {
          * (0.15-0.3 m off an end 0.15 m asked, for minutes). 0 = off. */
         double final_approach_speed = 0.1;
 
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& section) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& section) const override;
-        void validate() const override;
+      protected:
+        void declare(Visitor& v) override;
+        /** At most 16 limiters, none twice; unstick_time and
+         * plan_follow_after 0 (off) or at least 2 s. */
+        void validateRules() const override;
     };
 
     /** What limited the last command. */
