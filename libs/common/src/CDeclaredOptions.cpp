@@ -129,9 +129,10 @@ class CSaver : public CDeclaredOptions::Visitor {
   private:
     void put(const char* key, const std::string& value, const char* doc,
              const std::string& range) {
-        m_c.write(m_s, key, value, mrpt::config::MRPT_SAVE_NAME_PADDING(),
-                  mrpt::config::MRPT_SAVE_VALUE_PADDING(),
-                  std::string(doc) + ", " + range);
+        // "key = value // doc, range", unpadded: MRPT's padding would keep
+        // the padded name as the key in a CConfigFileMemory, where a load of
+        // what was just saved would then find nothing and keep its defaults
+        m_c.write(m_s, key, value, -1, -1, std::string(doc) + ", " + range);
     }
     CConfigFileBase& m_c;
     const std::string& m_s;

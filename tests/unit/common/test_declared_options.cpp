@@ -143,3 +143,23 @@ TEST(CDeclaredOptions, TextPathsAndDegrees) {
     TKindsOptions p;
     EXPECT_THROW(p.loadFromConfigFile(missing, "Kinds"), CBadInputError);
 }
+
+// What is saved loads back from the same in-memory config, without
+// reparsing its text (a library user's round trip), and reads as
+// "key = value // doc, range".
+TEST(CDeclaredOptions, ARoundTripInMemoryKeepsTheValues) {
+    TDemoOptions o;
+    o.speed = 1.25;
+    o.laps = 9;
+    o.loop = true;
+    mrpt::config::CConfigFileMemory c;
+    o.saveToConfigFile(c, "Demo");
+    TDemoOptions p;
+    p.loadFromConfigFile(c, "Demo");
+    EXPECT_DOUBLE_EQ(p.speed, 1.25);
+    EXPECT_EQ(p.laps, 9);
+    EXPECT_TRUE(p.loop);
+    EXPECT_NE(c.getContent().find("laps = 9 // laps of the route, [1, 100]"),
+              std::string::npos)
+        << c.getContent();
+}
