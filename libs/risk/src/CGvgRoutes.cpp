@@ -58,25 +58,13 @@ void thin(std::vector<uint8_t>& m, int w, int h) {
 }
 }  // namespace
 
-void CGvgRoutes::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                              const std::string& s) {
-    section = s;
-    separation_ratio = common::readDouble(c, s, "gvg_separation_ratio", separation_ratio);
-    simplify_tolerance =
-        common::readDouble(c, s, "gvg_simplify_tolerance", simplify_tolerance);
-}
-
-void CGvgRoutes::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                            const std::string& s) const {
-    common::writeKey(c, s, "gvg_separation_ratio", separation_ratio);
-    common::writeKey(c, s, "gvg_simplify_tolerance", simplify_tolerance);
-}
-
-void CGvgRoutes::TOptions::validate() const {
-    common::checkKey(section, "gvg_separation_ratio", separation_ratio,
-                     common::TRange::closed(0.1, 2));
-    common::checkKey(section, "gvg_simplify_tolerance", simplify_tolerance,
-                     common::TRange::closed(0, 2, "m"));
+void CGvgRoutes::TOptions::declare(Visitor& v) {
+    v.number(separation_ratio, "gvg_separation_ratio", common::TRange::closed(0.1, 2),
+             "GVG cell test: nearest obstacle cells of neighbours >= ratio x clearance "
+             "apart");
+    v.number(simplify_tolerance, "gvg_simplify_tolerance",
+             common::TRange::closed(0, 2, "m"),
+             "Douglas-Peucker tolerance of GVG routes");
 }
 
 CGvgRoutes::CGvgRoutes(const CObstacleField& f, const TOptions& o)

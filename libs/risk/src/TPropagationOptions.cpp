@@ -1,8 +1,6 @@
 #include <risknav/common/config_read.h>
 #include <risknav/risk/TPropagationOptions.h>
 
-#include <algorithm>
-
 using namespace risknav::common;
 
 namespace risknav::risk {
@@ -21,58 +19,29 @@ TPropagation propagationFromName(const std::string& n) {
     return TPropagation::Cubature5;
 }
 
-void TPropagationOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                             const std::string& s) {
-    section = s;
-    tau = readDouble(c, s, "tau", tau);
-    speed = readDouble(c, s, "speed", speed);
-    turn_rate_deg = readDouble(c, s, "turn_rate_deg", turn_rate_deg);
-    init_sigma_x = readDouble(c, s, "init_sigma_x", init_sigma_x);
-    init_sigma_y = readDouble(c, s, "init_sigma_y", init_sigma_y);
-    init_sigma_theta_deg = readDouble(c, s, "init_sigma_theta_deg", init_sigma_theta_deg);
-    noise_sigma_x = readDouble(c, s, "noise_sigma_x", noise_sigma_x);
-    noise_sigma_y = readDouble(c, s, "noise_sigma_y", noise_sigma_y);
-    noise_sigma_theta_deg =
-        readDouble(c, s, "noise_sigma_theta_deg", noise_sigma_theta_deg);
-    propagation = readChoice(c, s, "propagation", propagation, kPropagations);
-    samples = readInt(c, s, "samples", samples);
-}
-
-void TPropagationOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                           const std::string& s) const {
-    writeKey(c, s, "tau", tau);
-    writeKey(c, s, "speed", speed);
-    writeKey(c, s, "turn_rate_deg", turn_rate_deg);
-    writeKey(c, s, "init_sigma_x", init_sigma_x);
-    writeKey(c, s, "init_sigma_y", init_sigma_y);
-    writeKey(c, s, "init_sigma_theta_deg", init_sigma_theta_deg);
-    writeKey(c, s, "noise_sigma_x", noise_sigma_x);
-    writeKey(c, s, "noise_sigma_y", noise_sigma_y);
-    writeKey(c, s, "noise_sigma_theta_deg", noise_sigma_theta_deg);
-    writeKey(c, s, "propagation", propagation);
-    writeKey(c, s, "samples", samples);
-}
-
-void TPropagationOptions::validate() const {
-    const std::string& s = section;
-    checkKey(s, "tau", tau, TRange::closed(0.001, 1, "s"));
-    checkKey(s, "speed", speed, {0, 5, true, false, "m/s"});
-    checkKey(s, "turn_rate_deg", turn_rate_deg, {0, 720, true, false, "deg/s"});
+void TPropagationOptions::declare(Visitor& v) {
+    v.number(tau, "tau", TRange::closed(0.001, 1, "s"), "propagation step of eq. (15)");
+    v.number(speed, "speed", {0, 5, true, false, "m/s"}, "on straight legs");
+    v.number(turn_rate_deg, "turn_rate_deg", {0, 720, true, false, "deg/s"},
+             "turns in place at waypoints");
     // Bounded so that no covariance can overflow (sigmas near 1e154
     // would make D_max = inf and U = 0): 1 km, 10 m/s, a half turn (per second).
-    checkKey(s, "init_sigma_x", init_sigma_x, TRange::closed(0, 1000, "m"));
-    checkKey(s, "init_sigma_y", init_sigma_y, TRange::closed(0, 1000, "m"));
-    checkKey(s, "init_sigma_theta_deg", init_sigma_theta_deg,
-             TRange::closed(0, 180, "deg"));
-    checkKey(s, "noise_sigma_x", noise_sigma_x, TRange::closed(0, 10, "m/s"));
-    checkKey(s, "noise_sigma_y", noise_sigma_y, TRange::closed(0, 10, "m/s"));
-    checkKey(s, "noise_sigma_theta_deg", noise_sigma_theta_deg,
-             TRange::closed(0, 180, "deg/s"));
-    checkRule(std::find(kPropagations.begin(), kPropagations.end(), propagation) !=
-                  kPropagations.end(),
-              s, "propagation", propagation,
-              "must be one of: linear, unscented, cubature5, sampled");
-    checkKey(s, "samples", samples, TRange::closed(10, 100000));
+    v.number(init_sigma_x, "init_sigma_x", TRange::closed(0, 1000, "m"),
+             "initial pose std. dev. (section 6.2: 1 mm)");
+    v.number(init_sigma_y, "init_sigma_y", TRange::closed(0, 1000, "m"),
+             "initial pose std. dev.");
+    v.number(init_sigma_theta_deg, "init_sigma_theta_deg", TRange::closed(0, 180, "deg"),
+             "initial heading std. dev. (section 6.2: 0.1 rad)");
+    v.number(noise_sigma_x, "noise_sigma_x", TRange::closed(0, 10, "m/s"),
+             "process noise n of eq. (3), x");
+    v.number(noise_sigma_y, "noise_sigma_y", TRange::closed(0, 10, "m/s"),
+             "process noise, y");
+    v.number(noise_sigma_theta_deg, "noise_sigma_theta_deg",
+             TRange::closed(0, 180, "deg/s"), "process noise, heading");
+    v.choice(propagation, "propagation", kPropagations,
+             "how the pose error is propagated along a route");
+    v.integer(samples, "samples", TRange::closed(10, 100000),
+              "robots of propagation = sampled");
 }
 
 TRiskOptions makeRiskOptions(const TOdometryOptions& odo, const TPropagationOptions& p,

@@ -1,4 +1,5 @@
 #include <risknav/common/CBadInputError.h>
+#include <risknav/common/config_read.h>
 #include <risknav/geometry/polyline.h>
 #include <risknav/risk/CRiskEvaluator.h>
 #include <risknav/risk/path_risk.h>
@@ -10,6 +11,7 @@
 #include "test_support.h"
 
 #include <cmath>
+#include <set>
 
 using namespace risknav::risk;
 using mrpt::math::TPoint2D;
@@ -232,4 +234,38 @@ TEST(RiskOptions, TheSigmasAreBoundedAndAnOverflowExcludesTheRow) {
         EXPECT_TRUE(std::isinf(r.result.U));
     }
     EXPECT_EQ(ev.best(), -1);
+}
+
+namespace {
+// Each declared key of `o` is documented in `section` of
+// config/risknav-risk-eval.ini with a doc of its own, and where the file
+// gives the default, it writes the same text (but for the keys in `rounded`).
+void expectDocumented(const risknav::common::CDeclaredOptions& o,
+                      const std::string& section, size_t count,
+                      const std::set<std::string>& rounded = {}) {
+    mrpt::config::CConfigFileMemory doc(risknav::test::readFile(
+        risknav::test::sourcePath("config/risknav-risk-eval.ini")));
+    const auto keys = o.keys();
+    ASSERT_EQ(keys.size(), count);
+    for (const auto& k : keys) {
+        ASSERT_TRUE(doc.keyExists(section, k.key)) << k.key;
+        EXPECT_FALSE(k.doc.empty()) << k.key;
+        const std::string v = doc.read_string(section, k.key, "");
+        if (!rounded.count(k.key))
+            EXPECT_EQ(risknav::common::trim(v.substr(0, v.find("//"))), k.defaultText)
+                << k.key;
+    }
+}
+}  // namespace
+
+TEST(RiskOptions, TheDocumentedConfigHoldsEveryDeclaredKey) {
+    // the file writes 5.73 for 0.1 rad
+    expectDocumented(TPropagationOptions(), "Odometry", 11, {"init_sigma_theta_deg"});
+    expectDocumented(CGvgRoutes::TOptions(), "RiskEval", 2);
+    // [RiskEval] is read back from memory: gvg's keys are plain there
+    CRiskEvaluator::TOptions o;
+    o.gvg.simplify_tolerance = 0.25;
+    mrpt::config::CConfigFileMemory m;
+    o.saveToConfigFile(m, "RiskEval");
+    EXPECT_EQ(m.read_string("RiskEval", "gvg_simplify_tolerance", ""), "0.25");
 }

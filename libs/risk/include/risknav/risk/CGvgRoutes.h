@@ -1,5 +1,5 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/risk/CObstacleField.h>
 
 #include <mrpt/math/TPoint2D.h>
@@ -37,17 +37,15 @@ namespace risknav::risk {
 class CGvgRoutes {
   public:
     /** Keys gvg_separation_ratio and gvg_simplify_tolerance of the host
-     * section ([RiskEval]). */
-    struct TOptions : public common::CValidatedOptions {
-        double separation_ratio = 1.0;     ///< of the clearance, step 2 above
-        double simplify_tolerance = 0.1;   ///< [m] Douglas-Peucker, step 4
-        std::string section = "RiskEval";  ///< the host section (for messages)
+     * section ([RiskEval]), declared once in declare(). */
+    struct TOptions : public common::CDeclaredOptions {
+        TOptions() { section = "RiskEval"; }  // the host section
 
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& section) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& section) const override;
-        void validate() const override;
+        double separation_ratio = 1.0;    ///< of the clearance, step 2 above
+        double simplify_tolerance = 0.1;  ///< [m] Douglas-Peucker, step 4
+
+      protected:
+        void declare(Visitor& v) override;
     };
 
     /** Throws common::CConfigKeyError when the options are out of range. */

@@ -1,5 +1,5 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/common/TOdometryOptions.h>
 #include <risknav/risk/path_risk.h>
 
@@ -11,8 +11,11 @@ namespace risknav::risk {
 /** How the risk evaluator drives a route and propagates its covariance: the
  * risk-only keys of [Odometry] (the wheel geometry, its sigmas and the error
  * model are common::TOdometryOptions, in the same section). Degrees in the
- * file and here, radians in TRiskOptions. */
-struct TPropagationOptions : public common::CValidatedOptions {
+ * file and here, radians in TRiskOptions. Every key is declared once, in
+ * declare(). */
+struct TPropagationOptions : public common::CDeclaredOptions {
+    TPropagationOptions() { section = "Odometry"; }  // the host section
+
     double tau = 0.05;          ///< [s] propagation step of eq. (15)
     double speed = 0.3;         ///< [m/s] on straight legs
     double turn_rate_deg = 30;  ///< [deg/s] turns in place at waypoints
@@ -31,14 +34,10 @@ struct TPropagationOptions : public common::CValidatedOptions {
      * where linear is off by up to 2.2x (systematic) and unscented by 20 %
      * (the ratio table: tests/unit/risk/test_covariance.cpp). */
     std::string propagation = "cubature5";
-    int samples = 1000;                ///< draws of `sampled`
-    std::string section = "Odometry";  ///< the host section (for messages)
+    int samples = 1000;  ///< draws of `sampled`
 
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& section) override;
-    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                          const std::string& section) const override;
-    void validate() const override;
+  protected:
+    void declare(Visitor& v) override;
 };
 
 /** The numbers evaluatePathRisk() takes, from the odometry and propagation
