@@ -1,13 +1,14 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 
 #include <string>
 #include <vector>
 
 namespace risknav::speed {
 /** [SpeedControl]: the adaptive speed controller of Miura et al. 2006 (000),
- * PAPER_NOTES M1. */
-struct TSpeedControlOptions : public common::CValidatedOptions {
+ * PAPER_NOTES M1. Every key is declared once, in declare(). */
+struct TSpeedControlOptions : public common::CDeclaredOptions {
+    TSpeedControlOptions() { section = "SpeedControl"; }
     /** Candidate speeds [m/s], fastest first, and the motion-uncertainty
      * margin of each [m] ((000) section 6: 1.1 / 0.7 / 0.35 / 0.2 m/s with
      * 30 / 20 / 10 / 5 cm). The robot-size margin (its radius) comes on top. */
@@ -29,13 +30,11 @@ struct TSpeedControlOptions : public common::CValidatedOptions {
     /** [m] Beyond the paper: added to the cost of a temporary destination
      * more than 1 m from the previous cycle's (hysteresis; see TTargetHints). */
     double target_switch_cost = 3.0;
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& section) override;
-    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                          const std::string& section) const override;
-    /** Speeds > 0 strictly decreasing, margins >= 0 one per speed and not
-     * increasing (a slower speed cannot need a larger margin), T > 0, ... */
-    void validate() const override;
-    std::string section = "SpeedControl";
+
+  protected:
+    void declare(Visitor& v) override;
+    /** 1 to 8 speeds strictly decreasing, one margin per speed and not
+     * increasing (a slower speed cannot need a larger margin). */
+    void validateRules() const override;
 };
 }  // namespace risknav::speed
