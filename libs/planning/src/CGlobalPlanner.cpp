@@ -30,48 +30,29 @@ std::string metres(double v) {
 }
 }  // namespace
 
-void CGlobalPlanner::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                                  const std::string& s) {
-    margin = readDouble(c, s, "margin", margin);
-    clearance_soft = readDouble(c, s, "clearance_soft", clearance_soft);
-    clearance_weight = readDouble(c, s, "clearance_weight", clearance_weight);
-    lookahead = readDouble(c, s, "lookahead", lookahead);
-    stray_distance = readDouble(c, s, "stray_distance", stray_distance);
-    pose_jump = readDouble(c, s, "pose_jump", pose_jump);
-    check_ahead = readDouble(c, s, "check_ahead", check_ahead);
-    obstacle_memory = readDouble(c, s, "obstacle_memory", obstacle_memory);
-    replan_interval = readDouble(c, s, "replan_interval", replan_interval);
-    candidates = readInt(c, s, "candidates", candidates);
-    map = readChoice(c, s, "map", map, {"known", "built"});
-}
-
-void CGlobalPlanner::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                                const std::string& s) const {
-    writeKey(c, s, "margin", margin);
-    writeKey(c, s, "clearance_soft", clearance_soft);
-    writeKey(c, s, "clearance_weight", clearance_weight);
-    writeKey(c, s, "lookahead", lookahead);
-    writeKey(c, s, "stray_distance", stray_distance);
-    writeKey(c, s, "pose_jump", pose_jump);
-    writeKey(c, s, "check_ahead", check_ahead);
-    writeKey(c, s, "obstacle_memory", obstacle_memory);
-    writeKey(c, s, "replan_interval", replan_interval);
-    writeKey(c, s, "candidates", candidates);
-    writeKey(c, s, "map", map);
-}
-
-void CGlobalPlanner::TOptions::validate() const {
-    const std::string s = "GlobalPlanner";
-    checkKey(s, "margin", margin, TRange::closed(0, 2, "m"));
-    checkKey(s, "clearance_soft", clearance_soft, TRange::closed(0, 10, "m"));
-    checkKey(s, "clearance_weight", clearance_weight, TRange::closed(0, 1000));
-    checkKey(s, "lookahead", lookahead, TRange::closed(0.2, 20, "m"));
-    checkKey(s, "stray_distance", stray_distance, TRange::closed(0.1, 100, "m"));
-    checkKey(s, "pose_jump", pose_jump, TRange::closed(0.05, 100, "m"));
-    checkKey(s, "check_ahead", check_ahead, TRange::closed(0, 100, "m"));
-    checkKey(s, "obstacle_memory", obstacle_memory, TRange::closed(0, 3600, "s"));
-    checkKey(s, "replan_interval", replan_interval, TRange::closed(0, 3600, "s"));
-    checkKey(s, "candidates", candidates, TRange::closed(1, 8));
+void CGlobalPlanner::TOptions::declare(Visitor& v) {
+    v.number(margin, "margin", TRange::closed(0, 2, "m"),
+             "a way keeps this beyond the engine's disc");
+    v.number(clearance_soft, "clearance_soft", TRange::closed(0, 10, "m"),
+             "beyond the disc, nearer costs more");
+    v.number(clearance_weight, "clearance_weight", TRange::closed(0, 1000),
+             "a metre at the disc's edge costs 1 + this");
+    v.number(lookahead, "lookahead", TRange::closed(0.2, 20, "m"),
+             "MRPT's engine aims this far ahead on the plan");
+    v.number(stray_distance, "stray_distance", TRange::closed(0.1, 100, "m"),
+             "this far from the plan: replan");
+    v.number(pose_jump, "pose_jump", TRange::closed(0.05, 100, "m"),
+             "the pose moved this far in one cycle: replan");
+    v.number(check_ahead, "check_ahead", TRange::closed(0, 100, "m"),
+             "of the plan checked for sensed obstacles");
+    v.number(obstacle_memory, "obstacle_memory", TRange::closed(0, 3600, "s"),
+             "a sensed obstacle not on the map is kept");
+    v.number(replan_interval, "replan_interval", TRange::closed(0, 3600, "s"),
+             "at least between replans for blocking");
+    v.integer(candidates, "candidates", TRange::closed(1, 8),
+              "global_planner = risk: ways of distinct classes scored");
+    v.choice(map, "map", {"known", "built"},
+             "the world's map, or its extent only (free until sensed)");
 }
 
 float CGlobalPlanner::costOf(double e) const {

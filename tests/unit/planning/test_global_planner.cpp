@@ -1,11 +1,15 @@
 // The global planner: grid A* against Bellman-Ford, the widest way, and
 // CGlobalPlanner's plans, replans and reasons on synthetic maps.
+#include <risknav/common/config_read.h>
 #include <risknav/planning/CGlobalPlanner.h>
 #include <risknav/planning/grid_search.h>
 
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/maps/COccupancyGridMap2D.h>
 
 #include <gtest/gtest.h>
+
+#include "test_support.h"
 
 #include <cmath>
 #include <limits>
@@ -516,4 +520,25 @@ TEST(CGlobalPlanner, ABeamFromTheCentreDoesNotForgetAPostBesideTheRobot) {
     p.addSensed(pose, {{0.6, 2.4}}, 3.0);
     EXPECT_TRUE(near(0.1, 0.4));   // kept: beside the robot
     EXPECT_FALSE(near(0.4, 1.6));  // seen through: gone
+}
+
+TEST(CGlobalPlanner, TheDocumentedConfigHoldsEveryDeclaredKeyWithItsDefault) {
+    // config/risknav-navigate.ini documents [GlobalPlanner] key by key, with
+    // the defaults (some written as 2.0 for 2: compared as numbers)
+    mrpt::config::CConfigFileMemory doc(risknav::test::readFile(
+        risknav::test::sourcePath("config/risknav-navigate.ini")));
+    const auto keys = planning::CGlobalPlanner::TOptions().keys();
+    ASSERT_EQ(keys.size(), 11u);
+    for (const auto& k : keys) {
+        ASSERT_TRUE(doc.keyExists("GlobalPlanner", k.key)) << k.key;
+        EXPECT_FALSE(k.doc.empty()) << k.key;
+        std::string v = doc.read_string("GlobalPlanner", k.key, "");
+        v = common::trim(v.substr(0, v.find("//")));
+        double documented = 0, declared = 0;
+        if (common::parseNumber(v, documented) &&
+            common::parseNumber(k.defaultText, declared))
+            EXPECT_EQ(documented, declared) << k.key;
+        else
+            EXPECT_EQ(v, k.defaultText) << k.key;
+    }
 }

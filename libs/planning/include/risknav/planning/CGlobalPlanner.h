@@ -1,5 +1,5 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/mapping/CDistanceField.h>
 #include <risknav/planning/grid_search.h>
 
@@ -67,7 +67,9 @@ struct TReplanEvent {
  * from it, and when the pose jumps (a localization correction). */
 class CGlobalPlanner {
   public:
-    struct TOptions : public common::CValidatedOptions {
+    /** [GlobalPlanner]: every key is declared once, in declare(). */
+    struct TOptions : public common::CDeclaredOptions {
+        TOptions() { section = "GlobalPlanner"; }
         /** [m] a way keeps this beyond the engine's disc (0: a gap the
          * engine's shape fits is planned through; MRPT's engine passed the
          * Willow Garage map's 0.75 m doors with a 0.66 m shape, and crept at
@@ -92,11 +94,8 @@ class CGlobalPlanner {
          * sensed obstacle stays until a later beam passes through it. */
         std::string map = "known";
 
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& section) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& section) const override;
-        void validate() const override;
+      protected:
+        void declare(Visitor& v) override;
     };
     TOptions options;  ///< [GlobalPlanner]
 
