@@ -108,46 +108,24 @@ TImageErrors TCameraOptions::errors() const {
     return {du_px, dv_px, dr_px};
 }
 
-void TCameraOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                        const std::string& s) {
-    camera_offset = readDouble(c, s, "camera_offset", camera_offset);
-    focal_px = readDouble(c, s, "focal_px", focal_px);
-    image_width = readInt(c, s, "image_width", image_width);
-    image_height = readInt(c, s, "image_height", image_height);
-    max_range = readDouble(c, s, "max_range", max_range);
-    max_incidence_deg = readDouble(c, s, "max_incidence_deg", max_incidence_deg);
-    pan_limit_deg = readDouble(c, s, "pan_limit_deg", pan_limit_deg);
-    du_px = readDouble(c, s, "du_px", du_px);
-    dv_px = readDouble(c, s, "dv_px", dv_px);
-    dr_px = readDouble(c, s, "dr_px", dr_px);
-}
-
-void TCameraOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                      const std::string& s) const {
-    writeKey(c, s, "camera_offset", camera_offset);
-    writeKey(c, s, "focal_px", focal_px);
-    writeKey(c, s, "image_width", image_width);
-    writeKey(c, s, "image_height", image_height);
-    writeKey(c, s, "max_range", max_range);
-    writeKey(c, s, "max_incidence_deg", max_incidence_deg);
-    writeKey(c, s, "pan_limit_deg", pan_limit_deg);
-    writeKey(c, s, "du_px", du_px);
-    writeKey(c, s, "dv_px", dv_px);
-    writeKey(c, s, "dr_px", dr_px);
-}
-
-void TCameraOptions::validate() const {
-    const std::string s = "Camera";
-    checkKey(s, "camera_offset", camera_offset, TRange::closed(0.001, 10, "m"));
-    checkKey(s, "focal_px", focal_px, TRange::closed(1, 1e6, "px"));
-    checkKey(s, "image_width", image_width, TRange::closed(8, 100000, "px"));
-    checkKey(s, "image_height", image_height, TRange::closed(8, 100000, "px"));
-    checkKey(s, "max_range", max_range, TRange::closed(0.01, 1000, "m"));
-    checkKey(s, "max_incidence_deg", max_incidence_deg, TRange::closed(0, 89.9, "deg"));
-    checkKey(s, "pan_limit_deg", pan_limit_deg, TRange::closed(0, 180, "deg"));
-    checkKey(s, "du_px", du_px, TRange::closed(0, 1000, "px"));
-    checkKey(s, "dv_px", dv_px, TRange::closed(0, 1000, "px"));
-    checkKey(s, "dr_px", dr_px, TRange::closed(0, 1000, "px"));
+void TCameraOptions::declare(Visitor& v) {
+    v.number(camera_offset, "camera_offset", TRange::closed(0.001, 10, "m"),
+             "b_r: each camera's distance from the robot centre");
+    v.number(focal_px, "focal_px", TRange::closed(1, 1e6, "px"), "focal length");
+    v.integer(image_width, "image_width", TRange::closed(8, 100000, "px"), "image width");
+    v.integer(image_height, "image_height", TRange::closed(8, 100000, "px"),
+              "image height");
+    v.number(max_range, "max_range", TRange::closed(0.01, 1000, "m"),
+             "landmarks farther away are not seen");
+    v.number(max_incidence_deg, "max_incidence_deg", TRange::closed(0, 89.9, "deg"),
+             "landmarks seen more obliquely than this off their facing are not seen");
+    v.number(pan_limit_deg, "pan_limit_deg", TRange::closed(0, 180, "deg"),
+             "each camera pans within +-this of the robot's heading");
+    v.number(du_px, "du_px", TRange::closed(0, 1000, "px"),
+             "error of a landmark's image centre, horizontal");
+    v.number(dv_px, "dv_px", TRange::closed(0, 1000, "px"), "the same, vertical");
+    v.number(dr_px, "dr_px", TRange::closed(0, 1000, "px"),
+             "error of a landmark's apparent radius");
 }
 
 }  // namespace risknav::viewpoint

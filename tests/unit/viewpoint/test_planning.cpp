@@ -3,13 +3,18 @@
 // clearance of every path, Yen's routes, the greedy viewpoint rule, the world
 // reader and grid tracing.
 #include <risknav/common/CBadInputError.h>
+#include <risknav/common/config_read.h>
 #include <risknav/geometry/polyline.h>
 #include <risknav/viewpoint/CViewpointPlanner.h>
 #include <risknav/viewpoint/CVisibilityGraph.h>
 #include <risknav/viewpoint/TPolygonWorld.h>
 #include <risknav/viewpoint/viewpoint_greedy.h>
 
+#include <mrpt/config/CConfigFileMemory.h>
+
 #include <gtest/gtest.h>
+
+#include "test_support.h"
 
 #include <cmath>
 #include <limits>
@@ -522,4 +527,20 @@ TEST(World, GridObstaclesAreTracedWithTheirHoles) {
             }
     EXPECT_FALSE(w.insideObstacle({2.75, 1.5}));
     EXPECT_FALSE(w.insideObstacle({1.5, 2.0}));
+}
+
+TEST(TCameraOptions, TheDocumentedConfigHoldsEveryDeclaredKeyWithItsDefault) {
+    // config/risknav-viewpoint-plan.ini documents [Camera] key by key, each
+    // with its default
+    mrpt::config::CConfigFileMemory doc(risknav::test::readFile(
+        risknav::test::sourcePath("config/risknav-viewpoint-plan.ini")));
+    const auto keys = TCameraOptions().keys();
+    ASSERT_EQ(keys.size(), 10u);
+    for (const auto& k : keys) {
+        ASSERT_TRUE(doc.keyExists("Camera", k.key)) << k.key;
+        EXPECT_FALSE(k.doc.empty()) << k.key;
+        const std::string v = doc.read_string("Camera", k.key, "");
+        EXPECT_EQ(risknav::common::trim(v.substr(0, v.find("//"))), k.defaultText)
+            << k.key;
+    }
 }

@@ -1,6 +1,6 @@
 #pragma once
 #include <mrpt/math/TPoint2D.h>
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/common/grid_io.h>
 #include <risknav/mapping/TObstacleRule.h>
 #include <risknav/viewpoint/observation_model.h>
@@ -55,8 +55,10 @@ struct TViewpointPlanOptions : public common::CValidatedOptions {
     void validate() const override;
 };
 
-/** [Camera]: the two panning cameras and their image errors. */
-struct TCameraOptions : public common::CValidatedOptions {
+/** [Camera]: the two panning cameras and their image errors. Every key is
+ * declared once, in declare(). */
+struct TCameraOptions : public common::CDeclaredOptions {
+    TCameraOptions() { section = "Camera"; }
     double camera_offset = 0.1;     ///< [m] b_r, each camera's distance from the centre
     double focal_px = 3000;         ///< [px]
     int image_width = 640;          ///< [px]
@@ -70,11 +72,8 @@ struct TCameraOptions : public common::CValidatedOptions {
     TCameraRig rig() const;
     TImageErrors errors() const;
 
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& section) override;
-    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                          const std::string& section) const override;
-    void validate() const override;
+  protected:
+    void declare(Visitor& v) override;
 };
 
 }  // namespace risknav::viewpoint
