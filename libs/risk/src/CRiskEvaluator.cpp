@@ -9,7 +9,6 @@
 #include <map>
 #include <numeric>
 #include <set>
-#include <sstream>
 
 using namespace risknav::common;
 using mrpt::math::TPoint2D;
@@ -24,31 +23,6 @@ bool numbered(const std::string& s, const std::string& prefix) {
 
 std::string fmtPoint(const TPoint2D& p) {
     return pointText(p.x, p.y);
-}
-
-// Writes the keys `o` saves into section `s` of `c` as plain `key = value`
-// lines, in its order: [RiskEval] is read back from memory too, where a name
-// a declared struct saved padded (with its doc) is not found. The docs of
-// [RiskEval] are in config/risknav-risk-eval.ini. (Not through a text config:
-// that would expand a path's ${...}.)
-void savePlain(const mrpt::config::CLoadableOptions& o, mrpt::config::CConfigFileBase& c,
-               const std::string& s) {
-    mrpt::config::CConfigFileMemory saved;
-    o.saveToConfigFile(saved, s);
-    std::vector<std::string> names;  // as saved: padded or not
-    saved.getAllKeys(s, names);
-    std::map<std::string, std::string> nameOf;
-    for (const auto& n : names)
-        nameOf[trim(n)] = n;
-    std::istringstream lines(saved.getContent());  // the order saved
-    for (std::string l; std::getline(lines, l);) {
-        const auto eq = l.find('=');
-        if (l.empty() || l[0] == '[' || eq == std::string::npos)
-            continue;
-        const auto n = nameOf.find(trim(l.substr(0, eq)));
-        if (n != nameOf.end())
-            c.write(s, n->first, saved.read_string(s, n->second, ""));
-    }
 }
 
 // The longest cov_ file a run may write: the longest route name with the
@@ -104,15 +78,15 @@ void CRiskEvaluator::TOptions::loadFromConfigFile(const mrpt::config::CConfigFil
 
 void CRiskEvaluator::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
                                                 const std::string& s) const {
-    savePlain(map, c, s);
-    savePlain(obstacles, c, s);
+    map.saveToConfigFile(c, s);
+    obstacles.saveToConfigFile(c, s);
     writeKey(c, s, "start", std::vector<double>{start.x, start.y});
     writeKey(c, s, "goal", std::vector<double>{goal.x, goal.y});
     writeKey(c, s, "u_threshold", u_threshold);
     writeKey(c, s, "max_sensing_subset", max_sensing_subset);
     writeKey(c, s, "gvg_routes", gvg_routes);
     writeKey(c, s, "grid_routes", grid_routes);
-    savePlain(gvg, c, s);
+    gvg.saveToConfigFile(c, s);
     writeKey(c, s, "ellipse_interval", ellipse_interval);
     writeKey(c, s, "eval_step", eval_step);
     writeKey(c, s, "seed", std::to_string(seed));

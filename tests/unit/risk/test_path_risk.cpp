@@ -262,7 +262,7 @@ TEST(RiskOptions, TheDocumentedConfigHoldsEveryDeclaredKey) {
     // the file writes 5.73 for 0.1 rad
     expectDocumented(TPropagationOptions(), "Odometry", 11, {"init_sigma_theta_deg"});
     expectDocumented(CGvgRoutes::TOptions(), "RiskEval", 2);
-    // [RiskEval] is read back from memory: gvg's keys are plain there
+    // [RiskEval] is read back from memory: gvg's keys are found there
     CRiskEvaluator::TOptions o;
     o.gvg.simplify_tolerance = 0.25;
     mrpt::config::CConfigFileMemory m;
