@@ -1,7 +1,9 @@
+#include <risknav/common/CBadInputError.h>
 #include <risknav/common/CDeclaredOptions.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace risknav::common {
@@ -36,6 +38,27 @@ double toDegrees(double radians) {
     return radians * 180.0 / M_PI;
 }
 
+using TCount = TListCount;
+
+// The count rule as a phrase ("" when any count will do).
+std::string countRule(const TCount& n) {
+    if (n.exact > 0)
+        return "needs exactly " + std::to_string(n.exact) + " numbers";
+    std::string t;
+    if (n.min > 0)
+        t = "needs at least " + std::to_string(n.min) + " numbers";
+    if (n.multiple > 1)
+        t += (t.empty() ? "needs " : ", ") + std::string("a multiple of ") +
+             std::to_string(n.multiple);
+    return t;
+}
+
+bool countHolds(const TCount& n, size_t size) {
+    if (n.exact > 0)
+        return size == n.exact;
+    return size >= n.min && (n.multiple <= 1 || size % n.multiple == 0);
+}
+
 std::string rangeText(const TRange& r) {
     // "must be in [1, 1000]" -> "[1, 1000]" (TRange::describe()'s wording)
     const std::string d = r.describe();
@@ -43,9 +66,17 @@ std::string rangeText(const TRange& r) {
     return d.rfind(lead, 0) == 0 ? d.substr(lead.size()) : d;
 }
 
+// "each [a, b] m, needs ..." (the count rule, when there is one)
+std::string listRange(const TRange& each, const TCount& n) {
+    const std::string rule = countRule(n);
+    return "each " + rangeText(each) + (rule.empty() ? "" : "; " + rule) +
+           (n.required ? "; required" : "");
+}
+
 class CLoader : public CDeclaredOptions::Visitor {
   public:
     CLoader(const CConfigFileBase& c, const std::string& s) : m_c(c), m_s(s) {}
+    const std::string* checkedSection() const override { return &m_s; }
     void number(double& v, const char* key, const TRange&, const char*) override {
         v = readDouble(m_c, m_s, key, v);
     }
@@ -55,9 +86,16 @@ class CLoader : public CDeclaredOptions::Visitor {
     void flag(bool& v, const char* key, const char*) override {
         v = readBool(m_c, m_s, key, v);
     }
-    void numbers(std::vector<double>& v, const char* key, const TRange&,
-                 const char*) override {
-        v = readNumbers(m_c, m_s, key, v);
+    void numbers(std::vector<double>& v, const char* key, const TRange& each,
+                 const char* doc, const TCount& n) override {
+        if (n.required && !m_c.keyExists(m_s, key))
+            throw CBadInputError(configWhere(m_c, m_s, key) + "[" + m_s + "] " + key +
+                                 ": required key is missing (" + doc + ")");
+        // the range is checked by validate(), as for single numbers
+        v = readNumbers(m_c, m_s, key, v, {}, n.exact > 0 ? 0 : n.min,
+                        n.exact > 0 ? 1 : n.multiple);
+        if (!countHolds(n, v.size()))
+            throwBadKey(m_c, m_s, key, readString(m_c, m_s, key, ""), countRule(n));
     }
     void choice(std::string& v, const char* key, const std::vector<std::string>& allowed,
                 const char*) override {
@@ -82,6 +120,19 @@ class CLoader : public CDeclaredOptions::Visitor {
                  const char*) override {
         radians = readDegrees(m_c, m_s, key, radians, rangeDeg);
     }
+    void requiredNumber(double& v, const char* key, const TRange& range,
+                        const char*) override {
+        v = requireDouble(m_c, m_s, key, range);
+    }
+    void optionalNumber(std::optional<double>& v, const char* key, const TRange&,
+                        const char*) override {
+        if (m_c.keyExists(m_s, key))
+            v = readDouble(m_c, m_s, key, 0.0);
+    }
+    void include(CDeclaredOptions& sub) override {
+        sub.section = m_s;
+        Visitor::include(sub);
+    }
 
   private:
     const CConfigFileBase& m_c;
@@ -101,8 +152,9 @@ class CSaver : public CDeclaredOptions::Visitor {
         put(key, v ? "true" : "false", doc, "true | false");
     }
     void numbers(std::vector<double>& v, const char* key, const TRange& r,
-                 const char* doc) override {
-        put(key, numbersText(v), doc, "each " + rangeText(r));
+                 const char* doc, const TCount& n) override {
+        if (!v.empty())
+            put(key, numbersText(v), doc, listRange(r, n));
     }
     void choice(std::string& v, const char* key, const std::vector<std::string>& allowed,
                 const char* doc) override {
@@ -113,10 +165,15 @@ class CSaver : public CDeclaredOptions::Visitor {
         put(key, joined(v), doc, "of " + joined(allowed, ", "));
     }
     void seed(uint64_t& v, const char* key, const char* doc) override {
-        put(key, numberText(double(v)), doc, rangeText(kSeedRange));
+        put(key, std::to_string(v), doc, rangeText(kSeedRange));
     }
     void text(std::string& v, const char* key, bool, const char* doc) override {
         put(key, v, doc, "text");
+    }
+    void optionalNumber(std::optional<double>& v, const char* key, const TRange& r,
+                        const char* doc) override {
+        if (v)
+            put(key, numberText(*v), doc, rangeText(r));
     }
     void path(std::string& v, const char* key, bool, const char* doc) override {
         put(key, v, doc, "a file path");
@@ -141,6 +198,7 @@ class CSaver : public CDeclaredOptions::Visitor {
 class CChecker : public CDeclaredOptions::Visitor {
   public:
     explicit CChecker(const std::string& s) : m_s(s) {}
+    const std::string* checkedSection() const override { return &m_s; }
     void number(double& v, const char* key, const TRange& r, const char*) override {
         checkKey(m_s, key, v, r);
     }
@@ -148,8 +206,11 @@ class CChecker : public CDeclaredOptions::Visitor {
         checkKey(m_s, key, double(v), r);
     }
     void flag(bool&, const char*, const char*) override {}
-    void numbers(std::vector<double>& v, const char* key, const TRange& r,
-                 const char*) override {
+    void numbers(std::vector<double>& v, const char* key, const TRange& r, const char*,
+                 const TCount& n) override {
+        checkRule(countHolds(n, v.size()) && (!n.required || !v.empty()), m_s, key,
+                  std::to_string(v.size()) + " values",
+                  n.required && v.empty() ? "required" : countRule(n));
         checkKey(m_s, key, v, r);
     }
     void choice(std::string& v, const char* key, const std::vector<std::string>& allowed,
@@ -176,6 +237,15 @@ class CChecker : public CDeclaredOptions::Visitor {
                  const char*) override {
         checkKey(m_s, key, toDegrees(radians), rangeDeg);
     }
+    void optionalNumber(std::optional<double>& v, const char* key, const TRange& r,
+                        const char*) override {
+        if (v)
+            checkKey(m_s, key, *v, r);
+    }
+    void include(CDeclaredOptions& sub) override {
+        Visitor::include(sub);
+        rulesOf(sub);
+    }
 
   private:
     const std::string& m_s;
@@ -194,8 +264,8 @@ class CLister : public CDeclaredOptions::Visitor {
         keys.push_back({key, doc, "true | false", v ? "true" : "false"});
     }
     void numbers(std::vector<double>& v, const char* key, const TRange& r,
-                 const char* doc) override {
-        keys.push_back({key, doc, "each " + rangeText(r), numbersText(v)});
+                 const char* doc, const TCount& n) override {
+        keys.push_back({key, doc, listRange(r, n), numbersText(v)});
     }
     void choice(std::string& v, const char* key, const std::vector<std::string>& allowed,
                 const char* doc) override {
@@ -218,8 +288,63 @@ class CLister : public CDeclaredOptions::Visitor {
                  const char* doc) override {
         keys.push_back({key, doc, rangeText(rangeDeg), numberText(toDegrees(radians))});
     }
+    void optionalNumber(std::optional<double>& v, const char* key, const TRange& r,
+                        const char* doc) override {
+        keys.push_back({key, doc, rangeText(r), v ? numberText(*v) : ""});
+    }
 };
 }  // namespace
+
+void CDeclaredOptions::Visitor::point(mrpt::math::TPoint2D& p, const char* key,
+                                      const TRange& each, const char* doc) {
+    std::vector<double> v;
+    if (std::isfinite(p.x) && std::isfinite(p.y))
+        v = {p.x, p.y};
+    numbers(v, key, each, doc, TCount{0, 1, 2, true});
+    if (v.size() == 2)
+        p = {v[0], v[1]};
+}
+
+void CDeclaredOptions::Visitor::points(std::vector<mrpt::math::TPoint2D>& p,
+                                       const char* key, const TRange& each,
+                                       const char* doc, TCount count) {
+    std::vector<double> v;
+    for (const auto& q : p) {
+        v.push_back(q.x);
+        v.push_back(q.y);
+    }
+    count.min *= 2;
+    count.exact *= 2;
+    count.multiple = 2;
+    numbers(v, key, each, doc, count);
+    p.clear();
+    for (size_t i = 0; i + 1 < v.size(); i += 2)
+        p.emplace_back(v[i], v[i + 1]);
+}
+
+void CDeclaredOptions::Visitor::pose(mrpt::math::TPose2D& p, const char* key,
+                                     const TRange& xy, const TRange& headingDeg,
+                                     const char* doc) {
+    std::vector<double> v;
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.phi))
+        v = {p.x, p.y, toDegrees(p.phi)};
+    const std::vector<double> before = v;
+    // x and y in their range here; the heading's is checked below
+    const TRange any{-std::numeric_limits<double>::max(),
+                     std::numeric_limits<double>::max(), true, true, ""};
+    numbers(v, key, any, doc, TCount{0, 1, 3, true});
+    if (v.size() != 3)
+        return;
+    if (const std::string* section = checkedSection()) {
+        const std::string s = numbersText(v);
+        checkRule(xy.contains(v[0]) && xy.contains(v[1]), *section, key, s,
+                  "x and y " + xy.describe());
+        checkRule(headingDeg.contains(v[2]), *section, key, s,
+                  "the heading " + headingDeg.describe());
+    }
+    if (v != before)  // degrees back to radians only for a value read
+        p = mrpt::math::TPose2D(v[0], v[1], v[2] * M_PI / 180.0);
+}
 
 void CDeclaredOptions::declareConst(Visitor& v) const {
     // the saver, checker and lister only read the members they are handed
@@ -231,6 +356,7 @@ void CDeclaredOptions::loadFromConfigFile(const CConfigFileBase& c,
     section = s;
     CLoader l(c, s);
     declare(l);
+    onLoaded();
 }
 
 void CDeclaredOptions::saveToConfigFile(CConfigFileBase& c, const std::string& s) const {

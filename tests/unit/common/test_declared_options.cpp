@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 
 using namespace risknav::common;
 
@@ -162,4 +163,142 @@ TEST(CDeclaredOptions, ARoundTripInMemoryKeepsTheValues) {
     EXPECT_NE(c.getContent().find("laps = 9 // laps of the route, [1, 100]"),
               std::string::npos)
         << c.getContent();
+}
+
+namespace {
+struct TSubOptions : public CDeclaredOptions {
+    TSubOptions() { section = "Sub"; }
+    double width = 1;
+    double height = 1;
+
+  protected:
+    void declare(Visitor& v) override {
+        v.number(width, "width", TRange::closed(0, 10, "m"), "width");
+        v.number(height, "height", TRange::closed(0, 10, "m"), "height");
+    }
+    void validateRules() const override {
+        checkRule(height <= width, section, "height", numberText(height),
+                  "must be at most width");
+    }
+};
+struct TShapeOptions : public CDeclaredOptions {
+    TShapeOptions() { section = "Shape"; }
+    std::string name;
+    mrpt::math::TPoint2D centre{std::nan(""), std::nan("")};
+    std::vector<mrpt::math::TPoint2D> outline;
+    double x = 0;
+    std::optional<double> heading_deg;
+    std::vector<double> corners = {0, 0, 1, 1};
+    TSubOptions size;
+
+  protected:
+    void declare(Visitor& v) override {
+        v.text(name, "name", false, "defaults to the section's name");
+        v.point(centre, "centre", TRange::closed(-100, 100, "m"), "x y");
+        v.points(outline, "outline", TRange::closed(-100, 100, "m"), "x y pairs",
+                 TCount{2, 1, 0, true});
+        v.requiredNumber(x, "x", TRange::closed(-5, 5, "m"), "required");
+        v.optionalNumber(heading_deg, "heading_deg", TRange::closed(-180, 180, "deg"),
+                         "optional");
+        v.numbers(corners, "corners", TRange::closed(-100, 100, "m"), "x1 y1 x2 y2",
+                  TCount{0, 1, 4, false});
+        v.include(size);
+    }
+    void onLoaded() override {
+        if (name.empty())
+            name = section;
+    }
+};
+const char* kShape =
+    "[Box]\ncentre = 1 2\noutline = 0 0 1 0 1 1\nx = 3\nwidth = 4\nheight = 2\n";
+}  // namespace
+
+// Required points and numbers, point lists, counted and optional lists, a
+// name defaulting to the section's, another struct's keys in the same section.
+TEST(CDeclaredOptions, PointsRequiredOptionalAndIncludedKeys) {
+    mrpt::config::CConfigFileMemory c(kShape);
+    TShapeOptions o;
+    o.loadFromConfigFile(c, "Box");
+    EXPECT_EQ(o.name, "Box");
+    EXPECT_DOUBLE_EQ(o.centre.y, 2);
+    ASSERT_EQ(o.outline.size(), 3u);
+    EXPECT_DOUBLE_EQ(o.outline[2].x, 1);
+    EXPECT_DOUBLE_EQ(o.x, 3);
+    EXPECT_FALSE(o.heading_deg.has_value());
+    EXPECT_DOUBLE_EQ(o.size.width, 4);
+    EXPECT_EQ(o.size.section, "Box");
+    o.validate();
+    // saved and loaded back in memory: the same, the absent optional absent
+    mrpt::config::CConfigFileMemory saved;
+    o.saveToConfigFile(saved, "Box");
+    EXPECT_EQ(saved.getContent().find("heading_deg"), std::string::npos);
+    TShapeOptions p;
+    p.loadFromConfigFile(saved, "Box");
+    EXPECT_DOUBLE_EQ(p.outline[1].x, 1);
+    EXPECT_DOUBLE_EQ(p.size.height, 2);
+    // the included struct's rules are checked with the host's
+    p.size.height = 5;
+    EXPECT_THROW(p.validate(), std::exception);
+
+    auto loadError = [](const std::string& text) {
+        mrpt::config::CConfigFileMemory bad(text);
+        TShapeOptions q;
+        try {
+            q.loadFromConfigFile(bad, "Box");
+            q.validate();
+        } catch (const std::exception& e) {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    EXPECT_NE(loadError("[Box]\ncentre = 1 2\noutline = 0 0 1 1\n")
+                  .find("[Box] x: required key is missing"),
+              std::string::npos);
+    EXPECT_NE(loadError("[Box]\noutline = 0 0 1 1\nx = 1\n")
+                  .find("[Box] centre: required key is missing"),
+              std::string::npos);
+    EXPECT_NE(loadError("[Box]\ncentre = 1 2\noutline = 0 0 1\nx = 1\n").find("outline"),
+              std::string::npos);
+    EXPECT_NE(
+        loadError("[Box]\ncentre = 1 2\noutline = 0 0 1 1\nx = 1\ncorners = 1 2 3\n")
+            .find("needs exactly 4 numbers"),
+        std::string::npos);
+    EXPECT_NE(loadError("[Box]\ncentre = 1 2\noutline = 0 0 1 1\nx = 1\nheading_deg = "
+                        "200\n")
+                  .find("[Box] heading_deg"),
+              std::string::npos);
+    EXPECT_EQ(
+        loadError("[Box]\ncentre = 1 2\noutline = 0 0 1 1\nx = 1\nheading_deg = 90\n"),
+        "(no error)");
+}
+
+namespace {
+struct TStartOptions : public CDeclaredOptions {
+    TStartOptions() { section = "Start"; }
+    mrpt::math::TPose2D start{std::nan(""), std::nan(""), std::nan("")};
+
+  protected:
+    void declare(Visitor& v) override {
+        v.pose(start, "start", TRange::closed(-1e6, 1e6, "m"),
+               TRange::closed(-3600, 3600, "deg"), "x y heading_deg");
+    }
+};
+}  // namespace
+
+// A pose: degrees in the file, radians in MRPT's TPose2D, each part's range.
+TEST(CDeclaredOptions, APoseHasItsHeadingInDegrees) {
+    mrpt::config::CConfigFileMemory c("[Start]\nstart = 1 2 90\n");
+    TStartOptions o;
+    o.loadFromConfigFile(c, "Start");
+    EXPECT_NEAR(o.start.phi, M_PI / 2, 1e-15);
+    mrpt::config::CConfigFileMemory saved;
+    o.saveToConfigFile(saved, "Start");
+    EXPECT_NE(saved.getContent().find("start = 1 2 90 //"), std::string::npos)
+        << saved.getContent();
+    for (const char* bad :
+         {"[Start]\nstart = 1 2\n", "[Start]\nstart = 1 2 4000\n", "[Start]\nx = 1\n"}) {
+        mrpt::config::CConfigFileMemory b(bad);
+        TStartOptions p;
+        EXPECT_ANY_THROW(p.loadFromConfigFile(b, "Start")) << bad;
+    }
 }

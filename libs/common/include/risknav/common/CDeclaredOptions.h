@@ -2,7 +2,11 @@
 #include <risknav/common/CValidatedOptions.h>
 #include <risknav/common/config_read.h>
 
+#include <mrpt/math/TPoint2D.h>
+#include <mrpt/math/TPose2D.h>
+
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,9 +20,21 @@ namespace risknav::common {
  *
  * A derived struct names its section in its constructor (`section = ...`;
  * loadFromConfigFile() sets it to the section read). */
+/** How many numbers a declared list holds: at least `min`, a multiple of
+ * `multiple`, exactly `exact` when > 0; `required`: a missing key is an error
+ * at load. An empty list is not saved (it loads back empty). */
+struct TListCount {
+    size_t min = 0, multiple = 1, exact = 0;
+    bool required = false;
+};
+
 class CDeclaredOptions : public CValidatedOptions {
   public:
-    /** What declare() hands each key to. */
+    using TCount = TListCount;
+
+    /** What declare() hands each key to. The kinds without a default body
+     * are the primitives every visitor implements; the others are built on
+     * them. */
     class Visitor {
       public:
         virtual ~Visitor() = default;
@@ -27,9 +43,9 @@ class CDeclaredOptions : public CValidatedOptions {
         virtual void integer(int& v, const char* key, const TRange& range,
                              const char* doc) = 0;
         virtual void flag(bool& v, const char* key, const char* doc) = 0;
-        /** A list of numbers, each in `each` (its count: a rule). */
+        /** A list of numbers, each in `each`, `count` of them. */
         virtual void numbers(std::vector<double>& v, const char* key, const TRange& each,
-                             const char* doc) = 0;
+                             const char* doc, const TCount& count = {}) = 0;
         /** One of `allowed`. */
         virtual void choice(std::string& v, const char* key,
                             const std::vector<std::string>& allowed, const char* doc) = 0;
@@ -50,6 +66,33 @@ class CDeclaredOptions : public CValidatedOptions {
          * in degrees in the file (a key named *_deg or MRPT's own). */
         virtual void degrees(double& radians, const char* key, const TRange& rangeDeg,
                              const char* doc) = 0;
+        /** A number without a default: a missing key is an error at load. */
+        virtual void requiredNumber(double& v, const char* key, const TRange& range,
+                                    const char* doc) {
+            number(v, key, range, doc);
+        }
+        /** A number that may be absent (then not saved, nothing checked). */
+        virtual void optionalNumber(std::optional<double>& v, const char* key,
+                                    const TRange& range, const char* doc) = 0;
+        /** A required point "x y" (NaN until loaded). */
+        void point(mrpt::math::TPoint2D& p, const char* key, const TRange& each,
+                   const char* doc);
+        /** Points "x0 y0 x1 y1 ..." (count.min / exact in numbers, multiple 2). */
+        void points(std::vector<mrpt::math::TPoint2D>& p, const char* key,
+                    const TRange& each, const char* doc, TCount count = {});
+        /** A required pose "x [m] y [m] heading [deg]", held as MRPT's TPose2D
+         * (heading in radians); x and y in `xy`, the heading in `headingDeg`. */
+        void pose(mrpt::math::TPose2D& p, const char* key, const TRange& xy,
+                  const TRange& headingDeg, const char* doc);
+        /** Another declared struct's keys, in this section (its rules too). */
+        virtual void include(CDeclaredOptions& sub) { sub.declare(*this); }
+
+      protected:
+        /** The section a visitor that loads or checks reads ("" for the
+         * others: they check nothing). */
+        virtual const std::string* checkedSection() const { return nullptr; }
+        /** sub's rules across keys (for a visitor that checks). */
+        static void rulesOf(const CDeclaredOptions& sub) { sub.validateRules(); }
     };
 
     /** One declared key, as the documentation check lists it. */
@@ -74,6 +117,9 @@ class CDeclaredOptions : public CValidatedOptions {
     virtual void declare(Visitor& v) = 0;
     /** The rules across keys (throws CConfigKeyError). */
     virtual void validateRules() const {}
+    /** After a load, for defaults that depend on what was read (a name that
+     * defaults to the section's). */
+    virtual void onLoaded() {}
 
   private:
     /** declare() for visitors that only read the members. */
