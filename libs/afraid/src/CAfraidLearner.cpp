@@ -25,45 +25,6 @@ namespace fs = std::filesystem;
 
 namespace risknav::afraid {
 namespace {
-// Whitespace-separated paths; "double quotes" keep a path with spaces together.
-std::vector<std::string> splitPathList(const mrpt::config::CConfigFileBase& c,
-                                       const std::string& s, const std::string& k,
-                                       const std::string& v) {
-    std::vector<std::string> out;
-    std::string cur;
-    bool quoted = false, have = false;
-    for (char ch : v) {
-        if (ch == '"') {
-            quoted = !quoted;
-            have = true;
-        } else if (std::isspace(static_cast<unsigned char>(ch)) && !quoted) {
-            if (have)
-                out.push_back(cur);
-            cur.clear();
-            have = false;
-        } else {
-            cur += ch;
-            have = true;
-        }
-    }
-    if (quoted)
-        throwBadKey(c, s, k, v, "unbalanced double quote");
-    if (have)
-        out.push_back(cur);
-    return out;
-}
-
-// The inverse of splitPathList().
-std::string joinPathList(const std::vector<std::string>& paths) {
-    std::string t;
-    for (const auto& p : paths) {
-        const bool space = std::any_of(
-            p.begin(), p.end(), [](unsigned char ch) { return std::isspace(ch) != 0; });
-        t += (t.empty() ? "" : " ") + (space ? "\"" + p + "\"" : p);
-    }
-    return t;
-}
-
 // The same file twice (one path twice, a symbolic or a hard link to it)
 // would count its experience twice: files are compared by identity, the
 // device and inode numbers.

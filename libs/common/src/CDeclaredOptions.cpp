@@ -2,6 +2,7 @@
 #include <risknav/common/CDeclaredOptions.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -133,6 +134,23 @@ class CLoader : public CDeclaredOptions::Visitor {
         sub.section = m_s;
         Visitor::include(sub);
     }
+    void paths(std::vector<std::string>& v, const char* key, const char*) override {
+        if (!m_c.keyExists(m_s, key))
+            return;
+        v.clear();
+        for (const auto& p : splitPathList(m_c, m_s, key, readString(m_c, m_s, key, "")))
+            v.push_back(configRelativePath(m_c, p));
+    }
+    void namedSection(CDeclaredOptions& sub, const std::string& name, const char* key,
+                      bool) override {
+        if (name.empty()) {
+            sub.section = m_s + " (built-in " + key + ")";
+            return;
+        }
+        if (!m_c.sectionExists(name))
+            throwBadKey(m_c, m_s, key, name, "no section [" + name + "] in the config");
+        sub.loadFromConfigFile(m_c, name);
+    }
 
   private:
     const CConfigFileBase& m_c;
@@ -181,6 +199,14 @@ class CSaver : public CDeclaredOptions::Visitor {
     void degrees(double& radians, const char* key, const TRange& rangeDeg,
                  const char* doc) override {
         put(key, numberText(toDegrees(radians)), doc, rangeText(rangeDeg));
+    }
+    void paths(std::vector<std::string>& v, const char* key, const char* doc) override {
+        put(key, joinPathList(v), doc, "file paths");
+    }
+    void namedSection(CDeclaredOptions& sub, const std::string& name, const char*,
+                      bool) override {
+        if (!name.empty())
+            sub.saveToConfigFile(m_c, name);
     }
 
   private:
@@ -246,6 +272,12 @@ class CChecker : public CDeclaredOptions::Visitor {
         Visitor::include(sub);
         rulesOf(sub);
     }
+    void paths(std::vector<std::string>&, const char*, const char*) override {}
+    void namedSection(CDeclaredOptions& sub, const std::string&, const char*,
+                      bool check) override {
+        if (check)
+            sub.validate();  // in its own section (or the built-in's name)
+    }
 
   private:
     const std::string& m_s;
@@ -292,8 +324,50 @@ class CLister : public CDeclaredOptions::Visitor {
                         const char* doc) override {
         keys.push_back({key, doc, rangeText(r), v ? numberText(*v) : ""});
     }
+    void paths(std::vector<std::string>& v, const char* key, const char* doc) override {
+        keys.push_back({key, doc, "file paths", joinPathList(v)});
+    }
+    // its keys are in the named section, not in this one
+    void namedSection(CDeclaredOptions&, const std::string&, const char*, bool) override {
+    }
 };
 }  // namespace
+
+std::vector<std::string> splitPathList(const CConfigFileBase& c, const std::string& s,
+                                       const std::string& k, const std::string& v) {
+    std::vector<std::string> out;
+    std::string cur;
+    bool quoted = false, have = false;
+    for (char ch : v) {
+        if (ch == '"') {
+            quoted = !quoted;
+            have = true;
+        } else if (std::isspace(static_cast<unsigned char>(ch)) && !quoted) {
+            if (have)
+                out.push_back(cur);
+            cur.clear();
+            have = false;
+        } else {
+            cur += ch;
+            have = true;
+        }
+    }
+    if (quoted)
+        throwBadKey(c, s, k, v, "unbalanced double quote");
+    if (have)
+        out.push_back(cur);
+    return out;
+}
+
+std::string joinPathList(const std::vector<std::string>& paths) {
+    std::string t;
+    for (const auto& p : paths) {
+        const bool space = std::any_of(
+            p.begin(), p.end(), [](unsigned char ch) { return std::isspace(ch) != 0; });
+        t += (t.empty() ? "" : " ") + (space ? "\"" + p + "\"" : p);
+    }
+    return t;
+}
 
 void CDeclaredOptions::Visitor::point(mrpt::math::TPoint2D& p, const char* key,
                                       const TRange& each, const char* doc) {

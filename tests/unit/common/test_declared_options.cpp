@@ -302,3 +302,80 @@ TEST(CDeclaredOptions, APoseHasItsHeadingInDegrees) {
         EXPECT_ANY_THROW(p.loadFromConfigFile(b, "Start")) << bad;
     }
 }
+
+namespace {
+struct TModel : public CDeclaredOptions {
+    TModel() { section = "Model"; }
+    double p = 0.6;
+
+  protected:
+    void declare(Visitor& v) override {
+        v.number(p, "p", TRange::closed(0, 1), "a probability");
+    }
+};
+struct TFilesOptions : public CDeclaredOptions {
+    TFilesOptions() { section = "Files"; }
+    std::vector<std::string> logs;
+    std::string model_name;
+    TModel model;
+
+  protected:
+    void declare(Visitor& v) override {
+        v.paths(logs, "logs", "the logs to read");
+        v.text(model_name, "model", false, "section of the model ('' = built-in)");
+        v.namedSection(model, model_name, "model");
+    }
+};
+}  // namespace
+
+// Paths: quote-aware, saved back with the quotes; a struct from the section
+// another key names, saved there, checked in its own section.
+TEST(CDeclaredOptions, PathListsAndNamedSections) {
+    mrpt::config::CConfigFileMemory c(
+        "[Files]\nlogs = a.rawlog \"/b c/d.rawlog\"\nmodel = Laser\n[Laser]\np = 0.9\n");
+    TFilesOptions o;
+    o.loadFromConfigFile(c, "Files");
+    ASSERT_EQ(o.logs.size(), 2u);
+    EXPECT_EQ(o.logs[0], "a.rawlog");
+    EXPECT_EQ(o.logs[1], "/b c/d.rawlog");
+    EXPECT_DOUBLE_EQ(o.model.p, 0.9);
+    EXPECT_EQ(o.model.section, "Laser");
+    o.validate();
+    mrpt::config::CConfigFileMemory saved;
+    o.saveToConfigFile(saved, "Files");
+    TFilesOptions p;
+    p.loadFromConfigFile(saved, "Files");
+    EXPECT_EQ(p.logs, o.logs);
+    EXPECT_DOUBLE_EQ(p.model.p, 0.9);
+    const auto keys = o.keys();
+    ASSERT_EQ(keys.size(), 2u);  // the model's keys are in its own section
+    EXPECT_EQ(keys[0].defaultText, "a.rawlog \"/b c/d.rawlog\"");
+    EXPECT_EQ(keys[0].range, "file paths");
+
+    o.model.p = 2;
+    try {
+        o.validate();
+        FAIL() << "p = 2 accepted";
+    } catch (const CConfigKeyError& e) {
+        EXPECT_EQ(e.section, "Laser");
+    }
+
+    TFilesOptions builtIn;
+    mrpt::config::CConfigFileMemory none("[Files]\nlogs =\n");
+    builtIn.loadFromConfigFile(none, "Files");
+    EXPECT_TRUE(builtIn.logs.empty());
+    EXPECT_DOUBLE_EQ(builtIn.model.p, 0.6);
+    EXPECT_EQ(builtIn.model.section, "Files (built-in model)");
+
+    for (const char* bad : {"[Files]\nmodel = Nowhere\n", "[Files]\nlogs = \"a b\n"}) {
+        mrpt::config::CConfigFileMemory b(bad);
+        TFilesOptions q;
+        try {
+            q.loadFromConfigFile(b, "Files");
+            FAIL() << bad;
+        } catch (const CBadInputError& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find("[Files]"), std::string::npos) << what;
+        }
+    }
+}

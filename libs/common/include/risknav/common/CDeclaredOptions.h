@@ -28,6 +28,14 @@ struct TListCount {
     bool required = false;
 };
 
+/** Whitespace-separated paths; "double quotes" keep a path with spaces
+ * (an unbalanced quote: CBadInputError naming the file, section and key). */
+std::vector<std::string> splitPathList(const mrpt::config::CConfigFileBase& c,
+                                       const std::string& s, const std::string& k,
+                                       const std::string& v);
+/** The inverse of splitPathList(). */
+std::string joinPathList(const std::vector<std::string>& paths);
+
 class CDeclaredOptions : public CValidatedOptions {
   public:
     using TCount = TListCount;
@@ -86,6 +94,16 @@ class CDeclaredOptions : public CValidatedOptions {
                   const TRange& headingDeg, const char* doc);
         /** Another declared struct's keys, in this section (its rules too). */
         virtual void include(CDeclaredOptions& sub) { sub.declare(*this); }
+        /** File paths, whitespace-separated ("double quotes" keep a path with
+         * spaces), each relative to the config file's folder; "" = none.
+         * Whether they exist is a rule of the struct's. */
+        virtual void paths(std::vector<std::string>& v, const char* key,
+                           const char* doc) = 0;
+        /** A struct loaded from the section `name` (the value of `key`,
+         * declared before): "" = its built-in values, else the section must
+         * exist. Saved into that section; validated when `check`. */
+        virtual void namedSection(CDeclaredOptions& sub, const std::string& name,
+                                  const char* key, bool check = true) = 0;
 
       protected:
         /** The section a visitor that loads or checks reads ("" for the
