@@ -51,63 +51,37 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 }
 }  // namespace
 
-void CAfraidLearner::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                                  const std::string& s) {
-    section = map.section = obstacles.section = krr.section = s;
-    map.loadFromConfigFile(c, s);
-    obstacles.loadFromConfigFile(c, s);
+void CAfraidLearner::TOptions::declare(Visitor& v) {
+    v.include(map);
+    v.include(obstacles);
     // From the config, relative to it (the command line's are added by the learner).
-    rawlogs.clear();
-    for (const auto& r : splitPathList(c, s, "rawlogs", readString(c, s, "rawlogs", "")))
-        rawlogs.push_back(configRelativePath(c, r));
-    afraid_in.clear();
-    for (const auto& a :
-         splitPathList(c, s, "afraid_in", readString(c, s, "afraid_in", "")))
-        afraid_in.push_back(configRelativePath(c, a));
-    afraid_name = readString(c, s, "afraid_name", afraid_name);
-    groundtruth_files.clear();
-    for (const auto& g : splitPathList(c, s, "groundtruth_file",
-                                       readString(c, s, "groundtruth_file", "")))
-        groundtruth_files.push_back(configRelativePath(c, g));
-    scan_label = readString(c, s, "scan_label", scan_label);
-    match_distance = readDouble(c, s, "match_distance", match_distance);
-    min_match = readDouble(c, s, "min_match", min_match);
-    diverged_fraction = readDouble(c, s, "diverged_fraction", diverged_fraction);
-    krr.loadFromConfigFile(c, s);
-    sample_bin = readDouble(c, s, "sample_bin", sample_bin);
-    zone_threshold = readDouble(c, s, "zone_threshold", zone_threshold);
-    v_max = readDouble(c, s, "v_max", v_max);
-    v_safe = readDouble(c, s, "v_safe", v_safe);
-    // The seed is an integer type: its range is a parsing rule.
-    seed = static_cast<uint64_t>(
-        readDouble(c, s, "seed", double(seed), TRange::closed(0, kMaxSeed)));
+    v.paths(rawlogs, "rawlogs",
+            "rawlogs to learn from (more on the command line); each must exist");
+    v.paths(afraid_in, "afraid_in", "earlier .afraid files to add up; each once");
+    v.text(afraid_name, "afraid_name", false,
+           "the learned file: a name ending in .afraid");
+    v.paths(groundtruth_files, "groundtruth_file",
+            "optional \"t x y phi\" files, one per rawlog in the same order");
+    v.text(scan_label, "scan_label", false,
+           "sensorLabel of the scan ('' = the first 2D scan of each frame)");
+    v.number(match_distance, "match_distance", TRange::closed(0.01, 5, "m"),
+             "a scan point this close to a map obstacle agrees with the map");
+    v.number(min_match, "min_match", TRange::closed(0, 1),
+             "frames with a smaller agreeing fraction are not localized");
+    v.number(diverged_fraction, "diverged_fraction", TRange::closed(0, 1),
+             "more non-localized frames than this: MCL diverged");
+    v.include(krr);
+    v.number(sample_bin, "sample_bin", TRange::closed(0.01, 10, "m"),
+             "passes and events are pooled in squares this size");
+    v.number(zone_threshold, "zone_threshold", {0, 1e6, true, false, "events per pass"},
+             "level above which a cell is in a zone");
+    v.number(v_max, "v_max", {0, 10, true, false, "m/s"}, "speed outside the zones");
+    v.number(v_safe, "v_safe", {0, 10, true, false, "m/s"}, "speed inside the zones");
+    v.seed(seed, "seed", "particle filter seed (with each rawlog's name and size)");
 }
 
-void CAfraidLearner::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                                const std::string& s) const {
-    map.saveToConfigFile(c, s);
-    obstacles.saveToConfigFile(c, s);
-    writeKey(c, s, "rawlogs", joinPathList(rawlogs));
-    writeKey(c, s, "afraid_in", joinPathList(afraid_in));
-    writeKey(c, s, "afraid_name", afraid_name);
-    writeKey(c, s, "groundtruth_file", joinPathList(groundtruth_files));
-    writeKey(c, s, "scan_label", scan_label);
-    writeKey(c, s, "match_distance", match_distance);
-    writeKey(c, s, "min_match", min_match);
-    writeKey(c, s, "diverged_fraction", diverged_fraction);
-    krr.saveToConfigFile(c, s);
-    writeKey(c, s, "sample_bin", sample_bin);
-    writeKey(c, s, "zone_threshold", zone_threshold);
-    writeKey(c, s, "v_max", v_max);
-    writeKey(c, s, "v_safe", v_safe);
-    writeKey(c, s, "seed", std::to_string(seed));
-}
-
-void CAfraidLearner::TOptions::validate() const {
+void CAfraidLearner::TOptions::validateRules() const {
     const std::string& s = section;
-    map.validate();
-    obstacles.validate();
-    krr.validate();
     // Without rawlogs, a merge-only run of the afraid_in files.
     checkRule(!rawlogs.empty() || !afraid_in.empty(), s, "rawlogs", "",
               "no rawlog: give [" + s + "] rawlogs or RAWLOG arguments (or afraid_in " +
@@ -140,14 +114,6 @@ void CAfraidLearner::TOptions::validate() const {
               "needs one file per rawlog (" + std::to_string(rawlogs.size()) +
                   " rawlogs, " + std::to_string(groundtruth_files.size()) +
                   " ground-truth files)");
-    checkKey(s, "match_distance", match_distance, TRange::closed(0.01, 5, "m"));
-    checkKey(s, "min_match", min_match, TRange::closed(0, 1));
-    checkKey(s, "diverged_fraction", diverged_fraction, TRange::closed(0, 1));
-    checkKey(s, "sample_bin", sample_bin, TRange::closed(0.01, 10, "m"));
-    checkKey(s, "zone_threshold", zone_threshold,
-             {0, 1e6, true, false, "events per pass"});
-    checkKey(s, "v_max", v_max, {0, 10, true, false, "m/s"});
-    checkKey(s, "v_safe", v_safe, {0, 10, true, false, "m/s"});
     checkRule(v_safe <= v_max, s, "v_safe", numberText(v_safe), "must be <= v_max");
 }
 

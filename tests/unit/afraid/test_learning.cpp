@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <set>
 
 #include "test_support.h"
 
@@ -269,4 +270,22 @@ TEST(TKrrOptions, TheDocumentedConfigHoldsEveryDeclaredKeyWithItsDefault) {
 
 TEST(CAfraidDetectorOptions, TheDocumentedConfigHoldsEveryDeclaredKeyWithItsDefault) {
     expectDocumented(CAfraidDetector::TOptions(), "AfraidDetector", 7);
+}
+
+TEST(CAfraidLearnerOptions, TheDocumentedConfigHoldsEveryDeclaredKey) {
+    mrpt::config::CConfigFileMemory doc(risknav::test::readFile(
+        risknav::test::sourcePath("config/risknav-afraid-learn.ini")));
+    const auto keys = CAfraidLearner::TOptions().keys();
+    ASSERT_EQ(keys.size(), 25u);
+    // the example's inputs and output name differ from the defaults (none)
+    const std::set<std::string> example = {"map_file", "rawlogs", "afraid_name",
+                                           "groundtruth_file"};
+    for (const auto& k : keys) {
+        ASSERT_TRUE(doc.keyExists("AfraidLearn", k.key)) << k.key;
+        EXPECT_FALSE(k.doc.empty()) << k.key;
+        if (example.count(k.key))
+            continue;
+        const std::string v = doc.read_string("AfraidLearn", k.key, "");
+        EXPECT_EQ(v.substr(0, v.find_first_of(" \t/")), k.defaultText) << k.key;
+    }
 }

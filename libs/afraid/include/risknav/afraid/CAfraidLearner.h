@@ -4,6 +4,7 @@
 #include <risknav/afraid/afraid_zones.h>
 #include <risknav/afraid/ground_truth.h>
 #include <risknav/afraid/kernel_regression.h>
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/common/CIniConfig.h>
 #include <risknav/common/CValidatedOptions.h>
 #include <risknav/common/grid_io.h>
@@ -51,7 +52,7 @@ class CAfraidLearner {
   public:
     /** The [AfraidLearn] keys: the map, which of its cells are obstacles (for
      * the scan-to-map agreement), the inputs and outputs, and the learning. */
-    struct TOptions : public common::CValidatedOptions {
+    struct TOptions : public common::CDeclaredOptions {
         common::TMapSourceOptions map;  ///< map_* keys
         /** occupied_threshold ... outside_is_obstacle. Here the rule says which
          * cells confirm a scan point, so unknown cells and the outside do not by
@@ -82,20 +83,18 @@ class CAfraidLearner {
         double v_max = 0.8;            ///< [m/s] speed outside the zones (eq. 13)
         double v_safe = 0.2;           ///< [m/s] speed inside the zones (eq. 13)
         uint64_t seed = 1;  ///< particle filter seed (with the rawlog's name and size)
-        std::string section = "AfraidLearn";  ///< the host section (for messages)
 
         TOptions() {
-            map.section = obstacles.section = krr.section = section;
+            section = map.section = obstacles.section = krr.section = "AfraidLearn";
             obstacles.unknown_is_obstacle = obstacles.outside_is_obstacle = false;
         }
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& section) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& section) const override;
-        /** Ranges, v_safe <= v_max, the afraid_name form, at least one rawlog
-         * or one afraid_in file, no afraid_in file twice, and that every named
-         * input file exists. */
-        void validate() const override;
+
+      protected:
+        void declare(Visitor& v) override;
+        /** v_safe <= v_max, the afraid_name form, at least one rawlog or one
+         * afraid_in file, no input file twice, every named input file exists,
+         * one ground truth per rawlog. */
+        void validateRules() const override;
     };
 
     TOptions options;              ///< [AfraidLearn]
