@@ -16,37 +16,18 @@ bool startsWithNumbered(const std::string& s, const std::string& prefix) {
                        [](unsigned char ch) { return std::isdigit(ch); });
 }
 
-std::vector<TPoint2D> readPath(const mrpt::config::CConfigFileBase& c,
-                               const std::string& s) {
-    const auto v = readNumbers(c, s, "path", {}, TRange::any("m"), 4, 2);
-    if (v.empty())
-        throw CBadInputError(configWhere(c, s, "path") + "[" + s +
-                             "] path: required key is missing");
-    std::vector<TPoint2D> p;
-    for (size_t i = 0; i + 1 < v.size(); i += 2)
-        p.emplace_back(v[i], v[i + 1]);
-    return p;
-}
-
-std::vector<double> flat(const std::vector<TPoint2D>& p) {
-    std::vector<double> v;
-    for (const auto& q : p) {
-        v.push_back(q.x);
-        v.push_back(q.y);
-    }
-    return v;
-}
-
 std::string pathText(const std::vector<TPoint2D>& p) {
     std::string t;
-    for (double x : flat(p))
-        t += (t.empty() ? "" : " ") + numberText(x);
+    for (const auto& q : p)
+        t += (t.empty() ? "" : " ") + numberText(q.x) + " " + numberText(q.y);
     return t;
 }
 
-void checkPath(const std::string& s, const std::vector<TPoint2D>& p) {
-    checkRule(p.size() >= 2, s, "path", pathText(p), "needs at least two points");
-    checkKey(s, "path", flat(p), TRange::closed(-1e6, 1e6, "m"));
+const TRange kCoordinate = TRange::closed(-1e6, 1e6, "m");
+// a person's path: a polyline of at least two points
+const CDeclaredOptions::TCount kPathCount{2, 1, 0, true};
+
+void checkDistinctPoints(const std::string& s, const std::vector<TPoint2D>& p) {
     for (size_t i = 1; i < p.size(); i++)
         checkRule(std::hypot(p[i].x - p[i - 1].x, p[i].y - p[i - 1].y) >= 1e-6, s, "path",
                   pathText(p), "has two equal consecutive points");
@@ -58,54 +39,39 @@ bool CAgentsSim::ownsSection(const std::string& s) {
            startsWithNumbered(s, "CorridorWalker") || startsWithNumbered(s, "Clutter");
 }
 
-void CAgentsSim::TDoorPedestrian::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s) {
-    section = s;
-    const auto seg = readNumbers(c, s, "door", {}, TRange::any("m"));
-    if (seg.size() != 4)
-        throw CBadInputError(configWhere(c, s, "door") + "[" + s +
-                             "] door: needs x1 y1 x2 y2 (the doorway segment)");
-    std::copy(seg.begin(), seg.end(), door);
-    path = readPath(c, s);
-    speed = readDouble(c, s, "speed", speed);
-    radius = readDouble(c, s, "radius", radius);
-    patience = readDouble(c, s, "patience", patience);
-    emergence =
-        readChoice(c, s, "emergence", emergence, {"poisson", "schedule", "trigger"});
-    rate_per_min = readDouble(c, s, "rate_per_min", rate_per_min);
-    schedule = readNumbers(c, s, "schedule", {}, TRange::any("s"));
-    trigger_distance = readDouble(c, s, "trigger_distance", trigger_distance);
-    trigger_probability = readDouble(c, s, "trigger_probability", trigger_probability);
-}
-
-void CAgentsSim::TDoorPedestrian::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                                   const std::string& s) const {
-    writeKey(c, s, "door", std::vector<double>(door, door + 4));
-    writeKey(c, s, "path", flat(path));
-    writeKey(c, s, "speed", speed);
-    writeKey(c, s, "radius", radius);
-    writeKey(c, s, "patience", patience);
-    writeKey(c, s, "emergence", emergence);
-    writeKey(c, s, "rate_per_min", rate_per_min);
-    if (!schedule.empty())
-        writeKey(c, s, "schedule", schedule);
-    writeKey(c, s, "trigger_distance", trigger_distance);
-    writeKey(c, s, "trigger_probability", trigger_probability);
-}
-
-void CAgentsSim::TDoorPedestrian::validate() const {
-    const std::string& s = section;
-    checkKey(s, "door", std::vector<double>(door, door + 4),
-             TRange::closed(-1e6, 1e6, "m"));
-    checkPath(s, path);
+void CAgentsSim::TDoorPedestrian::declare(Visitor& v) {
+    // the file's list in a local: door[] keeps its bits unless a load changed it
+    const std::vector<double> held(door, door + 4);
+    std::vector<double> seg = held;
+    v.numbers(seg, "door", kCoordinate,
+              "the doorway segment x1 y1 x2 y2 [m] (drawn, and the trigger point)",
+              TCount{0, 1, 4, true});
+    if (seg != held && seg.size() == 4)
+        std::copy(seg.begin(), seg.end(), door);
+    v.points(path, "path", kCoordinate,
+             "x y pairs [m] from inside the room into and along the corridor; the "
+             "person leaves at its end",
+             kPathCount);
     // people's paces (1e308 m/s teleported a person past the robot in one step)
-    checkKey(s, "speed", speed, TRange{0, 10, true, false, "m/s"});
-    checkKey(s, "radius", radius, TRange::closed(0.05, 2, "m"));
-    checkKey(s, "patience", patience, TRange{0, 1e5, true, false, "s"});
-    checkRule(emergence == "poisson" || emergence == "schedule" || emergence == "trigger",
-              s, "emergence", emergence, "must be one of: poisson, schedule, trigger");
-    checkKey(s, "rate_per_min", rate_per_min, TRange{0, 600, true, false, "1/min"});
-    checkKey(s, "schedule", schedule, TRange::nonNegative("s"));
+    v.number(speed, "speed", TRange{0, 10, true, false, "m/s"}, "walking speed");
+    v.number(radius, "radius", TRange::closed(0.05, 2, "m"), "the person's disc");
+    v.number(patience, "patience", TRange{0, 1e5, true, false, "s"},
+             "a person who cannot move at all for this long goes away");
+    v.choice(emergence, "emergence", {"poisson", "schedule", "trigger"},
+             "when the person comes out");
+    v.number(rate_per_min, "rate_per_min", TRange{0, 600, true, false, "1/min"},
+             "poisson: mean emergence rate");
+    v.numbers(schedule, "schedule", TRange::nonNegative("s"),
+              "schedule: emergence times since the start, increasing");
+    v.number(trigger_distance, "trigger_distance", TRange{0, 1000, true, false, "m"},
+             "trigger: the robot came this close to the door's middle");
+    v.number(trigger_probability, "trigger_probability", TRange::closed(0, 1),
+             "trigger: chance of an emergence per pass of the robot");
+}
+
+void CAgentsSim::TDoorPedestrian::validateRules() const {
+    const std::string& s = section;
+    checkDistinctPoints(s, path);
     std::string sched;
     for (double x : schedule)
         sched += (sched.empty() ? "" : " ") + numberText(x);
@@ -113,65 +79,31 @@ void CAgentsSim::TDoorPedestrian::validate() const {
               "times must be increasing");
     checkRule(emergence != "schedule" || !schedule.empty(), s, "schedule", sched,
               "required when emergence = schedule");
-    checkKey(s, "trigger_distance", trigger_distance, TRange{0, 1000, true, false, "m"});
-    checkKey(s, "trigger_probability", trigger_probability, TRange::closed(0, 1));
 }
 
-void CAgentsSim::TWalker::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                             const std::string& s) {
-    section = s;
-    path = readPath(c, s);
-    speed_min = readDouble(c, s, "speed_min", speed_min);
-    speed_max = readDouble(c, s, "speed_max", speed_max);
-    radius = readDouble(c, s, "radius", radius);
-    period = readDouble(c, s, "period", period);
-    phase = readDouble(c, s, "phase", phase);
-    patience = readDouble(c, s, "patience", patience);
+void CAgentsSim::TWalker::declare(Visitor& v) {
+    v.points(path, "path", kCoordinate, "x y pairs [m] the walkers follow", kPathCount);
+    v.number(speed_min, "speed_min", TRange{0, 10, true, false, "m/s"}, "slowest walker");
+    v.number(speed_max, "speed_max", TRange{0, 10, true, false, "m/s"},
+             "each walker's speed is uniform in [min, max]");
+    v.number(radius, "radius", TRange::closed(0.05, 2, "m"), "a walker's disc");
+    v.number(period, "period", TRange{0, 1e6, true, false, "s"},
+             "a new walker every period");
+    v.number(phase, "phase", TRange::closed(0, 1e6, "s"), "time of the first walker");
+    v.number(patience, "patience", TRange{0, 1e5, true, false, "s"},
+             "a walker who cannot move at all for this long goes away");
 }
 
-void CAgentsSim::TWalker::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                           const std::string& s) const {
-    writeKey(c, s, "path", flat(path));
-    writeKey(c, s, "speed_min", speed_min);
-    writeKey(c, s, "speed_max", speed_max);
-    writeKey(c, s, "radius", radius);
-    writeKey(c, s, "period", period);
-    writeKey(c, s, "phase", phase);
-    writeKey(c, s, "patience", patience);
-}
-
-void CAgentsSim::TWalker::validate() const {
-    const std::string& s = section;
-    checkPath(s, path);
-    checkKey(s, "speed_min", speed_min, TRange{0, 10, true, false, "m/s"});
-    checkKey(s, "speed_max", speed_max, TRange{0, 10, true, false, "m/s"});
-    checkRule(speed_max >= speed_min, s, "speed_max", numberText(speed_max),
+void CAgentsSim::TWalker::validateRules() const {
+    checkDistinctPoints(section, path);
+    checkRule(speed_max >= speed_min, section, "speed_max", numberText(speed_max),
               "must be >= speed_min");
-    checkKey(s, "radius", radius, TRange::closed(0.05, 2, "m"));
-    checkKey(s, "period", period, TRange{0, 1e6, true, false, "s"});
-    checkKey(s, "phase", phase, TRange::closed(0, 1e6, "s"));
-    checkKey(s, "patience", patience, TRange{0, 1e5, true, false, "s"});
 }
 
-void CAgentsSim::TClutter::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                              const std::string& s) {
-    section = s;
-    x = requireDouble(c, s, "x", TRange::any("m"));
-    y = requireDouble(c, s, "y", TRange::any("m"));
-    radius = readDouble(c, s, "radius", radius);
-}
-
-void CAgentsSim::TClutter::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                            const std::string& s) const {
-    writeKey(c, s, "x", x);
-    writeKey(c, s, "y", y);
-    writeKey(c, s, "radius", radius);
-}
-
-void CAgentsSim::TClutter::validate() const {
-    checkKey(section, "x", x, TRange::closed(-1e6, 1e6, "m"));
-    checkKey(section, "y", y, TRange::closed(-1e6, 1e6, "m"));
-    checkKey(section, "radius", radius, TRange::closed(0.02, 5, "m"));
+void CAgentsSim::TClutter::declare(Visitor& v) {
+    v.requiredNumber(x, "x", kCoordinate, "centre x");
+    v.requiredNumber(y, "y", kCoordinate, "centre y");
+    v.number(radius, "radius", TRange::closed(0.02, 5, "m"), "the disc's radius");
 }
 
 void CAgentsSim::loadFromConfigFile(const mrpt::config::CConfigFileBase& c) {

@@ -10,64 +10,34 @@ using namespace risknav::common;
 using mrpt::math::TPoint2D;
 
 namespace risknav::sim {
-void CRouteFollower::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                                  const std::string& s) {
-    waypoints = readNumbers(c, s, "waypoints", waypoints, TRange::any("m"), 4, 2);
-    if (waypoints.empty())
-        throw CBadInputError(configWhere(c, s, "waypoints") + "[" + s +
-                             "] waypoints: required key is missing (x0 y0 x1 y1 ...)");
-    speed = readDouble(c, s, "speed", speed);
-    speeds = readNumbers(c, s, "speeds", speeds, TRange::any("m/s"));
-    laps = readInt(c, s, "laps", laps);
-    mode = readChoice(c, s, "mode", mode, {"once", "loop", "back_and_forth"});
-    goal_tolerance = readDouble(c, s, "goal_tolerance", goal_tolerance);
-    heading_gain = readDouble(c, s, "heading_gain", heading_gain);
-    turn_in_place_deg = readDouble(c, s, "turn_in_place_deg", turn_in_place_deg);
-    if (c.keyExists(s, "start_heading_deg"))
-        start_heading_deg = readDouble(c, s, "start_heading_deg", 0.0);
+void CRouteFollower::TOptions::declare(Visitor& v) {
+    v.numbers(waypoints, "waypoints", TRange::closed(-1e6, 1e6, "m"),
+              "x0 y0 x1 y1 ... [m], at least two points", TCount{4, 2, 0, true});
+    v.number(speed, "speed", {0, 5, true, false, "m/s"},
+             "commanded speed on every segment");
+    v.numbers(speeds, "speeds", {0, 5, true, false, "m/s"},
+              "optional: one speed per segment (mode loop: one more)");
+    v.integer(laps, "laps", TRange::closed(1, 10000), "must be 1 for once");
+    v.choice(mode, "mode", {"once", "loop", "back_and_forth"}, "how the route repeats");
+    v.number(goal_tolerance, "goal_tolerance", TRange::closed(0.01, 2, "m"),
+             "a waypoint counts as reached within this distance");
+    v.number(heading_gain, "heading_gain", TRange::closed(0.1, 20, "1/s"),
+             "omega = gain x heading error");
+    v.number(turn_in_place_deg, "turn_in_place_deg", TRange::closed(5, 180, "deg"),
+             "heading errors above this: turn in place");
+    v.optionalNumber(start_heading_deg, "start_heading_deg",
+                     TRange::closed(-180, 180, "deg"),
+                     "optional; default: towards the second waypoint");
 }
 
-void CRouteFollower::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                                const std::string& s) const {
-    writeKey(c, s, "waypoints", waypoints);
-    writeKey(c, s, "speed", speed);
-    if (!speeds.empty())
-        writeKey(c, s, "speeds", speeds);
-    writeKey(c, s, "laps", laps);
-    writeKey(c, s, "mode", mode);
-    writeKey(c, s, "goal_tolerance", goal_tolerance);
-    writeKey(c, s, "heading_gain", heading_gain);
-    writeKey(c, s, "turn_in_place_deg", turn_in_place_deg);
-    if (start_heading_deg)
-        writeKey(c, s, "start_heading_deg", *start_heading_deg);
-}
-
-void CRouteFollower::TOptions::validate() const {
-    const std::string s = "Route";
-    auto list = [](const std::vector<double>& v) {
-        std::string t;
-        for (double x : v)
-            t += (t.empty() ? "" : " ") + numberText(x);
-        return t;
-    };
-    checkRule(waypoints.size() >= 4 && waypoints.size() % 2 == 0, s, "waypoints",
-              list(waypoints), "needs at least two points x0 y0 x1 y1");
-    checkKey(s, "waypoints", waypoints, TRange::closed(-1e6, 1e6, "m"));
-    checkKey(s, "speed", speed, {0, 5, true, false, "m/s"});
-    checkKey(s, "speeds", speeds, {0, 5, true, false, "m/s"});
-    checkKey(s, "laps", laps, TRange::closed(1, 10000));
-    checkRule(mode == "once" || mode == "loop" || mode == "back_and_forth", s, "mode",
-              mode, "must be one of: once, loop, back_and_forth");
-    checkKey(s, "goal_tolerance", goal_tolerance, TRange::closed(0.01, 2, "m"));
-    checkKey(s, "heading_gain", heading_gain, TRange::closed(0.1, 20, "1/s"));
-    checkKey(s, "turn_in_place_deg", turn_in_place_deg, TRange::closed(5, 180, "deg"));
-    if (start_heading_deg)
-        checkKey(s, "start_heading_deg", *start_heading_deg,
-                 TRange::closed(-180, 180, "deg"));
+void CRouteFollower::TOptions::validateRules() const {
     const size_t nSeg = waypoints.size() / 2 - (mode == "loop" ? 0 : 1);
-    checkRule(speeds.empty() || speeds.size() == nSeg, s, "speeds", list(speeds),
+    std::string list;
+    for (double x : speeds)
+        list += (list.empty() ? "" : " ") + numberText(x);
+    checkRule(speeds.empty() || speeds.size() == nSeg, section, "speeds", list,
               "needs one speed per segment (" + std::to_string(nSeg) + ")");
-    checkRule(mode != "once" || laps == 1, s, "laps", std::to_string(laps),
+    checkRule(mode != "once" || laps == 1, section, "laps", std::to_string(laps),
               "must be 1 when mode = once");
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/sim/range_geometry.h>
 
 #include <mrpt/config/CConfigFileBase.h>
@@ -33,8 +33,11 @@ struct TAgentEvent {
  * next step would touch the robot (give up after `patience` s). */
 class CAgentsSim {
   public:
-    struct TDoorPedestrian : public common::CValidatedOptions {
-        std::string section;
+    /** [DoorPedestrianN], [CorridorWalkerN], [ClutterN]: every key, its
+     * range and doc declared once, in declare(); `section` names the one
+     * read. */
+    struct TDoorPedestrian : public common::CDeclaredOptions {
+        TDoorPedestrian() { section = "DoorPedestrian1"; }
         double door[4] = {0, 0, 0, 0};           ///< x1 y1 x2 y2 [m]
         std::vector<mrpt::math::TPoint2D> path;  ///< from the doorway into the corridor
         double speed = 0.8, radius = 0.25, patience = 10.0;
@@ -45,31 +48,27 @@ class CAgentsSim {
         mrpt::math::TPoint2D doorMid() const {
             return {0.5 * (door[0] + door[2]), 0.5 * (door[1] + door[3])};
         }
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& s) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& s) const override;
-        void validate() const override;
+
+      protected:
+        void declare(Visitor& v) override;
+        void validateRules() const override;
     };
-    struct TWalker : public common::CValidatedOptions {
-        std::string section;
+    struct TWalker : public common::CDeclaredOptions {
+        TWalker() { section = "CorridorWalker1"; }
         std::vector<mrpt::math::TPoint2D> path;
         double speed_min = 1.6, speed_max = 2.0, radius = 0.25, period = 30.0,
                phase = 0.0, patience = 10.0;
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& s) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& s) const override;
-        void validate() const override;
+
+      protected:
+        void declare(Visitor& v) override;
+        void validateRules() const override;
     };
-    struct TClutter : public common::CValidatedOptions {
-        std::string section;
+    struct TClutter : public common::CDeclaredOptions {
+        TClutter() { section = "Clutter1"; }
         double x = 0, y = 0, radius = 0.3;
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& s) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& s) const override;
-        void validate() const override;
+
+      protected:
+        void declare(Visitor& v) override;
     };
 
     std::vector<TDoorPedestrian> doors;

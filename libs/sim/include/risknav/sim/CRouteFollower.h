@@ -2,7 +2,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/math/TPose2D.h>
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 
 #include <optional>
 #include <string>
@@ -19,7 +19,9 @@ namespace risknav::sim {
  * the logged odometry only. */
 class CRouteFollower {
   public:
-    struct TOptions : public common::CValidatedOptions {
+    /** [Route]: every key, its range and doc declared once, in declare(). */
+    struct TOptions : public common::CDeclaredOptions {
+        TOptions() { section = "Route"; }
         std::vector<double> waypoints;  ///< x0 y0 x1 y1 ... [m], at least 2 points
         double speed = 0.2;             ///< [m/s] commanded speed of every segment
         std::vector<double> speeds;     ///< [m/s] optional, one per segment of one pass
@@ -31,11 +33,9 @@ class CRouteFollower {
         std::optional<double>
             start_heading_deg;  ///< [deg] default: towards the second waypoint
 
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& s) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& s) const override;
-        void validate() const override;
+      protected:
+        void declare(Visitor& v) override;
+        void validateRules() const override;
     } options;
 
     /** Expands the route (laps, mode) and rewinds. */
