@@ -13,56 +13,48 @@
 using namespace risknav::common;
 
 namespace risknav::localization {
-void CRawlogMcl::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                              const std::string& s) {
-    particles = readInt(c, s, "particles", particles);
-    init = readChoice(c, s, "init", init, {"pose", "global"});
-    const auto p = readNumbers(c, s, "init_pose",
-                               {initPose.x, initPose.y, initPose.phi * 180 / M_PI});
-    if (p.size() != 3)
-        throwBadKey(c, s, "init_pose", readString(c, s, "init_pose", ""),
-                    "needs x y phi_deg");
-    initPose = {p[0], p[1], p[2] * M_PI / 180};
-    const auto xy = readNumbers(c, s, "init_xy", {init_xy, init_y});
-    if (xy.size() != 1 && xy.size() != 2)
-        throwBadKey(c, s, "init_xy", readString(c, s, "init_xy", ""),
-                    "needs one half-width, or x and y half-widths");
-    init_xy = xy[0];
-    init_y = xy.size() == 2 ? xy[1] : xy[0];
-    init_phi_deg = readDouble(c, s, "init_phi_deg", init_phi_deg);
-    lf_std_hit = readDouble(c, s, "lf_std_hit", lf_std_hit);
-    lf_decimation = readInt(c, s, "lf_decimation", lf_decimation);
-    lf_max_corrs_distance =
-        readDouble(c, s, "lf_max_corrs_distance", lf_max_corrs_distance);
+namespace {
+std::string numbersText(const std::vector<double>& v) {
+    std::string t;
+    for (double x : v)
+        t += (t.empty() ? "" : " ") + numberText(x);
+    return t;
 }
+}  // namespace
 
-void CRawlogMcl::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                            const std::string& s) const {
-    writeKey(c, s, "particles", particles);
-    writeKey(c, s, "init", init);
-    writeKey(c, s, "init_pose",
-             std::vector<double>{initPose.x, initPose.y, initPose.phi * 180 / M_PI});
-    writeKey(c, s, "init_xy", std::vector<double>{init_xy, init_y});
-    writeKey(c, s, "init_phi_deg", init_phi_deg);
-    writeKey(c, s, "lf_std_hit", lf_std_hit);
-    writeKey(c, s, "lf_decimation", lf_decimation);
-    writeKey(c, s, "lf_max_corrs_distance", lf_max_corrs_distance);
-}
-
-void CRawlogMcl::TOptions::validate() const {
-    const std::string s = "Localization";
-    checkKey(s, "particles", particles, TRange::closed(10, 1000000));
-    checkRule(init == "pose" || init == "global", s, "init", init,
-              "must be one of: pose, global");
-    checkKey(s, "init_pose", std::vector<double>{initPose.x, initPose.y},
-             TRange::closed(-1e6, 1e6, "m"));
-    checkKey(s, "init_xy", std::vector<double>{init_xy, init_y},
-             TRange::closed(0, 1000, "m"));
-    checkKey(s, "init_phi_deg", init_phi_deg, TRange::closed(0, 180, "deg"));
-    checkKey(s, "lf_std_hit", lf_std_hit, TRange::closed(0.001, 10, "m"));
-    checkKey(s, "lf_decimation", lf_decimation, TRange::closed(1, 1000));
-    checkKey(s, "lf_max_corrs_distance", lf_max_corrs_distance,
-             TRange::closed(0.01, 10, "m"));
+void CRawlogMcl::TOptions::declare(Visitor& v) {
+    v.integer(particles, "particles", TRange::closed(10, 1000000),
+              "initial particles (>= 0.1 per KLD bin of the initial region)");
+    v.choice(init, "init", {"pose", "global"},
+             "pose: a box around init_pose; global: the whole map");
+    // not v.pose(): this one has a default (0 0 0); the heading in degrees
+    // in the file, radians held
+    std::vector<double> pose{initPose.x, initPose.y, initPose.phi * 180 / M_PI};
+    const auto poseBuilt = pose;
+    v.numbers(pose, "init_pose", TRange::closed(-1e6, 1e6, "m"), "x [m] y [m] phi [deg]",
+              TCount{0, 1, 3});
+    if (pose != poseBuilt)
+        initPose = {pose[0], pose[1], pose[2] * M_PI / 180};
+    // "hx [hy]": one half-width for both, or one each
+    std::vector<double> xy{init_xy, init_y};
+    const auto xyBuilt = xy;
+    v.numbers(xy, "init_xy", TRange::closed(0, 1000, "m"),
+              "half-width of the initial box, or \"hx hy\"", TCount{1});
+    if (xy.size() > 2)  // (only a load reads more than it was handed)
+        throw CConfigKeyError(section, "init_xy", numbersText(xy),
+                              "needs one half-width, or x and y half-widths");
+    if (xy != xyBuilt) {
+        init_xy = xy[0];
+        init_y = xy.size() == 2 ? xy[1] : xy[0];
+    }
+    v.number(init_phi_deg, "init_phi_deg", TRange::closed(0, 180, "deg"),
+             "half-width of the initial heading range");
+    v.number(lf_std_hit, "lf_std_hit", TRange::closed(0.001, 10, "m"),
+             "likelihood field sigma");
+    v.integer(lf_decimation, "lf_decimation", TRange::closed(1, 1000),
+              "use every N-th laser ray");
+    v.number(lf_max_corrs_distance, "lf_max_corrs_distance",
+             TRange::closed(0.01, 10, "m"), "likelihood field correspondence distance");
 }
 
 CRawlogMcl::CRawlogMcl() {
@@ -98,7 +90,11 @@ int readEnum(const mrpt::config::CConfigFileBase& c, const std::string& s,
 }  // namespace
 
 void CRawlogMcl::loadFromConfigFile(const mrpt::config::CConfigFileBase& c) {
-    loadOptions(options, c, "Localization");
+    try {
+        loadOptions(options, c, "Localization");
+    } catch (const CConfigKeyError& e) {  // (init_xy's count, found at load)
+        throw CBadInputError(configWhere(c, e.section, e.key) + typedValueMessage(c, e));
+    }
     obstacleRule.reset();
     if (c.sectionExists("World")) {
         mapping::TObstacleRule rule;

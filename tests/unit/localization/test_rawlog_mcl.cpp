@@ -449,3 +449,40 @@ TEST(LostDetection, TheDocumentedConfigHoldsEveryDeclaredKeyWithItsDefault) {
         EXPECT_EQ(documented[k.key], k.defaultText) << k.key;
     }
 }
+
+TEST(RawlogMclOptions, TheDocumentedConfigHoldsEveryDeclaredKey) {
+    mrpt::config::CConfigFileMemory doc(risknav::test::readFile(
+        risknav::test::sourcePath("config/risknav-afraid-learn.ini")));
+    const CRawlogMcl::TOptions defaults;
+    const auto keys = defaults.keys();
+    ASSERT_EQ(keys.size(), 8u);
+    for (const auto& k : keys) {
+        ASSERT_TRUE(doc.keyExists("Localization", k.key)) << k.key;
+        EXPECT_FALSE(k.doc.empty()) << k.key;
+        if (k.key == "init_pose" || k.key == "init_xy")
+            continue;  // the example's box, not the default
+        const std::string v = doc.read_string("Localization", k.key, "");
+        EXPECT_EQ(v.substr(0, v.find_first_of(" \t/")), k.defaultText) << k.key;
+    }
+    // the heading in degrees in the file; init_xy one or two half-widths
+    mrpt::config::CConfigFileMemory c(
+        "[Localization]\ninit_pose = 1 2 90\ninit_xy = 3\n");
+    CRawlogMcl::TOptions o;
+    o.loadFromConfigFile(c, "Localization");
+    EXPECT_NEAR(o.initPose.phi, M_PI / 2, 1e-15);
+    EXPECT_EQ(o.init_xy, 3);
+    EXPECT_EQ(o.init_y, 3);
+    mrpt::config::CConfigFileMemory saved;
+    o.saveToConfigFile(saved, "Localization");
+    CRawlogMcl::TOptions back;
+    back.loadFromConfigFile(saved, "Localization");
+    EXPECT_EQ(back.initPose, o.initPose);
+    EXPECT_EQ(back.init_y, 3);
+    for (const char* bad :
+         {"[Localization]\ninit_pose = 1 2\n", "[Localization]\ninit_xy = 1 2 3\n"}) {
+        CRawlogMcl m;
+        EXPECT_THROW(m.loadFromConfigFile(mrpt::config::CConfigFileMemory(bad)),
+                     risknav::common::CBadInputError)
+            << bad;
+    }
+}

@@ -7,7 +7,7 @@
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/slam/CMonteCarloLocalization2D.h>
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/localization/lost_detection.h>
 #include <risknav/mapping/CDistanceField.h>
 #include <risknav/mapping/TObstacleRule.h>
@@ -33,7 +33,10 @@ struct TMclEstimate {
  * pf-localization reads, so one config can drive both). */
 class CRawlogMcl {
   public:
-    struct TOptions : public common::CValidatedOptions {
+    /** [Localization], risknav's keys. MRPT's [PF_options] and [KLD_options]
+     * stay read by CRawlogMcl::loadFromConfigFile() (MRPT's structs). */
+    struct TOptions : public common::CDeclaredOptions {
+        TOptions() { section = "Localization"; }
         int particles = 5000;          ///< initial particles
         std::string init = "pose";     ///< pose | global
         mrpt::math::TPose2D initPose;  ///< init = pose: centre of a uniform box
@@ -43,11 +46,9 @@ class CRawlogMcl {
         double lf_std_hit = 0.2;             ///< [m] likelihood field sigma
         int lf_decimation = 5;               ///< use every N-th ray
         double lf_max_corrs_distance = 0.3;  ///< [m]
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& s) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& s) const override;
-        void validate() const override;
+
+      protected:
+        void declare(Visitor& v) override;
     } options;
     mrpt::bayes::CParticleFilter::TParticleFilterOptions pfOptions;
     mrpt::slam::TKLDParams kldOptions;
