@@ -57,59 +57,32 @@ std::pair<const TSensingPointOptions*, std::string> longestCovFile(
 }
 }  // namespace
 
-void CRiskEvaluator::TOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                                  const std::string& s) {
-    section = s;
-    map.loadFromConfigFile(c, s);
-    obstacles.loadFromConfigFile(c, s);
-    start = requirePoint(c, s, "start");
-    goal = requirePoint(c, s, "goal");
-    u_threshold = readDouble(c, s, "u_threshold", u_threshold);
-    max_sensing_subset = readInt(c, s, "max_sensing_subset", max_sensing_subset);
-    gvg_routes = readInt(c, s, "gvg_routes", gvg_routes);
-    grid_routes = readInt(c, s, "grid_routes", grid_routes);
-    gvg.loadFromConfigFile(c, s);
-    ellipse_interval = readDouble(c, s, "ellipse_interval", ellipse_interval);
-    eval_step = readDouble(c, s, "eval_step", eval_step);
-    // The seed is an integer type: its range is a parsing rule.
-    seed = static_cast<uint64_t>(
-        readDouble(c, s, "seed", double(seed), TRange::closed(0, kMaxSeed)));
+void CRiskEvaluator::TOptions::declare(Visitor& v) {
+    v.include(map);
+    v.include(obstacles);
+    v.point(start, "start", TRange::any("m"),
+            "x y; on the map and not in a (grown) obstacle");
+    v.point(goal, "goal", TRange::any("m"), "x y; the same, and not the start");
+    v.number(u_threshold, "u_threshold",
+             TRange::nonNegative("(u = 1/D_max^2 is dimensionless)"),
+             "exclude a route whose max u exceeds this (section 5.3); 0 = off");
+    v.integer(max_sensing_subset, "max_sensing_subset", TRange::closed(0, 6),
+              "evaluate every subset of sensing points up to this size");
+    v.integer(gvg_routes, "gvg_routes", TRange::closed(0, 50),
+              "the k shortest distinct GVG routes (0 = none)");
+    v.integer(grid_routes, "grid_routes", TRange::closed(0, 10),
+              "the k least-cost grid ways of distinct homotopy classes (0 = none)");
+    v.include(gvg);
+    v.number(ellipse_interval, "ellipse_interval", TRange::closed(0.1, 100, "m"),
+             "between the ellipses drawn in ellipses_*.png");
+    v.number(eval_step, "eval_step", TRange::closed(0.005, 5, "m"),
+             "D_max / u sampling along the path");
+    v.seed(seed, "seed", "of [Odometry] propagation = sampled; --seed overrides");
 }
 
-void CRiskEvaluator::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                                const std::string& s) const {
-    map.saveToConfigFile(c, s);
-    obstacles.saveToConfigFile(c, s);
-    writeKey(c, s, "start", std::vector<double>{start.x, start.y});
-    writeKey(c, s, "goal", std::vector<double>{goal.x, goal.y});
-    writeKey(c, s, "u_threshold", u_threshold);
-    writeKey(c, s, "max_sensing_subset", max_sensing_subset);
-    writeKey(c, s, "gvg_routes", gvg_routes);
-    writeKey(c, s, "grid_routes", grid_routes);
-    gvg.saveToConfigFile(c, s);
-    writeKey(c, s, "ellipse_interval", ellipse_interval);
-    writeKey(c, s, "eval_step", eval_step);
-    writeKey(c, s, "seed", std::to_string(seed));
-}
-
-void CRiskEvaluator::TOptions::validate() const {
-    map.validate();
-    obstacles.validate();
-    gvg.validate();
-    for (const auto& [key, p] :
-         {std::make_pair("start", start), std::make_pair("goal", goal)})
-        checkRule(std::isfinite(p.x) && std::isfinite(p.y), section, key, fmtPoint(p),
-                  "required, as x y [m]");
+void CRiskEvaluator::TOptions::validateRules() const {
     checkRule(std::hypot(goal.x - start.x, goal.y - start.y) > 1e-6, section, "goal",
               fmtPoint(goal), "the goal must differ from the start");
-    checkKey(section, "u_threshold", u_threshold,
-             TRange::nonNegative("(u = 1/D_max^2 is dimensionless)"));
-    checkKey(section, "max_sensing_subset", max_sensing_subset, TRange::closed(0, 6));
-    checkKey(section, "gvg_routes", gvg_routes, TRange::closed(0, 50));
-    checkKey(section, "grid_routes", grid_routes, TRange::closed(0, 10));
-    checkKey(section, "ellipse_interval", ellipse_interval,
-             TRange::closed(0.1, 100, "m"));
-    checkKey(section, "eval_step", eval_step, TRange::closed(0.005, 5, "m"));
 }
 
 void CRiskEvaluator::loadFromConfigFile(const CIniConfig& c) {

@@ -4,30 +4,22 @@
 using namespace risknav::common;
 
 namespace risknav::risk {
-void TRouteOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                       const std::string& s) {
-    section = s;
-    name = readString(c, s, "name", s);
-    waypoints = readNumbers(c, s, "waypoints", waypoints, {}, 0, 2);
+void TRouteOptions::declare(Visitor& v) {
+    v.text(name, "name", true, "unique among the routes; default: the section name");
+    // required, but by validateRules(): its message says what none would be
+    v.numbers(waypoints, "waypoints", TRange::any("m"),
+              "x y pairs, each on the map; required", TCount{0, 2});
 }
 
-void TRouteOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                     const std::string& s) const {
-    writeKey(c, s, "name", name);
-    writeKey(c, s, "waypoints", waypoints);
-}
-
-void TRouteOptions::validate() const {
-    checkRule(!name.empty(), section, "name", name, "must not be empty");
-    std::string text;
-    for (double v : waypoints)
-        text += (text.empty() ? "" : " ") + numberText(v);
+void TRouteOptions::validateRules() const {
     // no waypoints was silently the straight line from start to goal
-    checkRule(!waypoints.empty(), section, "waypoints", text,
+    checkRule(!waypoints.empty(), section, "waypoints", "",
               "required: x y pairs [m] (the straight line: the start and the goal)");
-    checkRule(waypoints.size() % 2 == 0, section, "waypoints", text,
-              "needs x y pairs [m]");
-    checkKey(section, "waypoints", waypoints, TRange::any("m"));
+}
+
+void TRouteOptions::onLoaded() {
+    if (name.empty())
+        name = section;
 }
 
 }  // namespace risknav::risk

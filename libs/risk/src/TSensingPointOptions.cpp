@@ -16,39 +16,25 @@ TSensingPoint TSensingPointOptions::point() const {
     return p;
 }
 
-void TSensingPointOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                              const std::string& s) {
-    section = s;
-    name = readString(c, s, "name", s);
-    x = requireDouble(c, s, "x", {});
-    y = requireDouble(c, s, "y", {});
-    radius = readDouble(c, s, "radius", radius);
-    sigma_x = readDouble(c, s, "sigma_x", sigma_x);
-    sigma_y = readDouble(c, s, "sigma_y", sigma_y);
-    sigma_theta_deg = readDouble(c, s, "sigma_theta_deg", sigma_theta_deg);
-}
-
-void TSensingPointOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                            const std::string& s) const {
-    writeKey(c, s, "name", name);
-    writeKey(c, s, "x", x);
-    writeKey(c, s, "y", y);
-    writeKey(c, s, "radius", radius);
-    writeKey(c, s, "sigma_x", sigma_x);
-    writeKey(c, s, "sigma_y", sigma_y);
-    writeKey(c, s, "sigma_theta_deg", sigma_theta_deg);
-}
-
-void TSensingPointOptions::validate() const {
-    checkRule(!name.empty(), section, "name", name, "must not be empty");
-    checkKey(section, "x", x, TRange::any("m (required)"));
-    checkKey(section, "y", y, TRange::any("m (required)"));
-    checkKey(section, "radius", radius, TRange::closed(0.01, 10, "m"));
+void TSensingPointOptions::declare(Visitor& v) {
+    v.text(name, "name", true, "unique; default: the section name");
+    v.requiredNumber(x, "x", TRange::any("m (required)"),
+                     "on the map, not in a (grown) obstacle");
+    v.requiredNumber(y, "y", TRange::any("m (required)"), "the same");
+    v.number(radius, "radius", TRange::closed(0.01, 10, "m"),
+             "passing within this resets the pose covariance");
     // Bounded as [Odometry] init_sigma_*: no covariance can overflow (a
     // sensing point with sigma 1e308 would otherwise "help").
-    checkKey(section, "sigma_x", sigma_x, TRange::closed(0, 1000, "m"));
-    checkKey(section, "sigma_y", sigma_y, TRange::closed(0, 1000, "m"));
-    checkKey(section, "sigma_theta_deg", sigma_theta_deg, TRange::closed(0, 180, "deg"));
+    v.number(sigma_x, "sigma_x", TRange::closed(0, 1000, "m"),
+             "pose std. dev. after sensing, x");
+    v.number(sigma_y, "sigma_y", TRange::closed(0, 1000, "m"), "the same, y");
+    v.number(sigma_theta_deg, "sigma_theta_deg", TRange::closed(0, 180, "deg"),
+             "the same, heading");
+}
+
+void TSensingPointOptions::onLoaded() {
+    if (name.empty())
+        name = section;
 }
 
 }  // namespace risknav::risk

@@ -268,4 +268,48 @@ TEST(RiskOptions, TheDocumentedConfigHoldsEveryDeclaredKey) {
     mrpt::config::CConfigFileMemory m;
     o.saveToConfigFile(m, "RiskEval");
     EXPECT_EQ(m.read_string("RiskEval", "gvg_simplify_tolerance", ""), "0.25");
+    // [RiskEval] with the map's, the obstacle rule's and gvg's keys; the file
+    // gives a map, the start and goal (no defaults) and its own interval
+    expectDocumented(CRiskEvaluator::TOptions(), "RiskEval", 20,
+                     {"map_file", "start", "goal", "ellipse_interval"});
+    // a route's and a sensing point's own values (no defaults: names, points)
+    expectDocumented(TRouteOptions(), "Route1", 2, {"name", "waypoints"});
+    expectDocumented(TSensingPointOptions(), "SensingPoint1", 7,
+                     {"name", "x", "y", "sigma_theta_deg"});
+}
+
+// A route's and a sensing point's name is its section's unless given; the
+// points are required.
+TEST(RiskOptions, NamesDefaultToTheSectionAndPointsAreRequired) {
+    mrpt::config::CConfigFileMemory c(
+        "[Route7]\nwaypoints = 1 2 3 4\n[SensingPoint3]\nx = 1\ny = 2\n"
+        "[SensingPoint4]\nx = 1\n");
+    TRouteOptions r;
+    r.loadFromConfigFile(c, "Route7");
+    EXPECT_EQ(r.name, "Route7");
+    EXPECT_EQ(r.waypoints.size(), 4u);
+    TSensingPointOptions p;
+    p.loadFromConfigFile(c, "SensingPoint3");
+    EXPECT_EQ(p.name, "SensingPoint3");
+    EXPECT_NO_THROW(p.validate());
+    try {
+        TSensingPointOptions q;
+        q.loadFromConfigFile(c, "SensingPoint4");
+        ADD_FAILURE() << "y is required";
+    } catch (const std::exception& e) {
+        EXPECT_NE(
+            std::string(e.what()).find("[SensingPoint4] y: required key is missing"),
+            std::string::npos)
+            << e.what();
+    }
+    TRouteOptions none;
+    none.loadFromConfigFile(c, "SensingPoint3");  // no waypoints key
+    try {
+        none.validate();
+        ADD_FAILURE() << "waypoints are required";
+    } catch (const risknav::common::CConfigKeyError& e) {
+        EXPECT_NE(std::string(e.what()).find("[SensingPoint3] waypoints = '': required"),
+                  std::string::npos)
+            << e.what();
+    }
 }

@@ -1,6 +1,6 @@
 #pragma once
+#include <risknav/common/CDeclaredOptions.h>
 #include <risknav/common/CIniConfig.h>
-#include <risknav/common/CValidatedOptions.h>
 #include <risknav/common/TOdometryOptions.h>
 #include <risknav/common/TRobotOptions.h>
 #include <risknav/common/grid_io.h>
@@ -56,8 +56,10 @@ class CRiskEvaluator {
     /** @} */
 
     /** The [RiskEval] keys: the map, which of its cells are obstacles, start
-     * and goal, the candidates and the evaluation. */
-    struct TOptions : public common::CValidatedOptions {
+     * and goal, the candidates and the evaluation. Every key is declared
+     * once, in declare() (the map's, the obstacle rule's and gvg's by
+     * including them). */
+    struct TOptions : public common::CDeclaredOptions {
         common::TMapSourceOptions map;     ///< map_* keys
         mapping::TObstacleRule obstacles;  ///< occupied_threshold ... outside_is_obstacle
         CGvgRoutes::TOptions gvg;  ///< gvg_separation_ratio, gvg_simplify_tolerance
@@ -73,14 +75,16 @@ class CRiskEvaluator {
         double ellipse_interval = 2;  ///< [m] between drawn ellipses
         double eval_step = 0.05;      ///< [m] D_max / u sampling along the path
         uint64_t seed = 1;  ///< of [Odometry] propagation = sampled; --seed overrides
-        std::string section = "RiskEval";  ///< the host section (for messages)
 
-        TOptions() { map.section = obstacles.section = gvg.section = section; }
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& section) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& section) const override;
-        void validate() const override;
+        TOptions() {
+            section = "RiskEval";
+            map.section = obstacles.section = gvg.section = section;
+        }
+
+      protected:
+        void declare(Visitor& v) override;
+        /** The goal differs from the start. */
+        void validateRules() const override;
     };
 
     struct TRoute {

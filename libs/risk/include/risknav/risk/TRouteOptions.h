@@ -1,22 +1,23 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 
 #include <string>
 #include <vector>
 
 namespace risknav::risk {
 /** A candidate route given in the config: one [RouteN] section. The evaluator
- * adds the start and goal at the ends unless the waypoints begin/end there. */
-struct TRouteOptions : public common::CValidatedOptions {
-    std::string name;                ///< default: the section name
-    std::vector<double> waypoints;   ///< [m] x y pairs
-    std::string section = "Route1";  ///< the section (for messages)
+ * adds the start and goal at the ends unless the waypoints begin/end there.
+ * Every key is declared once, in declare(). */
+struct TRouteOptions : public common::CDeclaredOptions {
+    TRouteOptions() { section = "Route1"; }
+    std::string name;               ///< default: the section name
+    std::vector<double> waypoints;  ///< [m] x y pairs
 
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& section) override;
-    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                          const std::string& section) const override;
-    void validate() const override;
+  protected:
+    void declare(Visitor& v) override;
+    /** At least one waypoint (its own message: none was the straight line). */
+    void validateRules() const override;
+    void onLoaded() override;
 };
 
 }  // namespace risknav::risk
