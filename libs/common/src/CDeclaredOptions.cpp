@@ -107,7 +107,10 @@ class CLoader : public CDeclaredOptions::Visitor {
         v = splitWords(readString(m_c, m_s, key, joined(v)));
     }
     void seed(uint64_t& v, const char* key, const char*) override {
-        v = uint64_t(readDouble(m_c, m_s, key, double(v), kSeedRange));
+        const double d = readDouble(m_c, m_s, key, double(v), kSeedRange);
+        if (d != std::floor(d))  // 1.5 is no seed (it was taken as 1)
+            throwBadKey(m_c, m_s, key, readString(m_c, m_s, key, ""), "not an integer");
+        v = uint64_t(d);
     }
     void text(std::string& v, const char* key, bool, const char*) override {
         v = readString(m_c, m_s, key, v);
@@ -429,7 +432,13 @@ void CDeclaredOptions::loadFromConfigFile(const CConfigFileBase& c,
                                           const std::string& s) {
     section = s;
     CLoader l(c, s);
-    declare(l);
+    try {
+        declare(l);
+    } catch (const CConfigKeyError& e) {
+        // a rule a load checks (a pose's parts): named with the file and the
+        // value as typed, as readers' errors are
+        throw CBadInputError(configWhere(c, e.section, e.key) + typedValueMessage(c, e));
+    }
     onLoaded();
 }
 

@@ -40,7 +40,9 @@ void CRawlogMcl::TOptions::declare(Visitor& v) {
     const auto xyBuilt = xy;
     v.numbers(xy, "init_xy", TRange::closed(0, 1000, "m"),
               "half-width of the initial box, or \"hx hy\"", TCount{1});
-    if (xy.size() > 2)  // (only a load reads more than it was handed)
+    // only a load reads more than it was handed (loadFromConfigFile() names
+    // the file)
+    if (xy.size() > 2)
         throw CConfigKeyError(section, "init_xy", numbersText(xy),
                               "needs one half-width, or x and y half-widths");
     if (xy != xyBuilt) {
@@ -90,11 +92,7 @@ int readEnum(const mrpt::config::CConfigFileBase& c, const std::string& s,
 }  // namespace
 
 void CRawlogMcl::loadFromConfigFile(const mrpt::config::CConfigFileBase& c) {
-    try {
-        loadOptions(options, c, "Localization");
-    } catch (const CConfigKeyError& e) {  // (init_xy's count, found at load)
-        throw CBadInputError(configWhere(c, e.section, e.key) + typedValueMessage(c, e));
-    }
+    loadOptions(options, c, "Localization");
     obstacleRule.reset();
     if (c.sectionExists("World")) {
         mapping::TObstacleRule rule;

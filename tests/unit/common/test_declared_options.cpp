@@ -379,3 +379,27 @@ TEST(CDeclaredOptions, PathListsAndNamedSections) {
         }
     }
 }
+
+namespace {
+struct TSeedOptions : public CDeclaredOptions {
+    TSeedOptions() { section = "Run"; }
+    uint64_t seed = 1;
+
+  protected:
+    void declare(Visitor& v) override { v.seed(seed, "seed", "the run's seed"); }
+};
+}  // namespace
+
+// A seed is a whole number: 1.5 is refused, not taken as 1.
+TEST(CDeclaredOptions, ASeedIsAWholeNumber) {
+    TSeedOptions o;
+    mrpt::config::CConfigFileMemory c("[Run]\nseed = 9007199254740992\n");
+    o.loadFromConfigFile(c, "Run");
+    EXPECT_EQ(o.seed, 9007199254740992ULL);
+    for (const char* bad : {"[Run]\nseed = 1.5\n", "[Run]\nseed = -1\n"}) {
+        TSeedOptions p;
+        EXPECT_THROW(p.loadFromConfigFile(mrpt::config::CConfigFileMemory(bad), "Run"),
+                     CBadInputError)
+            << bad;
+    }
+}
