@@ -44,13 +44,13 @@ void CAgentsSim::TDoorPedestrian::declare(Visitor& v) {
     const std::vector<double> held(door, door + 4);
     std::vector<double> seg = held;
     v.numbers(seg, "door", kCoordinate,
-              "the doorway segment x1 y1 x2 y2 [m] (drawn, and the trigger point)",
+              "the doorway segment x1 y1 x2 y2 (drawn, and the trigger point)",
               TCount{0, 1, 4, true});
     if (seg != held && seg.size() == 4)
         std::copy(seg.begin(), seg.end(), door);
     v.points(path, "path", kCoordinate,
-             "x y pairs [m] from inside the room into and along the corridor; the "
-             "person leaves at its end",
+             "x y pairs from inside the room into and along the corridor; the person "
+             "leaves at its end",
              kPathCount);
     // people's paces (1e308 m/s teleported a person past the robot in one step)
     v.number(speed, "speed", TRange{0, 10, true, false, "m/s"}, "walking speed");
@@ -82,7 +82,7 @@ void CAgentsSim::TDoorPedestrian::validateRules() const {
 }
 
 void CAgentsSim::TWalker::declare(Visitor& v) {
-    v.points(path, "path", kCoordinate, "x y pairs [m] the walkers follow", kPathCount);
+    v.points(path, "path", kCoordinate, "x y pairs the walkers follow", kPathCount);
     v.number(speed_min, "speed_min", TRange{0, 10, true, false, "m/s"}, "slowest walker");
     v.number(speed_max, "speed_max", TRange{0, 10, true, false, "m/s"},
              "each walker's speed is uniform in [min, max]");

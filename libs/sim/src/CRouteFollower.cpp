@@ -12,12 +12,13 @@ using mrpt::math::TPoint2D;
 namespace risknav::sim {
 void CRouteFollower::TOptions::declare(Visitor& v) {
     v.numbers(waypoints, "waypoints", TRange::closed(-1e6, 1e6, "m"),
-              "x0 y0 x1 y1 ... [m], at least two points", TCount{4, 2, 0, true});
+              "x0 y0 x1 y1 ... of one pass", TCount{4, 2, 0, true});
     v.number(speed, "speed", {0, 5, true, false, "m/s"},
              "commanded speed on every segment");
     v.numbers(speeds, "speeds", {0, 5, true, false, "m/s"},
               "optional: one speed per segment (mode loop: one more)");
-    v.integer(laps, "laps", TRange::closed(1, 10000), "must be 1 for once");
+    v.integer(laps, "laps", TRange::closed(1, 10000),
+              "passes over the route (1 for mode once)");
     v.choice(mode, "mode", {"once", "loop", "back_and_forth"}, "how the route repeats");
     v.number(goal_tolerance, "goal_tolerance", TRange::closed(0.01, 2, "m"),
              "a waypoint counts as reached within this distance");
