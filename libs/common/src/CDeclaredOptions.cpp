@@ -217,8 +217,13 @@ class CSaver : public CDeclaredOptions::Visitor {
              const std::string& range) {
         // "key = value // doc, range", unpadded: MRPT's padding would keep
         // the padded name as the key in a CConfigFileMemory, where a load of
-        // what was just saved would then find nothing and keep its defaults
-        m_c.write(m_s, key, value, -1, -1, std::string(doc) + ", " + range);
+        // what was just saved would then find nothing and keep its defaults.
+        // An empty value goes without its comment: MRPT strips a "//"
+        // comment only after a value, so "key = // doc" would read as "// doc"
+        if (value.empty())
+            m_c.write(m_s, key, value);
+        else
+            m_c.write(m_s, key, value, -1, -1, std::string(doc) + ", " + range);
     }
     CConfigFileBase& m_c;
     const std::string& m_s;

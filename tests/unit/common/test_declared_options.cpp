@@ -366,6 +366,15 @@ TEST(CDeclaredOptions, PathListsAndNamedSections) {
     EXPECT_TRUE(builtIn.logs.empty());
     EXPECT_DOUBLE_EQ(builtIn.model.p, 0.6);
     EXPECT_EQ(builtIn.model.section, "Files (built-in model)");
+    // an empty value is saved without its comment, which would read as the value
+    mrpt::config::CConfigFileMemory emptySaved;
+    builtIn.saveToConfigFile(emptySaved, "Files");
+    TFilesOptions reread;
+    reread.logs = {"x"};
+    reread.loadFromConfigFile(mrpt::config::CConfigFileMemory(emptySaved.getContent()),
+                              "Files");
+    EXPECT_TRUE(reread.logs.empty()) << emptySaved.getContent();
+    EXPECT_EQ(reread.model_name, "") << emptySaved.getContent();
 
     for (const char* bad : {"[Files]\nmodel = Nowhere\n", "[Files]\nlogs = \"a b\n"}) {
         mrpt::config::CConfigFileMemory b(bad);
