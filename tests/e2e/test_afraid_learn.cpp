@@ -302,8 +302,11 @@ TEST(AfraidLearnE2E, ItsOwnConfigEffectiveReproducesTheRun) {
     const auto sa = readJson(a + "/summary.json");
     ASSERT_EQ(sa["status"], "ok");
     const auto lines = readLines(a + "/config_effective.ini");
+    // (a line "key = value", or "key = value // doc, range")
     const auto has = [&](const std::string& l) {
-        return std::find(lines.begin(), lines.end(), l) != lines.end();
+        return std::any_of(lines.begin(), lines.end(), [&](const std::string& x) {
+            return x == l || x.rfind(l + " //", 0) == 0;
+        });
     };
     EXPECT_TRUE(has("seed = 5"));                                 // from --seed
     EXPECT_TRUE(has("rawlogs = " + sim + "/simulation.rawlog"));  // from the command line
