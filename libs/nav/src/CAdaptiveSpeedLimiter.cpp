@@ -35,77 +35,42 @@ mapping::TSensorModel defaultLaser() {
 }  // namespace
 
 CAdaptiveSpeedLimiter::TOptions::TOptions() : laser(defaultLaser()) {
-    speed.section = section;
+    section = speed.section = "CAdaptiveSpeedLimiter";
     laser.section = section + " (built-in laser_model)";
     range2.section = section + " (built-in range2_model)";
 }
 
-void CAdaptiveSpeedLimiter::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s) {
-    section = s;
-    speed.loadFromConfigFile(c, s);  // the keys of [SpeedControl], in this section
-    measure_cycle_time = readBool(c, s, "measure_cycle_time", measure_cycle_time);
-    fixed_speed_index = readInt(c, s, "fixed_speed_index", fixed_speed_index);
-    laser_model = readString(c, s, "laser_model", laser_model);
-    range2_model = readString(c, s, "range2_model", range2_model);
-    use_range2 = readBool(c, s, "use_range2", use_range2);
-    local_map_size = readDouble(c, s, "local_map_size", local_map_size);
-    local_map_resolution = readDouble(c, s, "local_map_resolution", local_map_resolution);
-    memory_size = readDouble(c, s, "memory_size", memory_size);
-    memory_resolution = readDouble(c, s, "memory_resolution", memory_resolution);
-    worker_thread = readBool(c, s, "worker_thread", worker_thread);
-    cycle_decimation = readInt(c, s, "cycle_decimation", cycle_decimation);
-    auto model = [&](const std::string& key, const std::string& name,
-                     mapping::TSensorModel& m, const mapping::TSensorModel& builtIn) {
-        m = builtIn;
-        if (name.empty()) {
-            m.section = s + " (built-in " + key + ")";
-            return;
-        }
-        if (!c.sectionExists(name))
-            throwBadKey(c, s, key, name, "no section [" + name + "] in the config");
-        m.loadFromConfigFile(c, name);
-    };
-    model("laser_model", laser_model, laser, defaultLaser());
-    model("range2_model", range2_model, range2, mapping::TSensorModel{});
+void CAdaptiveSpeedLimiter::TOptions::declare(Visitor& v) {
+    v.include(speed);  // the keys of [SpeedControl], in this section
+    v.flag(measure_cycle_time, "measure_cycle_time",
+           "T is the measured cycle (else cycle_time)");
+    v.integer(fixed_speed_index, "fixed_speed_index",
+              TRange::closed(-1, double(speed.speeds.size()) - 1),
+              "-1: adaptive; k: fixed at candidate k (the fixed-speed baseline)");
+    v.text(laser_model, "laser_model", false,
+           "section of the laser's model ('' = built-in)");
+    v.text(range2_model, "range2_model", false,
+           "section of the second sensor's model ('' = built-in)");
+    v.flag(use_range2, "use_range2", "fuse the second range sensor");
+    v.number(local_map_size, "local_map_size", TRange::closed(2, 100, "m"),
+             "side of the local grid");
+    v.number(local_map_resolution, "local_map_resolution", TRange::closed(0.01, 0.5, "m"),
+             "cell size of the local grid");
+    v.number(memory_size, "memory_size", TRange::closed(0, 1000, "m"),
+             "side of the remembered map (0 = none)");
+    v.number(memory_resolution, "memory_resolution", TRange::closed(0.05, 5, "m"),
+             "cell size of the remembered map");
+    v.flag(worker_thread, "worker_thread", "observed cycles beside the engine");
+    v.integer(cycle_decimation, "cycle_decimation", TRange::closed(1, 100),
+              "a cycle every n-th sensing");
+    v.namedSection(laser, laser_model, "laser_model");
+    v.namedSection(range2, range2_model, "range2_model", use_range2);
 }
 
-void CAdaptiveSpeedLimiter::TOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                                       const std::string& s) const {
-    speed.saveToConfigFile(c, s);
-    writeKey(c, s, "measure_cycle_time", measure_cycle_time);
-    writeKey(c, s, "fixed_speed_index", fixed_speed_index);
-    writeKey(c, s, "laser_model", laser_model);
-    writeKey(c, s, "range2_model", range2_model);
-    writeKey(c, s, "use_range2", use_range2);
-    writeKey(c, s, "local_map_size", local_map_size);
-    writeKey(c, s, "local_map_resolution", local_map_resolution);
-    writeKey(c, s, "memory_size", memory_size);
-    writeKey(c, s, "memory_resolution", memory_resolution);
-    writeKey(c, s, "worker_thread", worker_thread);
-    writeKey(c, s, "cycle_decimation", cycle_decimation);
-    if (!laser_model.empty())
-        laser.saveToConfigFile(c, laser_model);
-    if (!range2_model.empty())
-        range2.saveToConfigFile(c, range2_model);
-}
-
-void CAdaptiveSpeedLimiter::TOptions::validate() const {
+void CAdaptiveSpeedLimiter::TOptions::validateRules() const {
     const std::string& s = section;
-    speed.validate();
-    laser.validate();
-    if (use_range2)
-        range2.validate();
-    checkKey(s, "fixed_speed_index", double(fixed_speed_index),
-             TRange::closed(-1, double(speed.speeds.size()) - 1));
-    checkKey(s, "cycle_decimation", double(cycle_decimation), TRange::closed(1, 100));
-    checkKey(s, "local_map_size", local_map_size, TRange::closed(2, 100, "m"));
-    checkKey(s, "local_map_resolution", local_map_resolution,
-             TRange::closed(0.01, 0.5, "m"));
     checkRule(local_map_size / local_map_resolution <= 2000, s, "local_map_size",
               numberText(local_map_size), "at most 2000 cells a side");
-    checkKey(s, "memory_size", memory_size, TRange::closed(0, 1000, "m"));
-    checkKey(s, "memory_resolution", memory_resolution, TRange::closed(0.05, 5, "m"));
     checkRule(memory_size / memory_resolution <= 4096, s, "memory_size",
               numberText(memory_size),
               "more than 4096 memory cells a side (raise memory_resolution)");

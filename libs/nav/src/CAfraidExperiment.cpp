@@ -119,55 +119,54 @@ std::string fmt(double v, int decimals) {
 }
 }  // namespace
 
-void TAfraidExperimentOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                                  const std::string& s) {
-    // an empty list is refused (not the default seeds), and so is a repeated
-    // seed (the same run twice would count twice in the statistics)
-    const auto sd = readNumbers(c, s, "seeds", {}, TRange::closed(0, kMaxSeed), 1);
-    if (!sd.empty()) {
+void TAfraidExperimentOptions::declare(Visitor& v) {
+    // whole numbers held: read as numbers, checked and converted here (an
+    // empty list is refused, not the default seeds)
+    std::vector<double> list(seeds.begin(), seeds.end());
+    const auto built = list;
+    const TRange range = TRange::closed(0, kMaxSeed);
+    v.numbers(list, "seeds", range, "one run of each mode per seed, 1 to 100, distinct",
+              TCount{1});
+    if (list != built) {  // only a load reads other values (a CConfigKeyError
+                          // here is named with the file by the loader)
+        std::string text;
+        for (double x : list)
+            text += (text.empty() ? "" : " ") + numberText(x);
         seeds.clear();
-        for (double v : sd) {
-            if (v != std::floor(v))
-                throwBadKey(c, s, "seeds", readString(c, s, "seeds", ""),
-                            "seeds are whole numbers");
-            if (std::find(seeds.begin(), seeds.end(), uint64_t(v)) != seeds.end())
-                throwBadKey(c, s, "seeds", readString(c, s, "seeds", ""),
-                            "seed " + std::to_string(uint64_t(v)) + " is listed twice");
-            seeds.push_back(uint64_t(v));
+        for (double x : list) {
+            if (!range.contains(x))
+                throw CConfigKeyError(section, "seeds", text,
+                                      "'" + numberText(x) + "' " + range.describe());
+            if (x != std::floor(x))
+                throw CConfigKeyError(section, "seeds", text, "seeds are whole numbers");
+            seeds.push_back(uint64_t(x));
         }
     }
-    learning_laps = readInt(c, s, "learning_laps", learning_laps);
-    test_laps = readInt(c, s, "test_laps", test_laps);
-    v_safe = readDouble(c, s, "v_safe", v_safe);
-    v_max = readDouble(c, s, "v_max", v_max);
-    section_length = readDouble(c, s, "section_length", section_length);
-    lead_in = readDouble(c, s, "lead_in", lead_in);
+    v.integer(learning_laps, "learning_laps", TRange::closed(1, 100, "laps"),
+              "laps of the route at v_safe (back and forth)");
+    v.integer(test_laps, "test_laps", TRange::closed(1, 100, "laps"),
+              "laps at v_max, with and without the limiter");
+    v.number(v_safe, "v_safe", TRange::closed(0.05, 5, "m/s"), "the learning speed");
+    v.number(v_max, "v_max", TRange::closed(0.05, 5, "m/s"), "the fast speed");
+    v.number(section_length, "section_length", TRange::closed(0.5, 1000, "m"),
+             "the compared door section");
+    v.number(lead_in, "lead_in", TRange::closed(0, 100, "m"),
+             "the section starts this far before the first zone");
 }
 
-void TAfraidExperimentOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                                                const std::string& s) const {
-    std::string list;
-    for (auto v : seeds)
-        list += (list.empty() ? "" : " ") + std::to_string(v);
-    writeKey(c, s, "seeds", list);
-    writeKey(c, s, "learning_laps", learning_laps);
-    writeKey(c, s, "test_laps", test_laps);
-    writeKey(c, s, "v_safe", v_safe);
-    writeKey(c, s, "v_max", v_max);
-    writeKey(c, s, "section_length", section_length);
-    writeKey(c, s, "lead_in", lead_in);
-}
-
-void TAfraidExperimentOptions::validate() const {
-    checkRule(!seeds.empty() && seeds.size() <= 100, kSec, "seeds",
+void TAfraidExperimentOptions::validateRules() const {
+    const std::string& s = section;
+    checkRule(!seeds.empty() && seeds.size() <= 100, s, "seeds",
               std::to_string(seeds.size()) + " seeds", "1 to 100 seeds");
-    checkKey(kSec, "learning_laps", learning_laps, TRange::closed(1, 100, "laps"));
-    checkKey(kSec, "test_laps", test_laps, TRange::closed(1, 100, "laps"));
-    checkKey(kSec, "v_safe", v_safe, TRange::closed(0.05, 5, "m/s"));
-    checkKey(kSec, "v_max", v_max, TRange::closed(0.05, 5, "m/s"));
-    checkRule(v_safe <= v_max, kSec, "v_safe", numberText(v_safe), "must be <= v_max");
-    checkKey(kSec, "section_length", section_length, TRange::closed(0.5, 1000, "m"));
-    checkKey(kSec, "lead_in", lead_in, TRange::closed(0, 100, "m"));
+    // the same run twice would count twice in the statistics
+    std::string list;
+    for (auto x : seeds)
+        list += (list.empty() ? "" : " ") + std::to_string(x);
+    for (size_t i = 0; i < seeds.size(); i++)
+        checkRule(
+            std::find(seeds.begin(), seeds.begin() + i, seeds[i]) == seeds.begin() + i, s,
+            "seeds", list, "seed " + std::to_string(seeds[i]) + " is listed twice");
+    checkRule(v_safe <= v_max, s, "v_safe", numberText(v_safe), "must be <= v_max");
 }
 
 namespace {

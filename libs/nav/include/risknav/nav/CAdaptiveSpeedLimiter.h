@@ -131,7 +131,7 @@ namespace risknav::nav {
 class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
     DEFINE_MRPT_OBJECT(CAdaptiveSpeedLimiter, risknav::nav)
   public:
-    struct TOptions : public common::CValidatedOptions {
+    struct TOptions : public common::CDeclaredOptions {
         /** speeds, margins, gap_threshold, lookahead_cycles, thresholds,
          * frontier_goal_weight, target_switch_cost, cycle_time: the keys of
          * risknav-explore's [SpeedControl], read from this section. */
@@ -149,18 +149,15 @@ class CAdaptiveSpeedLimiter : public common::CSpeedLimiter {
         double memory_resolution = 0.25;     ///< [m]
         bool worker_thread = true;           ///< observed cycles beside the engine
         int cycle_decimation = 1;            ///< a cycle every n-th sensing
-        std::string section = "CAdaptiveSpeedLimiter";
 
         TOptions();
-        /** Also reads the named model sections (CBadInputError when one is
-         * missing). */
-        void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                                const std::string& s) override;
-        void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                              const std::string& s) const override;
-        /** Ranges of every key, the [SpeedControl] rules, the sensor models,
-         * and that N exists for each fused model. */
-        void validate() const override;
+
+      protected:
+        /** Also the named model sections (CBadInputError when one is
+         * missing; range2's checked only with use_range2). */
+        void declare(Visitor& v) override;
+        /** The grids' sizes, and that N exists for each fused model. */
+        void validateRules() const override;
     } options;
 
     /** Loads and validates options (CBadInputError naming file, section,

@@ -1,6 +1,6 @@
 #pragma once
 #include <risknav/common/CAppRunner.h>
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 
 #include <cstdint>
 #include <string>
@@ -13,8 +13,9 @@ namespace risknav::nav {
  * from it (risknav-afraid-learn's CAfraidLearner: MCL on the map, the afraid
  * detector, kernel regression); then test laps at v_max with the learned
  * CAfraidSpeedLimiter and without it (same seed: the same people). */
-struct TAfraidExperimentOptions : public common::CValidatedOptions {
-    std::vector<uint64_t> seeds{1, 2, 3, 4, 5};
+struct TAfraidExperimentOptions : public common::CDeclaredOptions {
+    TAfraidExperimentOptions() { section = "AfraidExperiment"; }
+    std::vector<uint64_t> seeds{1, 2, 3, 4, 5};  ///< whole, distinct
     int learning_laps = 3;       ///< laps of the route at v_safe (mode back_and_forth)
     int test_laps = 1;           ///< laps at v_max, with and without the limiter
     double v_safe = 0.2;         ///< [m/s] the learning speed (002: 0.2)
@@ -22,11 +23,10 @@ struct TAfraidExperimentOptions : public common::CValidatedOptions {
     double section_length = 10;  ///< [m] the compared door section (002: 10 m)
     double lead_in = 1;  ///< [m] the section starts this far before the first zone
 
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& s) override;
-    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                          const std::string& s) const override;
-    void validate() const override;
+  protected:
+    void declare(Visitor& v) override;
+    /** 1 to 100 distinct seeds, v_safe <= v_max. */
+    void validateRules() const override;
 };
 
 /** Runs the experiment of a config with [AfraidExperiment] (risknav-navigate):

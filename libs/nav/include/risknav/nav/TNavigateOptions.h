@@ -1,5 +1,5 @@
 #pragma once
-#include <risknav/common/CValidatedOptions.h>
+#include <risknav/common/CDeclaredOptions.h>
 
 #include <mrpt/math/TPose2D.h>
 
@@ -13,7 +13,8 @@ namespace risknav::nav {
  * `route_file` (an MRPT TWaypointSequence file, e.g. risknav-viewpoint-plan's
  * waypoints.ini) or `risk_config` (risknav-risk-eval's config: the route of
  * the lowest U, or the one `risk_route` names). */
-struct TNavigateOptions : public common::CValidatedOptions {
+struct TNavigateOptions : public common::CDeclaredOptions {
+    TNavigateOptions() { section = "Navigate"; }
     mrpt::math::TPose2D start;        ///< start x [m], y [m], heading (radians in code)
     std::vector<double> goals;        ///< x0 y0 x1 y1 ... [m]
     std::string route_file;           ///< MRPT waypoints ini ([Waypoints])
@@ -69,11 +70,12 @@ struct TNavigateOptions : public common::CValidatedOptions {
      * does not know: CAdaptiveSpeedLimiter plans on its own map). */
     std::string global_planner = "grid";
 
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& s) override;
-    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                          const std::string& s) const override;
-    void validate() const override;
+  protected:
+    void declare(Visitor& v) override;
+    /** One route source, risk_route and start_sigma only where they apply,
+     * start_sigma's parts, nav_period a multiple of sim_dt, the run's work
+     * bounded. */
+    void validateRules() const override;
 };
 
 }  // namespace risknav::nav
