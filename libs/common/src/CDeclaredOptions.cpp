@@ -137,6 +137,10 @@ class CLoader : public CDeclaredOptions::Visitor {
         sub.section = m_s;
         Visitor::include(sub);
     }
+    void includeIfGiven(CDeclaredOptions& sub, const char* key, bool) override {
+        if (m_c.keyExists(m_s, key))
+            include(sub);
+    }
     void paths(std::vector<std::string>& v, const char* key, const char*) override {
         if (!m_c.keyExists(m_s, key))
             return;
@@ -323,6 +327,9 @@ class CLister : public CDeclaredOptions::Visitor {
     }
     void path(std::string& v, const char* key, bool, const char* doc) override {
         keys.push_back({key, doc, "a file path", v});
+    }
+    void includeIfGiven(CDeclaredOptions& sub, const char*, bool) override {
+        include(sub);
     }
     void degrees(double& radians, const char* key, const TRange& rangeDeg,
                  const char* doc) override {

@@ -508,12 +508,4 @@ std::string effectiveConfigText(const std::string& sourcePath,
            out;
 }
 
-mrpt::math::TPoint2D requirePoint(const mrpt::config::CConfigFileBase& c,
-                                  const std::string& s, const std::string& k) {
-    const auto v = readNumbers(c, s, k, {}, {});
-    if (v.size() != 2)
-        throw CBadInputError(configWhere(c, s, k) + "[" + s + "] " + k +
-                             ": required, as x y [m]");
-    return {v[0], v[1]};
-}
 }  // namespace risknav::common

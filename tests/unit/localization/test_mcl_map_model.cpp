@@ -240,8 +240,9 @@ TEST(LostDetection, AFilterThatDoesNotConvergeIsLostAfterTheGrace) {
         const auto c = m.checkLost(f.sf);
         EXPECT_EQ(c.converging, k < 5) << k;
         EXPECT_EQ(c.lost, k == 5) << k;
-        if (k == 5)
+        if (k == 5) {
             EXPECT_EQ(c.reason, "not_converged");
+        }
     }
 }
 

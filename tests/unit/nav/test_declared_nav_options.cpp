@@ -149,10 +149,11 @@ void expectDocumented(
         const auto v = documented(k.key);
         ASSERT_TRUE(v.has_value()) << k.key;
         EXPECT_FALSE(k.doc.empty()) << k.key;
-        if (!example.count(k.key))
+        if (!example.count(k.key)) {
             EXPECT_TRUE(sameValue(documentedValue(*v), k.defaultText))
                 << k.key << ": documented '" << *v << "', default '" << k.defaultText
                 << "'";
+        }
     }
 }
 

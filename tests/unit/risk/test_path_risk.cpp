@@ -251,9 +251,10 @@ void expectDocumented(const risknav::common::CDeclaredOptions& o,
         ASSERT_TRUE(doc.keyExists(section, k.key)) << k.key;
         EXPECT_FALSE(k.doc.empty()) << k.key;
         const std::string v = doc.read_string(section, k.key, "");
-        if (!rounded.count(k.key))
+        if (!rounded.count(k.key)) {
             EXPECT_EQ(risknav::common::trim(v.substr(0, v.find("//"))), k.defaultText)
                 << k.key;
+        }
     }
 }
 }  // namespace

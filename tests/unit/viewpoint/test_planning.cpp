@@ -544,3 +544,20 @@ TEST(TCameraOptions, TheDocumentedConfigHoldsEveryDeclaredKeyWithItsDefault) {
             << k.key;
     }
 }
+
+TEST(TViewpointPlanOptions, TheDocumentedConfigHoldsEveryDeclaredKey) {
+    // config/risknav-viewpoint-plan.ini documents [ViewpointPlan] key by key;
+    // the optional map's keys (read only with map_file) are there commented
+    // out, as "; key = value"
+    const std::string text = risknav::test::readFile(
+        risknav::test::sourcePath("config/risknav-viewpoint-plan.ini"));
+    mrpt::config::CConfigFileMemory doc(text);
+    const auto keys = risknav::viewpoint::TViewpointPlanOptions().keys();
+    ASSERT_EQ(keys.size(), 25u);  // the map's keys listed although no map is set
+    for (const auto& k : keys) {
+        EXPECT_FALSE(k.doc.empty()) << k.key;
+        const bool given = doc.keyExists("ViewpointPlan", k.key);
+        const bool commented = text.find("\n;" + k.key + " ") != std::string::npos;
+        EXPECT_TRUE(given || commented) << k.key;
+    }
+}

@@ -94,6 +94,14 @@ class CDeclaredOptions : public CValidatedOptions {
                   const TRange& headingDeg, const char* doc);
         /** Another declared struct's keys, in this section (its rules too). */
         virtual void include(CDeclaredOptions& sub) { sub.declare(*this); }
+        /** sub's keys in this section only when `key` is given: an optional
+         * part (a map). `given` says whether the part is in use (saved,
+         * checked); a load asks the file whether `key` is there; the key
+         * list documents the part always. */
+        virtual void includeIfGiven(CDeclaredOptions& sub, const char* key, bool given) {
+            if (given)
+                include(sub);
+        }
         /** File paths, whitespace-separated ("double quotes" keep a path with
          * spaces), each relative to the config file's folder; "" = none.
          * Whether they exist is a rule of the struct's. */

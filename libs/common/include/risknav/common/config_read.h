@@ -100,10 +100,6 @@ std::vector<double> readNumbers(const mrpt::config::CConfigFileBase& c,
                                 const std::string& section, const std::string& key,
                                 const std::vector<double>& def, const TRange& range = {},
                                 size_t minCount = 0, size_t sizeMultiple = 1);
-/** A required point "x y" [m] (the start and goal of every app): a
- * missing key or a count other than two is an error naming the key. */
-mrpt::math::TPoint2D requirePoint(const mrpt::config::CConfigFileBase& c,
-                                  const std::string& section, const std::string& key);
 /** A file path; relative paths resolve against the config file's folder when
  * the config is a CIniConfig. mustExist: throws if the file is not there. */
 std::string readPath(const mrpt::config::CConfigFileBase& c, const std::string& section,

@@ -11,8 +11,10 @@
 #include <vector>
 
 namespace risknav::viewpoint {
-/** [ViewpointPlan]: the world, the task and the planner's settings. */
-struct TViewpointPlanOptions : public common::CValidatedOptions {
+/** [ViewpointPlan]: the world, the task and the planner's settings. Every
+ * key is declared once, in declare(). */
+struct TViewpointPlanOptions : public common::CDeclaredOptions {
+    TViewpointPlanOptions() { section = "ViewpointPlan"; }
     std::string
         world_file;  ///< polygon world text (obstacles, bounds, landmarks); required
     /** Optional occupancy grid whose obstacles are traced into polygons and
@@ -46,13 +48,9 @@ struct TViewpointPlanOptions : public common::CValidatedOptions {
     int monte_carlo_draws = 100;  ///< per viewpoint, checking every feasible plan's bound
     uint64_t seed = 1;            ///< of the Monte Carlo check
 
-    std::string section = "ViewpointPlan";
-
-    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
-                            const std::string& section) override;
-    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
-                          const std::string& section) const override;
-    void validate() const override;
+  protected:
+    void declare(Visitor& v) override;
+    void validateRules() const override;
 };
 
 /** [Camera]: the two panning cameras and their image errors. Every key is
