@@ -1,6 +1,7 @@
 #include <risknav/common/CBadInputError.h>
 #include <risknav/common/config_read.h>
 #include <risknav/nav/CAdaptiveSpeedLimiter.h>
+#include <risknav/speed/TExploreOptions.h>
 
 #include <algorithm>
 #include <cmath>
@@ -69,18 +70,8 @@ void CAdaptiveSpeedLimiter::TOptions::declare(Visitor& v) {
 
 void CAdaptiveSpeedLimiter::TOptions::validateRules() const {
     const std::string& s = section;
-    checkRule(local_map_size / local_map_resolution <= 2000, s, "local_map_size",
-              numberText(local_map_size), "at most 2000 cells a side");
-    checkRule(memory_size / memory_resolution <= 4096, s, "memory_size",
-              numberText(memory_size),
-              "more than 4096 memory cells a side (raise memory_resolution)");
-    checkRule(
-        memory_size == 0 || memory_size >= local_map_size, s, "memory_size",
-        numberText(memory_size),
-        "must be 0 (none) or at least local_map_size = " + numberText(local_map_size));
-    checkRule(memory_resolution <= local_map_size / 4, s, "memory_resolution",
-              numberText(memory_resolution),
-              "must be at most local_map_size / 4 = " + numberText(local_map_size / 4));
+    speed::checkLocalMapSizes(s, local_map_size, local_map_resolution, memory_size,
+                              memory_resolution);
     // N of (000) section 3.2 must exist for each fused model
     for (const auto* m : {&laser, use_range2 ? &range2 : &laser})
         try {

@@ -42,6 +42,24 @@ void TExploreOptions::declare(Visitor& v) {
     v.seed(seed, "seed", "the run's random seed (--seed overrides)");
 }
 
+void checkLocalMapSizes(const std::string& s, double localMapSize,
+                        double localMapResolution, double memorySize,
+                        double memoryResolution) {
+    checkRule(localMapSize / localMapResolution <= 2000, s, "local_map_size",
+              numberText(localMapSize), "at most 2000 cells a side");
+    checkRule(memorySize / memoryResolution <= 4096, s, "memory_size",
+              numberText(memorySize),
+              "more than 4096 memory cells a side (raise memory_resolution)");
+    // a memory smaller than the local map, or of a few cells, remembers nothing
+    checkRule(
+        memorySize == 0 || memorySize >= localMapSize, s, "memory_size",
+        numberText(memorySize),
+        "must be 0 (none) or at least local_map_size = " + numberText(localMapSize));
+    checkRule(memoryResolution <= localMapSize / 4, s, "memory_resolution",
+              numberText(memoryResolution),
+              "must be at most local_map_size / 4 = " + numberText(localMapSize / 4));
+}
+
 void TExploreOptions::validateRules() const {
     checkRule(start.size() == 3, section, "start",
               std::to_string(start.size()) + " values", "needs x y heading_deg");
@@ -49,19 +67,8 @@ void TExploreOptions::validateRules() const {
                   destinations.size() <= 200,
               section, "destinations", std::to_string(destinations.size()) + " values",
               "needs 1 to 100 x y pairs");
-    checkRule(local_map_size / local_map_resolution <= 2000, section, "local_map_size",
-              numberText(local_map_size), "at most 2000 cells a side");
-    checkRule(memory_size / memory_resolution <= 4096, section, "memory_size",
-              numberText(memory_size),
-              "more than 4096 memory cells a side (raise memory_resolution)");
-    // a memory smaller than the local map, or of a few cells, remembers nothing
-    checkRule(
-        memory_size == 0 || memory_size >= local_map_size, section, "memory_size",
-        numberText(memory_size),
-        "must be 0 (none) or at least local_map_size = " + numberText(local_map_size));
-    checkRule(memory_resolution <= local_map_size / 4, section, "memory_resolution",
-              numberText(memory_resolution),
-              "must be at most local_map_size / 4 = " + numberText(local_map_size / 4));
+    checkLocalMapSizes(section, local_map_size, local_map_resolution, memory_size,
+                       memory_resolution);
     checkRule(arrival_radius <= goal_tolerance, section, "arrival_radius",
               numberText(arrival_radius),
               "must be at most goal_tolerance = " + numberText(goal_tolerance));

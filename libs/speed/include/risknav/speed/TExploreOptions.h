@@ -6,6 +6,15 @@
 #include <vector>
 
 namespace risknav::speed {
+/** The rules across the local map's and the memory's keys, the same in
+ * [Explore] and in nav::CAdaptiveSpeedLimiter's section: at most 2000 local
+ * cells and 4096 memory cells a side, a memory of 0 (none) or at least the
+ * local map, its cell at most a quarter of the local map. Throws
+ * CConfigKeyError naming `section`. */
+void checkLocalMapSizes(const std::string& section, double localMapSize,
+                        double localMapResolution, double memorySize,
+                        double memoryResolution);
+
 /** [Explore] of risknav-explore: the run, not the method. Every key, its
  * range and its doc are declared once, in declare() (TExploreOptions.cpp). */
 struct TExploreOptions : public common::CDeclaredOptions {
